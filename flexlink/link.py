@@ -1,0 +1,83 @@
+"""A straight link as a chain of 2D Euler-Bernoulli frame elements, in the link's own frame.
+
+Local DOF order per node: (u, v, rz) = axial displacement [m], transverse displacement [m],
+rotation [rad]; node k of the chain has DOFs 3k, 3k+1, 3k+2, nodes running from the link's
+start joint (x = 0) to its end joint (x = length).
+
+The matrices come from the weak forms, assembled with scikit-fem on a MeshLine:
+    axial    (P1):      K = int EA u' v' dx,    M = int rhoA u v dx
+    bending  (Hermite): K = int EI w'' v'' dx,  M = int rhoA w v dx   (consistent mass)
+The Hermite element's nodal DOFs are the value w and the slope w' = rz, so the chain matches
+the textbook element (axial 2a/a with a = rhoA l/6, bending b(156, 22l, 54, -13l, 4l^2, -3l^2)
+with b = rhoA l/420, stiffness EA/l and EI/l^3 (12, 6l, 4l^2, 2l^2)); tests/test_elements.py
+checks that against those closed forms. Only the rotation to the pose depends on the pose, so
+these matrices are built once per link and mesh and reused at every pose.
+"""
+
+from __future__ import annotations
+
+import functools
+
+import numpy as np
+import scipy.sparse as sp
+from skfem import Basis, BilinearForm, ElementLineHermite, ElementLineP1, MeshLine
+from skfem.helpers import dd, grad
+
+from .errors import InputError
+
+
+@BilinearForm
+def _axial_stiffness(u, v, w):
+    return grad(u)[0] * grad(v)[0]
+
+
+@BilinearForm
+def _bending_stiffness(u, v, w):
+    return dd(u)[0, 0] * dd(v)[0, 0]
+
+
+@BilinearForm
+def _mass(u, v, w):
+    return u * v
+
+
+@functools.lru_cache(maxsize=256)
+def _unit_chain(length: float, elements: int):
+    """Unit-property chain matrices (EA = EI = rhoA = 1) and their local DOF maps."""
+    mesh = MeshLine(np.linspace(0.0, length, elements + 1))
+    axial = Basis(mesh, ElementLineP1())
+    bending = Basis(mesh, ElementLineHermite())
+    nodes = np.arange(elements + 1)
+    # scikit-fem numbering -> local frame numbering (3 DOFs per node)
+    axial_map = np.empty(axial.N, dtype=np.int64)
+    axial_map[axial.nodal_dofs[0]] = 3 * nodes
+    bending_map = np.empty(bending.N, dtype=np.int64)
+    bending_map[bending.nodal_dofs[0]] = 3 * nodes + 1
+    bending_map[bending.nodal_dofs[1]] = 3 * nodes + 2
+    n = 3 * (elements + 1)
+
+    def to_local(matrix, dof_map):
+        coo = matrix.tocoo()
+        return sp.coo_matrix((coo.data, (dof_map[coo.row], dof_map[coo.col])), shape=(n, n)).tocsr()
+
+    return (to_local(_axial_stiffness.assemble(axial), axial_map),
+            to_local(_mass.assemble(axial), axial_map),
+            to_local(_bending_stiffness.assemble(bending), bending_map),
+            to_local(_mass.assemble(bending), bending_map))
+
+
+def link_matrices(length: float, elements: int, EA: float, EI: float, mass_per_length: float):
+    """Local stiffness and consistent mass of a uniform link, as sparse CSR matrices.
+
+    length [m], elements (>= 1), EA [N], EI [N m^2], mass_per_length [kg/m].
+    Returns (K, M) of size 3 (elements + 1), DOF order as in the module docstring.
+    """
+    if not (isinstance(elements, (int, np.integer)) and elements >= 1):
+        raise InputError(f"elements per link must be a whole number >= 1, got {elements!r}",
+                         field="elements_per_link")
+    for name, value in (("length", length), ("EA", EA), ("EI", EI),
+                        ("mass_per_length", mass_per_length)):
+        if not (np.isfinite(value) and value > 0):
+            raise InputError(f"{name} must be positive and finite, got {value!r}", field=name)
+    k_ax, m_ax, k_b, m_b = _unit_chain(float(length), int(elements))
+    return EA * k_ax + EI * k_b, mass_per_length * (m_ax + m_b)

@@ -1,0 +1,60 @@
+"""Quantities with explicit units, as written in scene and material files.
+
+Every dimensional value in a file is a string such as ``"300 mm"`` or ``"201 GPa"``; a bare
+number is refused, so a length in millimetres can never be read as metres. Values are
+converted to SI on reading and SI is used everywhere inside flexlink.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+
+from .errors import InputError
+
+# dimension -> {unit spelling: factor to SI}
+UNITS: dict[str, dict[str, float]] = {
+    "length": {"m": 1.0, "cm": 1e-2, "mm": 1e-3, "um": 1e-6, "in": 0.0254},
+    "modulus": {"Pa": 1.0, "kPa": 1e3, "MPa": 1e6, "GPa": 1e9, "N/m^2": 1.0, "N/mm^2": 1e6},
+    "density": {"kg/m^3": 1.0, "g/cm^3": 1e3},
+    "translational stiffness": {"N/m": 1.0, "kN/m": 1e3, "MN/m": 1e6, "N/mm": 1e3, "kN/mm": 1e6},
+    "rotational stiffness": {"N*m/rad": 1.0, "N m/rad": 1.0, "Nm/rad": 1.0, "N*mm/rad": 1e-3,
+                             "kN*m/rad": 1e3},
+    "angle": {"deg": math.pi / 180.0, "rad": 1.0},
+    "mass": {"kg": 1.0, "g": 1e-3},
+    "rotary inertia": {"kg*m^2": 1.0, "kg m^2": 1.0, "g*cm^2": 1e-7},
+    "area": {"m^2": 1.0, "mm^2": 1e-6, "cm^2": 1e-4},
+    "second moment": {"m^4": 1.0, "mm^4": 1e-12, "cm^4": 1e-8},
+    "frequency": {"Hz": 1.0, "kHz": 1e3},
+    "angular speed": {"rad/s": 1.0, "rev/min": 2 * math.pi / 60.0, "rpm": 2 * math.pi / 60.0},
+}
+
+_NUMBER = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?"
+_QUANTITY = re.compile(rf"^\s*({_NUMBER})\s*(.*?)\s*$")
+
+
+def parse_quantity(text: object, dimension: str, *, source: str | None = None,
+                   field: str | None = None) -> float:
+    """Convert ``"0.3 m"``-style text to a float in SI units of ``dimension``.
+
+    The special word ``"rigid"`` gives ``math.inf`` (only meaningful for stiffness).
+    """
+    table = UNITS[dimension]
+    spellings = ", ".join(table)
+    expected = f"a {dimension} as a string with a unit, one of: {spellings}; e.g. '1 {next(iter(table))}'"
+    if isinstance(text, bool) or not isinstance(text, str):
+        raise InputError(f"got {text!r} without a unit", source=source, field=field,
+                         expected=expected)
+    if text.strip().lower() == "rigid" and "stiffness" in dimension:
+        return math.inf
+    match = _QUANTITY.match(text)
+    if not match:
+        raise InputError(f"cannot read {text!r} as a number with a unit", source=source,
+                         field=field, expected=expected)
+    number, unit = float(match.group(1)), match.group(2)
+    if unit not in table:
+        other = [d for d, t in UNITS.items() if unit in t]
+        hint = f"; '{unit}' is a unit of {other[0]}, not of {dimension}" if other else ""
+        raise InputError(f"unknown unit {unit!r} in {text!r}{hint}", source=source, field=field,
+                         expected=expected)
+    return number * table[unit]

@@ -1,0 +1,47 @@
+"""Single beams against closed-form Euler-Bernoulli frequencies, and the convergence order."""
+
+import math
+
+import numpy as np
+import pytest
+
+from helpers import beam_scale, bending_frequencies, modes_of, single_beam
+
+# beta_n L roots of the characteristic equations (Blevins, Formulas for Natural Frequency)
+BETA_L = {
+    "cantilever": [1.875104068711961, 4.694091132974175, 7.854757438237613, 10.99554073487547],
+    "pinned-pinned": [math.pi * n for n in range(1, 5)],
+    "free-free": [4.730040744862704, 7.853204624095838, 10.99560783800167, 14.13716549125746],
+}
+
+
+@pytest.mark.parametrize("support", list(BETA_L))
+def test_first_four_modes_within_0_01_percent_at_32_elements(support):
+    result = modes_of(single_beam(support, 32), 10)
+    exact = np.array(BETA_L[support]) ** 2 * beam_scale()
+    computed = bending_frequencies(result, 4)
+    np.testing.assert_allclose(computed, exact, rtol=1e-4)
+    # the rigid-body modes of the free-free beam are found and labelled, not reported as elastic
+    expected_rigid = 3 if support == "free-free" else 0
+    assert sum(k != "elastic" for k in result.kinds) == expected_rigid
+
+
+def test_convergence_order_is_about_four():
+    """Consistent-mass Hermite elements: frequency error ~ h^4 (eigenvalue error ~ h^4 too)."""
+    exact = BETA_L["cantilever"][2] ** 2 * beam_scale()
+    meshes = [8, 16, 32]  # asymptotic range for mode 3; coarser pairs give 3.67
+    errors = [abs(bending_frequencies(modes_of(single_beam("cantilever", n), 6), 3)[2] - exact)
+              / exact for n in meshes]
+    orders = [math.log2(errors[i] / errors[i + 1]) for i in range(len(errors) - 1)]
+    assert all(3.7 < p < 4.3 for p in orders), orders
+    # frequencies approach from above (consistent mass: upper bounds, Rayleigh-Ritz)
+    assert all(e > 0 for e in errors)
+
+
+@pytest.mark.parametrize("method", ["dense", "sparse"])
+def test_dense_and_sparse_agree_with_rigid_body_modes(method):
+    result = modes_of(single_beam("free-free", 24), 8, method=method)
+    assert result.kinds[:3] == ("rigid-body/mechanism",) * 3
+    exact = np.array(BETA_L["free-free"][:4]) ** 2 * beam_scale()
+    np.testing.assert_allclose(bending_frequencies(result, 4), exact, rtol=1e-4)
+    assert result.orthogonality_error < 1e-8

@@ -1,0 +1,60 @@
+"""The command line: JSON document, files written, errors without tracebacks."""
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+
+from flexlink.cli import main
+
+ROOT = Path(__file__).resolve().parent.parent
+
+
+def test_modes_json_and_files(tmp_path):
+    result = CliRunner().invoke(main, ["modes", str(ROOT / "cases"), "--json", "--out",
+                                       str(tmp_path), "-e", "8"])
+    assert result.exit_code == 0, result.output
+    doc = json.loads(result.output)
+    assert len(doc["cases"]) == 4
+    for case in doc["cases"]:
+        assert len(case["modes"]) == 4
+        assert abs(case["pose"]["mu_deg"] - 90) < 1e-9
+        for row in case["modes"]:  # the % errors are what they say they are
+            for ref in ("Ex", "FE"):
+                expected = 100 * (row["computed_Hz"] - row[f"{ref}_Hz"]) / row[f"{ref}_Hz"]
+                assert abs(row[f"error_vs_{ref}_pct"] - expected) < 1e-9
+    assert json.loads((tmp_path / "modes.json").read_text()) == doc
+    assert (tmp_path / "modes.csv").read_text().count("\n") == 1 + 16
+
+
+def test_table_output_lists_every_case(tmp_path):
+    result = CliRunner().invoke(main, ["modes", str(ROOT / "cases"), "--out", str(tmp_path)])
+    assert result.exit_code == 0
+    for case in (1, 2, 3, 4):
+        assert f"Table II case {case}" in result.output
+    assert "overall mean |error|" in result.output
+
+
+def test_bad_scene_is_one_clear_line(tmp_path):
+    bad = tmp_path / "bad.toml"
+    bad.write_text("[linkage]\nR2 = 0.3\n")
+    result = CliRunner().invoke(main, ["modes", str(bad), "--out", str(tmp_path)])
+    assert result.exit_code == 2
+    assert "bad.toml" in result.output and "linkage" in result.output
+    assert "Traceback" not in result.output
+
+
+def test_unwritable_out_dir_fails_before_solving(tmp_path):
+    blocker = tmp_path / "file"
+    blocker.write_text("x")
+    result = CliRunner().invoke(main, ["modes", str(ROOT / "cases"), "--out", str(blocker / "o")])
+    assert result.exit_code == 2 and "not writable" in result.output
+
+
+def test_console_script_help():
+    out = subprocess.run([sys.executable, "-m", "flexlink.cli", "--help"], capture_output=True,
+                         text=True, check=True).stdout
+    assert "modes" in out

@@ -1,0 +1,43 @@
+"""Rule of mixtures for the Table I constituents."""
+
+import math
+
+import pytest
+
+from flexlink.materials import load_constituent, rule_of_mixtures, woven_beam_modulus, woven_composite
+
+
+@pytest.fixture(scope="module")
+def ply():
+    return rule_of_mixtures(load_constituent("carbon_fiber"), load_constituent("polyester"), 0.5)
+
+
+def test_table1_values_read_in_si():
+    cf = load_constituent("carbon_fiber")
+    assert (cf.E, cf.G, cf.density, cf.poisson) == (201e9, 1526e6, 1730.0, 0.21)
+    assert cf.spread == {"E": 20e9, "G": 643e6, "density": 10.0}
+
+
+def test_rule_of_mixtures_at_half_fraction(ply):
+    assert math.isclose(ply.E1, 0.5 * 201e9 + 0.5 * 2.4e9)
+    assert math.isclose(ply.E2, 1 / (0.5 / 201e9 + 0.5 / 2.4e9))
+    assert math.isclose(ply.density, 1490.0)
+    assert math.isclose(ply.nu12, 0.28)
+    assert ply.E2 < ply.E1  # Reuss below Voigt
+
+
+def test_woven_beam_modulus_reference_value(ply):
+    E = woven_beam_modulus(ply)
+    # documented reference: 53.4 GPa, within 0.5 % of (E1 + E2)/2
+    assert abs(E / 53.4e9 - 1) < 1e-3
+    assert abs(E / (0.5 * (ply.E1 + ply.E2)) - 1) < 5e-3
+
+
+def test_isotropic_limit_gives_back_the_modulus():
+    """Fibre = matrix: every mixture rule must return that material's own modulus."""
+    m = load_constituent("polyester")
+    same = rule_of_mixtures(m, m, 0.3)
+    assert math.isclose(same.E1, m.E) and math.isclose(same.E2, m.E)
+    # an isotropic 'fabric' narrow strip has modulus E exactly (no Poisson stiffening)
+    assert math.isclose(woven_beam_modulus(same), m.E, rel_tol=1e-12)
+    assert woven_composite(m, m, 0.3).density == m.density
