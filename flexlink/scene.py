@@ -59,6 +59,13 @@ class Scene:
     elements_per_link: int
     reference: Reference | None
     assumptions: tuple[Assumption, ...]
+    data: dict = dataclasses.field(default_factory=dict, repr=False, compare=False)
+    origin: dict = dataclasses.field(default_factory=dict, repr=False, compare=False)
+
+    def reader(self) -> "SceneReader":
+        """Typed, error-naming access to tables this module does not interpret itself (e.g. a
+        later stage's own options), so new stages need no change here."""
+        return SceneReader(self.data, self.origin, Path(self.path))
 
     def topology(self, elements_per_link: int | None = None) -> Topology:
         n = elements_per_link or self.elements_per_link
@@ -124,7 +131,7 @@ def _load_with_base(path: Path, depth=0) -> tuple[dict, dict]:
     return _merge(base_data, data), {**base_origin, **origin}
 
 
-class _Reader:
+class SceneReader:
     """Typed access to the merged scene data; every error names the file and the field."""
 
     def __init__(self, data: dict, origin: dict, path: Path):
@@ -179,7 +186,7 @@ class _Reader:
         return int(value) if integer else float(value)
 
 
-def _material(r: _Reader, link: str) -> BeamMaterial:
+def _material(r: SceneReader, link: str) -> BeamMaterial:
     """A link's own [links.<link>.material] table replaces the shared [material] whole."""
     prefix = f"links.{link}.material" if r.has(f"links.{link}.material") else "material"
     if r.has(f"{prefix}.composite"):
@@ -199,7 +206,7 @@ def _material(r: _Reader, link: str) -> BeamMaterial:
                      expected="a 'composite' table, 'isotropic = \"name\"', or E and density")
 
 
-def _section(r: _Reader, link: str, material: BeamMaterial) -> Section:
+def _section(r: SceneReader, link: str, material: BeamMaterial) -> Section:
     """Each section key may be overridden per link in [links.<link>.section]."""
     def field(key):
         own = f"links.{link}.section.{key}"
@@ -215,11 +222,28 @@ def _section(r: _Reader, link: str, material: BeamMaterial) -> Section:
                              name=f"{link}: {material.name}, {width * 1e3:g} x {thickness * 1e3:g} mm")
 
 
-def load_scene(path: str | Path) -> Scene:
-    """Read and validate a scene file (and its base). Raises InputError naming file and field."""
+def _set_dotted(data: dict, origin: dict, field: str, value):
+    node = data
+    parts = field.split(".")
+    for part in parts[:-1]:
+        node = node.setdefault(part, {})
+        if not isinstance(node, dict):
+            raise InputError("cannot override inside a plain value", source="overrides", field=field)
+    node[parts[-1]] = value
+    origin[field] = "overrides"
+
+
+def load_scene(path: str | Path, overrides: dict | None = None) -> Scene:
+    """Read and validate a scene file (and its base). Raises InputError naming file and field.
+
+    ``overrides`` maps dotted fields to values as they would be written in the file, e.g.
+    ``{"section.width": "25 mm", "joints.Kt": "1e7 N/m"}``: sweeps, calibration and Monte Carlo
+    vary inputs this way, through the same validation as a file."""
     path = Path(path)
     data, origin = _load_with_base(path)
-    r = _Reader(data, origin, path)
+    for field, value in (overrides or {}).items():
+        _set_dotted(data, origin, field, value)
+    r = SceneReader(data, origin, path)
     name = r.raw("name", path.stem)
 
     kind = r.raw("linkage.type", "four-bar")
@@ -283,7 +307,8 @@ def load_scene(path: str | Path) -> Scene:
 
     return Scene(name=str(name), path=str(path), linkage=linkage, pose=pose, sections=sections,
                  joints=tuple(joints), drive=drive, elements_per_link=elements,
-                 reference=reference, assumptions=tuple(_unique(r.assumptions)))
+                 reference=reference, assumptions=tuple(_unique(r.assumptions)), data=data,
+                 origin=origin)
 
 
 def _unique(items):

@@ -62,3 +62,11 @@ def test_negative_length_rejected(tmp_path):
     path = write(tmp_path, "[linkage]\nR2 = 0.267\nR3 = 0.8\nR4 = 0.667\nground = '-300 mm'\n")
     with pytest.raises(InputError, match="linkage.ground"):
         load_scene(path)
+
+
+def test_overrides_go_through_the_same_validation():
+    scene = load_scene(CASES / "case1.toml", overrides={"section.width": "25 mm"})
+    assert math.isclose(scene.sections["crank"].depth, 0.025)
+    with pytest.raises(InputError) as info:
+        load_scene(CASES / "case1.toml", overrides={"joints.Kt": "5"})
+    assert "overrides" in str(info.value) and "joints.Kt" in str(info.value)
