@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import os
 import tempfile
+from collections.abc import Callable
 from pathlib import Path
 
 from .errors import OutputError
@@ -35,4 +36,23 @@ def write_atomic(path: str | Path, data: str | bytes) -> Path:
         if "tmp" in locals() and os.path.exists(tmp):
             os.unlink(tmp)
         raise OutputError(f"cannot write {path}: {exc.strerror or exc}") from None
+    return path
+
+
+def write_atomic_with(path: str | Path, write: Callable[[Path], None]) -> Path:
+    """Atomic output for writers that only take a file name (meshio): ``write(tmp)`` fills a
+    temporary file in the target's folder, which is then renamed over ``path``."""
+    path = Path(path)
+    tmp = None
+    try:
+        fd, name = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+        os.close(fd)
+        tmp = Path(name)
+        write(tmp)
+        os.replace(tmp, path)
+    except OSError as exc:
+        raise OutputError(f"cannot write {path}: {exc.strerror or exc}") from None
+    finally:
+        if tmp is not None and tmp.exists():
+            tmp.unlink()
     return path

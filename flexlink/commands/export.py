@@ -1,0 +1,76 @@
+"""``flexlink export SCENE...``: mode shapes as VTK files (ParaView), animations, pictures and
+frequency plots, one folder per scene under ``--out``."""
+
+from __future__ import annotations
+
+import sys
+
+import click
+
+from ..cli import dumps, json_option, out_option
+
+
+@click.command("export")
+@click.argument("scenes", nargs=-1, required=True, type=click.Path())
+@click.option("-n", "--modes", "n_modes", default=4, show_default=True,
+              type=click.IntRange(1, 200), help="Number of elastic modes to export.")
+@click.option("-e", "--elements", default=None, type=click.IntRange(1, 100000),
+              help="Elements per link (default: the scene's mesh.elements_per_link).")
+@click.option("--method", type=click.Choice(["auto", "dense", "sparse"]), default="auto",
+              show_default=True, help="Eigen solver.")
+@click.option("--subdivide", default=4, show_default=True, type=click.IntRange(1, 64),
+              help="Segments per element (the element's own shape functions between nodes).")
+@click.option("--phases", default=24, show_default=True, type=click.IntRange(2, 1000),
+              help="Animation frames per period.")
+@click.option("--amplitude", default=0.1, show_default=True,
+              type=click.FloatRange(0, 1, min_open=True),
+              help="Largest drawn displacement, as a fraction of the mechanism size.")
+@click.option("--pictures/--no-pictures", default=True, show_default=True,
+              help="Draw PNGs of the modes (pyvista, off screen) and the frequency plot.")
+@json_option
+@out_option
+def command(scenes, n_modes, elements, method, subdivide, phases, amplitude, pictures, as_json,
+            out_dir):
+    """Write, for each SCENE (a scene file or a folder of them), the first modes as a .vtu, a
+    .pvd animation per mode, a PNG per mode, an overview sheet and a frequency plot, into
+    OUT/<scene file name>/, and a list of everything in OUT/export.json."""
+    from tqdm import tqdm
+
+    from ..analysis import analyze
+    from ..errors import InputError
+    from ..export import ExportSettings, export_case
+    from ..fileio import prepare_out_dir, write_atomic
+    from ..report import case_summary
+    from ..scene import load_scene, scene_files
+
+    settings = ExportSettings(n_modes=n_modes, subdivisions=subdivide, phases=phases,
+                              amplitude=amplitude, pictures=pictures, plot=pictures)
+    out = prepare_out_dir(out_dir)
+    files = scene_files(scenes)
+    stems = [f.stem for f in files]
+    clash = sorted({s for s in stems if stems.count(s) > 1})
+    if clash:
+        raise InputError(f"two scene files would write to the same folder {clash[0]!r}",
+                         source="command line", expected="scene files with different names")
+    cases = []
+    bar = tqdm(files, desc="export", unit="scene", file=sys.stderr,
+               disable=as_json or not sys.stderr.isatty())
+    for path in bar:
+        scene = load_scene(path)
+        result = analyze(scene, n_modes, elements, method)
+        summary = case_summary(result, n_modes)
+        written = export_case(result, summary, out, settings)
+        cases.append({"scene": scene.name, "file": str(path),
+                      "frequencies_Hz": [row["computed_Hz"] for row in summary["modes"]],
+                      "files": written})
+    document = {"command": "export", "out": str(out), "cases": cases}
+    write_atomic(out / "export.json", dumps(document))
+    if as_json:
+        click.echo(dumps(document))
+        return
+    for case in cases:
+        f = case["files"]
+        click.echo(f"{case['scene']}: {len(case['frequencies_Hz'])} modes -> {f['folder']}/  "
+                   f"({len(f['vtu'])} .vtu, {len(f['pvd'])} .pvd with {len(f['frames'])} frames, "
+                   f"{len(f['pictures'])} pictures, {len(f['plot'])} plot)")
+    click.echo(f"written: {out / 'export.json'}")
