@@ -10,9 +10,13 @@ first try an X display and log a warning, so without one we ask for EGL directly
 
 from __future__ import annotations
 
+import functools
 import io
 import math
 import os
+import re
+import subprocess
+import sys
 
 import numpy as np
 
@@ -26,9 +30,36 @@ MODE_SIZE = (1200, 800)  # [px] one mode
 SHEET_TILE = (800, 520)  # [px] one mode on the overview sheet
 
 
+# Rendered in a child process first: without an OpenGL library VTK crashes the process
+# (segmentation fault) instead of raising, which would take the caller down with it.
+_PROBE = """
+import sys, pyvista
+plotter = pyvista.Plotter(off_screen=True, window_size=[32, 32])
+plotter.add_mesh(pyvista.Sphere())
+sys.exit(0 if plotter.screenshot(return_img=True).std() > 0 else 3)
+"""
+
+
+@functools.cache
+def _check_rendering() -> None:
+    try:
+        probe = subprocess.run([sys.executable, "-c", _PROBE], capture_output=True, text=True,
+                               timeout=300)
+    except (OSError, subprocess.TimeoutExpired) as exc:
+        raise OutputError(f"cannot start the off-screen rendering check: {exc}") from None
+    if probe.returncode != 0:
+        last = re.sub(r"\x1b\[[0-9;]*m", "", (probe.stderr.strip().splitlines() or ["-"])[-1])
+        how = (f"crashed with signal {-probe.returncode}" if probe.returncode < 0
+               else f"exited with {probe.returncode}")
+        raise OutputError(
+            f"pyvista cannot render off screen here (check {how}: {last.split('| ')[-1]}); without a display it needs EGL and Mesa: run bash scripts/system-deps.sh "
+            "(Debian packages libegl1 libegl-mesa0 libgl1-mesa-dri), or use --no-pictures")
+
+
 def _pyvista():
     if not (os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY")):
         os.environ.setdefault("VTK_DEFAULT_OPENGL_WINDOW", "vtkEGLRenderWindow")
+    _check_rendering()
     import pyvista
 
     return pyvista
