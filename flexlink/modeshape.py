@@ -98,10 +98,9 @@ def sample_shapes(model: FrameModel, shapes: np.ndarray, subdivisions: int = 4) 
         local_s = np.stack([u_s, v_s], axis=1)  # (P_link, 2, k)
         disp.append(np.einsum("ji,pjk->pik", R, local_s))  # back to global: R^T
         rot.append(slope)
-        t = np.concatenate([(np.arange(n_el)[:, None] + xi[None, :]).ravel(), [n_el]]) / n_el
-        p0 = model.nodes[link.first_node]
-        p1 = model.nodes[link.first_node + n_el]
-        points.append(p0 + t[:, None] * (p1 - p0))
+        xy = model.nodes[link.nodes]  # samples on nodes are the nodes themselves
+        inner = xy[:-1, None, :] + xi[None, :, None] * (xy[1:] - xy[:-1])[:, None, :]
+        points.append(np.vstack([inner.reshape(-1, 2), xy[-1:]]))
         node = np.full(n_el * s + 1, -1)
         node[::s] = link.nodes
         node_of.append(node)

@@ -1,0 +1,240 @@
+"""Export of mode shapes: the Hermite sampling, the .vtu/.pvd files read back with meshio, the
+pictures and plot, the command and its atomic writes."""
+
+import io
+import json
+import math
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import meshio
+import numpy as np
+import pytest
+from click.testing import CliRunner
+
+from flexlink.analysis import analyze
+from flexlink.cli import main
+from flexlink.errors import OutputError
+from flexlink.export_vtk import mode_set, modes_mesh, write_animation, write_vtu
+from flexlink.fileio import write_atomic_with
+from flexlink.modeshape import sample_shapes
+from flexlink.report import case_summary
+from flexlink.scene import load_scene
+
+from helpers import single_beam
+
+ROOT = Path(__file__).resolve().parent.parent
+CASE3 = ROOT / "cases" / "case3.toml"
+FRACTION = 0.1
+
+
+@pytest.fixture(scope="module")
+def case3():
+    return analyze(load_scene(CASE3), 3, elements_per_link=6)
+
+
+@pytest.fixture(scope="module")
+def modes(case3):
+    return mode_set(case3, 3, subdivisions=3)
+
+
+def cubic_through(v1, r1, v2, r2, h):
+    """Coefficients of the cubic with values v1, v2 and slopes r1, r2 at x = 0 and h, found by
+    solving the 4x4 conditions directly (independent of the shape-function formulas)."""
+    A = np.array([[1, 0, 0, 0], [0, 1, 0, 0], [1, h, h**2, h**3], [0, 1, 2 * h, 3 * h**2]])
+    return np.linalg.solve(A, [v1, r1, v2, r2])
+
+
+def test_sampling_reproduces_a_cubic_field_exactly():
+    # Nodal values of u = a + b x (axial) and v = cubic (bending) on an inclined beam: the
+    # element's shape functions contain both, so every sampled point must be exact.
+    angle, L = 0.7, 1.0
+    model = single_beam("free-free", 5, angle=angle)
+    x_nodes = np.linspace(0, L, 6)
+    u = lambda x: 1e-3 + 2e-3 * x  # noqa: E731
+    v = lambda x: 3e-3 - 1e-3 * x + 4e-3 * x**2 - 5e-3 * x**3  # noqa: E731
+    dv = lambda x: -1e-3 + 8e-3 * x - 15e-3 * x**2  # noqa: E731
+    t, n = np.array([math.cos(angle), math.sin(angle)]), np.array([-math.sin(angle), math.cos(angle)])
+    nodal = np.column_stack([u(x_nodes) * t[0] + v(x_nodes) * n[0],
+                             u(x_nodes) * t[1] + v(x_nodes) * n[1], dv(x_nodes)]).ravel()
+    s = sample_shapes(model, nodal, subdivisions=7)
+    x = np.linalg.norm(s.points - s.points[0], axis=1)  # distance along the beam
+    assert len(x) == 5 * 7 + 1
+    exact = np.outer(u(x), t) + np.outer(v(x), n)
+    np.testing.assert_allclose(s.displacement[:, :, 0], exact, rtol=0, atol=1e-15)
+    np.testing.assert_allclose(s.rotation[:, 0], dv(x), rtol=0, atol=1e-15)
+
+
+def test_vtu_round_trip_matches_the_solver(case3, modes, tmp_path):
+    path = write_vtu(tmp_path / "case3.vtu", modes_mesh(case3, modes, FRACTION))
+    back = meshio.read(path)
+    model, solved = case3.model, case3.modes
+    elastic = solved.elastic[:3]
+    shapes = solved.shapes[:, elastic].reshape(-1, 3, 3)  # node, (ux, uy, rz), mode
+    s = modes.sampled
+
+    # geometry: z = 0, the model's nodes where the samples sit on nodes, links straight between
+    assert np.all(back.points[:, 2] == 0)
+    np.testing.assert_allclose(back.points[:, :2], s.points, rtol=0, atol=1e-15)
+    on_node = s.point_node >= 0
+    np.testing.assert_array_equal(back.points[on_node, :2], model.nodes[s.point_node[on_node]])
+    assert on_node.sum() == len(model.nodes)
+
+    # connectivity: one Lagrange curve per element, its two end points on the element's nodes
+    (block,) = back.cells
+    assert block.type == "VTK_LAGRANGE_CURVE" and block.data.shape == (3 * 6, 4)
+    ends = s.point_node[block.data[:, :2]]
+    starts = np.concatenate([link.nodes[:-1] for link in model.links])
+    np.testing.assert_array_equal(ends, np.column_stack([starts, starts + 1]))
+    np.testing.assert_array_equal(back.cell_data["element_id"][0], np.arange(18))
+    np.testing.assert_array_equal(back.cell_data["link_id"][0], np.repeat([0, 1, 2], 6))
+    for i, link in enumerate(model.links):
+        assert back.field_data[f"link_{link.name}"][0] == i
+
+    # mode arrays: the solver's vectors at the nodes, named with number and frequency
+    np.testing.assert_allclose(back.field_data["frequencies_Hz"], solved.frequencies[elastic],
+                               rtol=1e-15)
+    for k in range(3):
+        name = f"mode{k + 1}_{solved.frequencies[elastic[k]]:.5g}Hz"
+        disp, rot = back.point_data[f"{name}_displacement"], back.point_data[f"{name}_rotation"]
+        assert disp.shape == (len(s.points), 3) and np.all(disp[:, 2] == 0)
+        # (rotated to the link frame and back: a few ulps of round-off)
+        np.testing.assert_allclose(disp[on_node, :2], shapes[s.point_node[on_node], :2, k],
+                                   rtol=0, atol=4 * np.finfo(float).eps * np.abs(shapes).max())
+        np.testing.assert_array_equal(rot[on_node], shapes[s.point_node[on_node], 2, k])
+        # between nodes: the element's cubic, checked in the link frame of every element
+        element = 0
+        for link in model.links:
+            c, sn = math.cos(link.angle), math.sin(link.angle)
+            h = link.length / link.elements
+            transverse = lambda d: -sn * d[..., 0] + c * d[..., 1]  # noqa: E731
+            for a in link.nodes[:-1]:
+                coef = cubic_through(transverse(shapes[a, :2, k]), shapes[a, 2, k],
+                                     transverse(shapes[a + 1, :2, k]), shapes[a + 1, 2, k], h)
+                pts = block.data[element]
+                along = np.concatenate([[pts[0]], pts[2:], [pts[1]]])  # VTK order -> along
+                np.testing.assert_allclose(transverse(disp[along, :2]),
+                                           np.polyval(coef[::-1], np.linspace(0, h, len(along))),
+                                           rtol=0, atol=1e-12 * np.abs(shapes[..., k]).max())
+                element += 1
+        assert element == len(block.data)
+
+
+def test_pvd_animation_references_its_frames(case3, modes, tmp_path):
+    phases = 6
+    written = write_animation(tmp_path, "case3", modes, 1, phases, FRACTION)
+    pvd = written[-1]
+    assert pvd.name == "case3_mode2.pvd"
+    entries = ET.parse(pvd).getroot().find("Collection").findall("DataSet")
+    assert len(entries) == phases
+    period = 1 / modes.frequencies[1]
+    times = [float(e.get("timestep")) for e in entries]
+    np.testing.assert_allclose(times, np.arange(phases) * period / phases, rtol=1e-8)
+    frames = [meshio.read(pvd.parent / e.get("file")) for e in entries]
+    assert [pvd.parent / e.get("file") for e in entries] == written[:-1]
+    # frame 0 is the largest deflection, FRACTION of the mechanism size; half a period later
+    # the shape is reversed; the points are the deformed positions themselves
+    base = np.column_stack([modes.sampled.points, np.zeros(len(modes.sampled.points))])
+    peak = np.linalg.norm(frames[0].point_data["displacement"], axis=1).max()
+    assert peak == pytest.approx(FRACTION * modes.size, rel=1e-12)
+    np.testing.assert_allclose(frames[0].points, base + frames[0].point_data["displacement"],
+                               atol=1e-15)
+    np.testing.assert_allclose(frames[3].point_data["displacement"],
+                               -frames[0].point_data["displacement"], atol=1e-15)
+
+
+def png_pixels(data):
+    from PIL import Image
+
+    image = Image.open(io.BytesIO(data))
+    return image.size, np.asarray(image.convert("RGB"), dtype=float)
+
+
+def coloured_fraction(pixels):
+    """Share of pixels that are clearly not grey (the deformed shape's colour map)."""
+    return float(((pixels.max(axis=2) - pixels.min(axis=2)) > 60).mean())
+
+
+def test_mode_picture_and_sheet_are_drawn(case3, modes):
+    from flexlink.pictures import mode_picture, overview_sheet
+
+    joints, ground = case3.pose.joints, {"O2", "O4"}
+    size, pixels = png_pixels(mode_picture("case 3: mode 1", modes, 0, joints, ground, FRACTION,
+                                           size=(480, 320)))
+    assert size == (480, 320)
+    assert pixels.std() > 10 and coloured_fraction(pixels) > 0.005
+    size, pixels = png_pixels(overview_sheet("case 3", modes, joints, ground, FRACTION,
+                                             tile=(300, 200)))
+    assert size == (600, 400)  # three modes: two per row, two rows
+    for tile in (pixels[:200, :300], pixels[:200, 300:], pixels[200:, :300]):
+        assert tile.std() > 10 and coloured_fraction(tile) > 0.002
+    assert pixels[200:, 300:].std() == 0  # the unused fourth tile is blank
+
+
+def test_failed_rendering_check_is_a_clear_error(modes, case3, monkeypatch):
+    import flexlink.pictures as pictures
+
+    pictures._check_rendering.cache_clear()
+    monkeypatch.setattr(pictures, "_PROBE", "import sys; sys.exit(3)")
+    try:
+        with pytest.raises(OutputError, match="system-deps.sh"):
+            pictures.mode_picture("x", modes, 0, case3.pose.joints, set(), FRACTION)
+    finally:
+        pictures._check_rendering.cache_clear()
+
+
+def test_frequency_plot(case3):
+    from flexlink.plots import frequency_plot
+
+    size, pixels = png_pixels(frequency_plot(case_summary(case3, 3), size=(6, 4), dpi=50))
+    assert size == (300, 200)
+    assert pixels.std() > 10 and coloured_fraction(pixels) > 0.02
+
+
+def test_export_command_writes_and_lists_everything(tmp_path):
+    args = ["export", str(CASE3), "-e", "4", "-n", "2", "--phases", "3", "--subdivide", "2",
+            "--json", "--out", str(tmp_path)]
+    result = CliRunner().invoke(main, args)
+    assert result.exit_code == 0, result.output
+    doc = json.loads(result.output)
+    assert json.loads((tmp_path / "export.json").read_text()) == doc
+    (case,) = doc["cases"]
+    files = case["files"]
+    assert [Path(p).name for p in files["vtu"]] == ["case3.vtu"]
+    assert [Path(p).name for p in files["pvd"]] == ["case3_mode1.pvd", "case3_mode2.pvd"]
+    assert len(files["frames"]) == 6
+    assert sorted(Path(p).name for p in files["pictures"]) == [
+        "case3_mode1.png", "case3_mode2.png", "case3_modes.png"]
+    assert [Path(p).name for p in files["plot"]] == ["case3_frequencies.png"]
+    every = [p for kind in ("vtu", "pvd", "frames", "pictures", "plot") for p in files[kind]]
+    assert all(Path(p).is_file() and Path(p).stat().st_size > 0 for p in every)
+    assert sorted(str(p) for p in (tmp_path / "case3").rglob("*") if p.is_file()) == sorted(every)
+    grid = meshio.read(files["vtu"][0])
+    np.testing.assert_allclose(grid.field_data["frequencies_Hz"], case["frequencies_Hz"], rtol=1e-15)
+
+
+def test_unwritable_out_fails_before_any_solve(tmp_path, monkeypatch):
+    import flexlink.analysis
+
+    def no_solve(*args, **kwargs):
+        raise AssertionError("solved before checking the output folder")
+
+    monkeypatch.setattr(flexlink.analysis, "analyze", no_solve)
+    blocker = tmp_path / "file"
+    blocker.write_text("x")
+    result = CliRunner().invoke(main, ["export", str(CASE3), "--out", str(blocker / "o")])
+    assert result.exit_code == 2 and "not writable" in result.output
+
+
+def test_failed_write_keeps_the_old_file(tmp_path):
+    target = tmp_path / "a.vtu"
+    target.write_text("old")
+
+    def half_then_fail(tmp):
+        tmp.write_text("half")
+        raise OSError(28, "No space left on device")
+
+    with pytest.raises(OutputError, match="No space left"):
+        write_atomic_with(target, half_then_fail)
+    assert target.read_text() == "old"
+    assert [p.name for p in tmp_path.iterdir()] == ["a.vtu"]
