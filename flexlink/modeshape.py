@@ -113,4 +113,4 @@ def sample_shapes(model: FrameModel, shapes: np.ndarray, subdivisions: int = 4) 
                          cell_link=np.concatenate(cell_link),
                          cell_element=np.concatenate(cell_element),
                          point_node=np.concatenate(node_of), displacement=np.vstack(disp),
-                         rotation=np.vstack(rot), link_names=tuple(l.name for l in model.links))
+                         rotation=np.vstack(rot), link_names=tuple(link.name for link in model.links))

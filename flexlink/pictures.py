@@ -49,11 +49,13 @@ def _check_rendering() -> None:
         raise OutputError(f"cannot start the off-screen rendering check: {exc}") from None
     if probe.returncode != 0:
         last = re.sub(r"\x1b\[[0-9;]*m", "", (probe.stderr.strip().splitlines() or ["-"])[-1])
+        last = last.split("| ")[-1]  # VTK's log prefix
         how = (f"crashed with signal {-probe.returncode}" if probe.returncode < 0
                else f"exited with {probe.returncode}")
         raise OutputError(
-            f"pyvista cannot render off screen here (check {how}: {last.split('| ')[-1]}); without a display it needs EGL and Mesa: run bash scripts/system-deps.sh "
-            "(Debian packages libegl1 libegl-mesa0 libgl1-mesa-dri), or use --no-pictures")
+            f"pyvista cannot render off screen here (check {how}: {last}); without a display "
+            "it needs EGL and Mesa: run bash scripts/system-deps.sh (Debian packages libegl1 "
+            "libegl-mesa0 libgl1-mesa-dri), or use --no-pictures")
 
 
 def _pyvista():

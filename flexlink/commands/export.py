@@ -26,7 +26,8 @@ from ..cli import dumps, json_option, out_option
               type=click.FloatRange(0, 1, min_open=True),
               help="Largest drawn displacement, as a fraction of the mechanism size.")
 @click.option("--pictures/--no-pictures", default=True, show_default=True,
-              help="Draw PNGs of the modes (pyvista, off screen) and the frequency plot.")
+              help="Draw PNGs of the modes (pyvista, off screen; needs OpenGL). The frequency "
+                   "plot (matplotlib) is drawn either way.")
 @json_option
 @out_option
 def command(scenes, n_modes, elements, method, subdivide, phases, amplitude, pictures, as_json,
@@ -44,7 +45,7 @@ def command(scenes, n_modes, elements, method, subdivide, phases, amplitude, pic
     from ..scene import load_scene, scene_files
 
     settings = ExportSettings(n_modes=n_modes, subdivisions=subdivide, phases=phases,
-                              amplitude=amplitude, pictures=pictures, plot=pictures)
+                              amplitude=amplitude, pictures=pictures, plot=True)
     out = prepare_out_dir(out_dir)
     files = scene_files(scenes)
     stems = [f.stem for f in files]
