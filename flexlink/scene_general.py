@@ -24,6 +24,8 @@ import dataclasses
 import math
 from pathlib import Path
 
+import numpy as np
+
 from .errors import InputError
 from .kinematics import BRANCHES, FourBar
 from .linkage import Body, Linkage, four_bar_linkage
@@ -142,26 +144,43 @@ def _kinematics(r: SceneReader, start: float):
     return ground, bodies, r.raw("linkage.driver"), guess, transmission, None, None
 
 
-def _with_points(r: SceneReader, bodies: list[Body], guess: dict) -> list[Body]:
-    """Add [linkage.points.NAME] joints on body axes."""
+def _with_points(r: SceneReader, bodies: list[Body], ground: dict, driver: str, guess: dict,
+                 start: float) -> list[Body]:
+    """Add the [linkage.points.NAME] joints: fixed ``on`` a body, placed where at the start
+    pose the point at ``at`` times the length of body ``along`` (default: the same body) lies on
+    that body's axis. E.g. the clamp of a compliant strip that continues the rocker's line."""
     if not r.has("linkage.points"):
         return bodies
     out = {b.name: b for b in bodies}
+    pose = Linkage(ground=ground, bodies=tuple(bodies), driver=driver).solve(start, guess)
     for name in r.raw("linkage.points"):
         field = f"linkage.points.{name}"
-        body = out.get(r.raw(f"{field}.on"))
-        if body is None:
-            raise InputError("no such body", source=r.src(field), field=f"{field}.on",
+        on, along = (out.get(r.raw(f"{field}.{k}", r.raw(f"{field}.on"))) for k in ("on", "along"))
+        if on is None or along is None:
+            raise InputError("no such body", source=r.src(field), field=f"{field}.on/along",
                              expected=f"one of {list(out)}")
         at = r.number(f"{field}.at", -1e3, 1e3)
-        out[body.name] = Body(body.name, body.joints + (name,), body.shape + ((at * body.length, 0.0),))
-        p0, p1 = (guess.get(j) for j in body.joints[:2])
-        if p0 is not None and p1 is not None:
-            guess[name] = tuple(a + at * (b - a) for a, b in zip(p0, p1))
+        p0, p1 = (np.array(pose.points[j]) for j in along.joints[:2])
+        point = p0 + at * (p1 - p0)
+        q0, q1 = (np.array(pose.points[j]) for j in on.joints[:2])
+        e = (q1 - q0) / np.linalg.norm(q1 - q0)
+        local = point - q0
+        shape = (float(local @ e), float(e[0] * local[1] - e[1] * local[0]))
+        out[on.name] = Body(on.name, on.joints + (name,), on.shape + (shape,))
+        guess[name] = tuple(point)
     return list(out.values())
 
 
-def _section(r: SceneReader, link: str, material) -> Section:
+def _link_length(linkage: Linkage, start: str, end: str) -> float | None:
+    """Distance [m] between two joints of one body (None if no body holds both)."""
+    for b in linkage.bodies:
+        if start in b.joints and end in b.joints:
+            p, q = (np.array(b.shape[b.joints.index(j)]) for j in (start, end))
+            return float(np.linalg.norm(q - p))
+    return None
+
+
+def _section(r: SceneReader, link: str, material, length: float | None) -> Section:
     def field(key):
         own = f"links.{link}.section.{key}"
         return own if r.has(own) else f"section.{key}"
@@ -179,7 +198,6 @@ def _section(r: SceneReader, link: str, material) -> Section:
             outer = r.quantity(field("tube_outer_radius"), "length")
         else:  # the wall from the link's mass and length: m = rho pi (ro^2 - ri^2) l
             mass = r.quantity(field("mass"), "mass")
-            length = r.quantity(f"links.{link}.length", "length")
             outer = math.sqrt(inner**2 + mass / (material.density * math.pi * length))
         return Section.tube(material.E, material.G, material.density, outer, inner,
                             name=f"{label}, tube {2e3 * outer:.3f} x {1e3 * (outer - inner):.3f} mm")
@@ -187,8 +205,7 @@ def _section(r: SceneReader, link: str, material) -> Section:
     if r.has(field("thickness")):
         thickness = r.quantity(field("thickness"), "length")
     else:  # out-of-plane thickness from the link's mass: m = rho width thickness l
-        thickness = r.quantity(field("mass"), "mass") / (
-            material.density * width * r.quantity(f"links.{link}.length", "length"))
+        thickness = r.quantity(field("mass"), "mass") / (material.density * width * length)
     return Section.rectangle(material.E, material.G, material.density, width, thickness,
                              name=f"{label}, {width * 1e3:g} x {thickness * 1e3:.3f} mm")
 
@@ -197,7 +214,12 @@ def load_general(r: SceneReader, path: Path) -> GeneralScene:
     """Build a GeneralScene from the merged scene data behind ``r``."""
     start = r.quantity("linkage.start", "angle", default=0.0, positive=False)
     ground, bodies, driver, guess, transmission, fb, synthesis = _kinematics(r, start)
-    bodies = _with_points(r, bodies, guess)
+    if fb is not None and r.has("linkage.start_transmission_angle"):
+        # start where the transmission angle has this value (crank in [0, 180] deg)
+        start = fb.crank_angles_for_mu(r.quantity("linkage.start_transmission_angle", "angle"))[0]
+        guess = {k: v for k, v in fb.pose(start, r.raw("linkage.branch", "open")).joints.items()
+                 if k in guess}
+    bodies = _with_points(r, bodies, ground, driver, guess, start)
     linkage = Linkage(ground=ground, bodies=tuple(bodies), driver=driver)
 
     elements = r.number("mesh.elements_per_link", 1, 100000, integer=True, default=16)
@@ -205,7 +227,12 @@ def load_general(r: SceneReader, path: Path) -> GeneralScene:
     for name in r.raw("links", {}):
         start_j, end_j = r.raw(f"links.{name}.start"), r.raw(f"links.{name}.end")
         n = r.number(f"links.{name}.elements", 1, 100000, integer=True, default=elements)
-        links.append(LinkSpec(name, start_j, end_j, _section(r, name, _material(r, name)), n))
+        length = _link_length(linkage, start_j, end_j)
+        if length is None and r.has(f"links.{name}.section.mass"):
+            raise InputError("a section from mass needs a link between two joints of one body",
+                             source=r.src(f"links.{name}"), field=f"links.{name}")
+        section = _section(r, name, _material(r, name), length)
+        links.append(LinkSpec(name, start_j, end_j, section, n))
         used += [j for j in (start_j, end_j) if j not in used]
     joints = []
     for joint in used:
