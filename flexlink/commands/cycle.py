@@ -82,7 +82,8 @@ def command(scene_path, n_modes, poses, elements, speed, margin, harmonics, as_j
         click.echo(f"{m['mode']:>4} {m['min_Hz']:>10.2f} {m['at_crank_deg']:>9.1f} "
                    f"{m['max_Hz']:>10.2f} {m['at_crank_deg_max']:>9.1f}")
     for pair, angles in document["mu90_crank_deg"].items():
-        click.echo(f"mu = 90 deg ({pair}) at crank " + ", ".join(f"{a:.2f}" for a in angles) + " deg")
+        where = (", ".join(f"{a:.2f}" for a in angles) + " deg") if angles else "never in the cycle"
+        click.echo(f"mu = 90 deg ({pair}) at crank {where}")
     if omega:
         rpm = document["crank_speed_rev_per_min"]
         if not hits:
