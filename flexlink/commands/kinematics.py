@@ -61,7 +61,7 @@ def _print_summary(doc, omega):
             t = b["torque_ratio_min_abs"]
             click.echo(f"            |T_{name}/T_crank| = 1/|K| >= {t['value']:.4f} (at crank "
                        f"{t['at_deg']:.1f} deg)")
-        if omega and "peak_abs_alpha" in b:
+        if omega and "peak_abs_alpha" in b and "limit_positions" in b:
             w, p = b["omega_rad_s"], b["peak_abs_alpha"]
             click.echo(f"            omega {w['min']:.3f}..{w['max']:.3f} rad/s; peak |alpha| "
                        f"{p['value_rad_s2']:.1f} rad/s^2 at crank {p['at_deg']:.1f} deg")
