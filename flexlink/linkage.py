@@ -276,7 +276,8 @@ def four_bar_linkage(ground: float, crank: float, coupler: float, rocker: float)
     """The four-bar of ``kinematics.FourBar`` (O2 at the origin, O4 at (ground, 0); bodies
     crank O2->A, coupler A->B, rocker O4->B) as a general linkage."""
     return Linkage(ground={"O2": (0.0, 0.0), "O4": (float(ground), 0.0)},
-                   bodies=(Body.bar("crank", "O2", "A", crank), Body.bar("coupler", "A", "B", coupler),
+                   bodies=(Body.bar("crank", "O2", "A", crank),
+                           Body.bar("coupler", "A", "B", coupler),
                            Body.bar("rocker", "O4", "B", rocker)),
                    driver="crank")
 

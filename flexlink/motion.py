@@ -32,7 +32,8 @@ def limit_positions(linkage: Linkage, cycle: Cycle, body: str) -> list[dict]:
     col = cycle.column(body)
     out = []
     for q0 in crossings(cycle.q, cycle.K[:, col], 0.0):
-        nearest = int(np.argmin(np.abs(np.remainder(cycle.q - q0 + math.pi, 2 * math.pi) - math.pi)))
+        gap = np.remainder(cycle.q - q0 + math.pi, 2 * math.pi) - math.pi
+        nearest = int(np.argmin(np.abs(gap)))
         state, q = cycle.states[nearest], q0
         for _ in range(20):
             state = linkage.solve(q, state.points)

@@ -9,13 +9,18 @@ Kinematics ([linkage]), one of:
     and ``angles`` for three or more joints), ``[linkage.guess]`` sketch positions of the moving
     joints at the start angle, ``linkage.driver`` and optional ``linkage.transmission`` pairs.
   Four-bar sources name their joints O2, A, B, O4 and bodies crank, coupler, rocker (as in
-  ``kinematics.FourBar``). ``linkage.start`` is the first input angle; ``linkage.branch`` the
-  four-bar assembly branch. ``[linkage.points.NAME]`` adds a joint fixed on a body's axis at
-  ``at`` times its length (e.g. where a compliant strip is clamped).
+  ``kinematics.FourBar``). ``linkage.start`` is the first input angle (or, for a four-bar,
+  ``linkage.start_transmission_angle``); ``linkage.branch`` the four-bar assembly branch.
+  ``[linkage.points.NAME]`` adds a joint fixed ``on`` a body, placed at the start pose at
+  ``at`` times the length of body ``along`` on its axis (e.g. where a compliant strip that
+  continues the rocker is clamped to the coupler).
 Finite elements (optional; a kinematics-only scene has none): ``[links.NAME]`` start, end and
 ``[links.NAME.section]`` (width/thickness, area/second_moment, or tube_inner_radius with
 tube_outer_radius or mass), material per link or shared; ``[joints]`` Kt/Kr defaults and
-``[joints.NAME]`` Kt, Kr, mass, welded; ``[drive]`` as for four-bars.
+``[joints.NAME]`` Kt, Kr, mass, welded; ``[drive]`` as for four-bars. A section ``mass`` [kg]
+sets the thickness of a flat bar or the wall of a tube from the link's length.
+Optional, read by the commands: ``operation.crank_speed``, ``[[family]]`` (field, values:
+overrides that make the scene's variants), ``[prb]`` (pseudo-rigid-body comparison).
 """
 
 from __future__ import annotations
@@ -128,7 +133,8 @@ def _kinematics(r: SceneReader, start: float):
     for name, spec in r.raw("linkage.bodies").items():
         field = f"linkage.bodies.{name}"
         joints = spec.get("joints") if isinstance(spec, dict) else None
-        if not (isinstance(joints, list) and len(joints) >= 2 and all(isinstance(j, str) for j in joints)):
+        if not (isinstance(joints, list) and len(joints) >= 2
+                and all(isinstance(j, str) for j in joints)):
             raise InputError(f"got {joints!r}", source=r.src(field), field=f"{field}.joints",
                              expected="a list of two or more joint names")
         if len(joints) == 2:
@@ -200,7 +206,8 @@ def _section(r: SceneReader, link: str, material, length: float | None) -> Secti
             mass = r.quantity(field("mass"), "mass")
             outer = math.sqrt(inner**2 + mass / (material.density * math.pi * length))
         return Section.tube(material.E, material.G, material.density, outer, inner,
-                            name=f"{label}, tube {2e3 * outer:.3f} x {1e3 * (outer - inner):.3f} mm")
+                            name=f"{label}, tube {2e3 * outer:.3f} x {1e3 * (outer - inner):.3f}"
+                                 " mm")
     width = r.quantity(field("width"), "length")
     if r.has(field("thickness")):
         thickness = r.quantity(field("thickness"), "length")

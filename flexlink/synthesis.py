@@ -37,7 +37,8 @@ def minimax(theta4i: float, delta: float, ground: float = 1.0) -> FourBar:
     s = M * M + N * N
     if s <= 1.0:
         raise InputError(f"theta4i = {math.degrees(theta4i):g} deg and delta = "
-                         f"{math.degrees(delta):g} deg give M^2 + N^2 = {s:.4g} <= 1: no crank-rocker",
+                         f"{math.degrees(delta):g} deg give M^2 + N^2 = {s:.4g} <= 1: "
+                         "no crank-rocker",
                          field="theta4i")
     R2 = s / (s - 1) - math.sqrt(2 * s - 1) / (s - 1)
     return FourBar.from_ratios(R2, M * (1 - R2), N * (1 - R2), ground=ground)
