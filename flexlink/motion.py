@@ -22,8 +22,8 @@ LIMIT_TOL = 1e-13  # |K| [-] at a refined limit position
 def extremes(q: np.ndarray, values: np.ndarray) -> dict:
     """Smallest and largest sampled value and the input angles [deg] where they occur."""
     i, j = int(np.argmin(values)), int(np.argmax(values))
-    return {"min": float(values[i]), "min_at_deg": math.degrees(q[i]),
-            "max": float(values[j]), "max_at_deg": math.degrees(q[j])}
+    return {"min": float(values[i]), "min_at_deg": math.degrees(q[i]) % 360.0,
+            "max": float(values[j]), "max_at_deg": math.degrees(q[j]) % 360.0}
 
 
 def limit_positions(linkage: Linkage, cycle: Cycle, body: str) -> list[dict]:
@@ -52,19 +52,22 @@ def body_summary(cycle: Cycle, body: str, crank_speed: float | None, output: boo
     ground pivot) the smallest |torque ratio| 1 / max |K|."""
     col = cycle.column(body)
     K, L = cycle.K[:, col], cycle.L[:, col]
-    out = {"angle_deg": extremes(cycle.q, np.degrees(cycle.angles[:, col])),
+    angles = np.degrees(cycle.angles[:, col])
+    # a full turn (a crank): the extremes of its angle mean nothing
+    turns = angles.max() - angles.min() >= 360.0 * (1 - 1.5 / len(angles))
+    out = {"angle_deg": None if turns else extremes(cycle.q, angles),
            "K": extremes(cycle.q, K), "L": extremes(cycle.q, L)}
     k_abs = np.abs(K)
     if output and k_abs.max() > 0:
         i = int(np.argmax(k_abs))
         out["torque_ratio_min_abs"] = {"value": float(1.0 / k_abs[i]),
-                                       "at_deg": math.degrees(cycle.q[i])}
+                                       "at_deg": math.degrees(cycle.q[i]) % 360.0}
     if crank_speed:
         out["omega_rad_s"] = extremes(cycle.q, K * crank_speed)
         out["alpha_rad_s2"] = extremes(cycle.q, L * crank_speed**2)
         peak = int(np.argmax(np.abs(L)))
         out["peak_abs_alpha"] = {"value_rad_s2": float(abs(L[peak]) * crank_speed**2),
-                                 "at_deg": math.degrees(cycle.q[peak])}
+                                 "at_deg": math.degrees(cycle.q[peak]) % 360.0}
     return out
 
 

@@ -100,6 +100,7 @@ def _four_bar_source(r: SceneReader) -> tuple[FourBar, dict | None]:
         raise InputError(f"unknown synthesis {method!r}", source=r.src(f"{s}.method"),
                          field=f"{s}.method", expected="brodell-soni, minimax or extended-rocker")
     lengths = dict(zip(("ground", "crank", "coupler", "rocker"), fb.lengths))
+    inputs = {k: round(v, 9) for k, v in inputs.items()}  # for reading: 30, not 29.999999999999996
     return fb, {"method": method, "inputs": inputs, "lengths_m": lengths}
 
 

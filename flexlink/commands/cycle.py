@@ -56,9 +56,9 @@ def command(scene_path, n_modes, poses, elements, speed, margin, harmonics, as_j
         "command": "cycle", "scene": scene.name, "poses": poses,
         "synthesis": scene.synthesis,
         "modes": [{"mode": j + 1, "min_Hz": float(f[:, j].min()),
-                   "at_crank_deg": math.degrees(result.q[f[:, j].argmin()]),
+                   "at_crank_deg": math.degrees(result.q[f[:, j].argmin()]) % 360.0,
                    "max_Hz": float(f[:, j].max()),
-                   "at_crank_deg_max": math.degrees(result.q[f[:, j].argmax()])}
+                   "at_crank_deg_max": math.degrees(result.q[f[:, j].argmax()]) % 360.0}
                   for j in range(f.shape[1])],
         "mu90_crank_deg": {k: [math.degrees(a) for a in v] for k, v in result.mu90.items()},
         "mechanism_modes_max": int(result.mechanism_counts.max()),
@@ -77,6 +77,9 @@ def command(scene_path, n_modes, poses, elements, speed, margin, harmonics, as_j
         click.echo(dumps(document))
         return
     click.echo(f"{scene.name}: first {n_modes} elastic modes over {poses} crank angles")
+    if scene.synthesis:
+        click.echo(f"synthesis {scene.synthesis['method']}: " + ", ".join(
+            f"{k} {1e3 * v:.3f} mm" for k, v in scene.synthesis["lengths_m"].items()))
     click.echo(f"{'mode':>4} {'min [Hz]':>10} {'at [deg]':>9} {'max [Hz]':>10} {'at [deg]':>9}")
     for m in document["modes"]:
         click.echo(f"{m['mode']:>4} {m['min_Hz']:>10.2f} {m['at_crank_deg']:>9.1f} "

@@ -49,7 +49,8 @@ def _print_summary(doc, omega):
     click.echo(f"  {'body':<9} {'angle min..max [deg]':>22} {'K min..max':>20} {'L min..max':>20}")
     for name, b in doc["bodies"].items():
         a, K, L = b["angle_deg"], b["K"], b["L"]
-        click.echo(f"  {name:<9} {a['min']:>10.3f}..{a['max']:<10.3f} "
+        span = f"{a['min']:>10.3f}..{a['max']:<10.3f}" if a else f"{'full turn':^22}"
+        click.echo(f"  {name:<9} {span} "
                    f"{K['min']:>9.4f}..{K['max']:<9.4f} {L['min']:>9.4f}..{L['max']:<9.4f}")
         for lim in b.get("limit_positions", []):
             click.echo(f"            limit position {lim['angle_deg']:.3f} deg at crank "
