@@ -4,6 +4,7 @@ import math
 
 import pytest
 
+from flexlink.linkage import crank_angles, four_bar_linkage
 from flexlink.synthesis import brodell_soni, extended_rocker, minimax
 
 deg = math.radians
@@ -57,3 +58,13 @@ def test_extended_rocker_design_has_unit_time_ratio_and_its_swing(ratio):
     other = extended_rocker(0.1, deg(30.0), ratio, k=1.2)
     extended, folded = toggle_crank_angles(other)
     assert abs(folded - extended - math.pi) > 1e-3
+
+
+def test_extended_rocker_tends_to_simple_harmonic_motion_for_a_long_coupler():
+    # with L3 >> L2 the pin B follows the crank's projection on the chord B1B2:
+    # sin(phi - phi_mid) = sin(Theta/2) cos(q - q0), so max |K| = sin(Theta/2) and, at the
+    # limit positions, |L| = tan(Theta/2); the errors shrink like L2/L3 (here 1e-3)
+    fb = extended_rocker(0.1, deg(30.0), 1000.0)
+    cycle = four_bar_linkage(*fb.lengths).cycle(crank_angles(720), fb.pose(0.0).joints)
+    assert abs(cycle.K[:, 2]).max() == pytest.approx(math.sin(deg(15.0)), rel=1e-4)
+    assert abs(cycle.L[:, 2]).max() == pytest.approx(math.tan(deg(15.0)), rel=3e-3)

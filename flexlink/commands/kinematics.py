@@ -71,6 +71,29 @@ def _print_summary(doc, omega):
                    f" .. {m['max']:.3f} deg (crank {m['max_at_deg']:.1f})")
 
 
+def _print_family(members, omega):
+    """One line per family member and output body: swing, time ratio, omega and peak alpha."""
+    label = None
+    for m in members:
+        if m["family"] != label:
+            label = m["family"]
+            click.echo(f"\n{label}:")
+            click.echo(f"  {'value':>7} {'body':<8} {'limits [deg]':>17} {'swing':>8} {'ratio':>7}"
+                       + (f" {'omega min..max [rad/s]':>23} {'peak |alpha| [rad/s^2] at':>29}"
+                          if omega else ""))
+        for name, b in m["bodies"].items():
+            if "limit_positions" not in b:
+                continue
+            limits = "/".join(f"{lim['angle_deg']:.2f}" for lim in b["limit_positions"])
+            line = (f"  {m['value']:>7g} {name:<8} {limits:>17} {b['swing_deg']:>8.3f} "
+                    f"{b.get('time_ratio', float('nan')):>7.4f}")
+            if omega:
+                w, p = b["omega_rad_s"], b["peak_abs_alpha"]
+                line += (f" {w['min']:>10.2f}..{w['max']:<10.2f} {p['value_rad_s2']:>15.1f} "
+                         f"at {p['at_deg']:>6.1f} deg")
+            click.echo(line)
+
+
 @click.command("kinematics")
 @click.argument("scene_path", metavar="SCENE", type=click.Path())
 @click.option("--poses", default=360, show_default=True, type=click.IntRange(3, 1000000),
@@ -118,7 +141,5 @@ def command(scene_path, poses, speed, as_json, out_dir):
         click.echo(dumps(document))
         return
     _print_summary(document, omega)
-    for m in members:
-        click.echo(f"\n[{m['family']} = {m['value']}]")
-        _print_summary(m, omega)
+    _print_family(members, omega)
     click.echo(f"\nwritten: {written[0]}, {out / (stem + '-kinematics.json')}")
