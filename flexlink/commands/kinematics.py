@@ -40,18 +40,24 @@ def _time_ratio(limits):
     return max(forward, 360.0 - forward) / min(forward, 360.0 - forward)
 
 
+def _span(e, fmt):
+    """'min@at .. max@at' of an ``motion.extremes`` dict."""
+    return (f"{format(e['min'], fmt):>8}@{e['min_at_deg']:<5.1f}.. "
+            f"{format(e['max'], fmt):>8}@{e['max_at_deg']:<5.1f}")
+
+
 def _print_summary(doc, omega):
     click.echo(f"{doc['scene']}")
     if doc.get("synthesis"):
         s = doc["synthesis"]
         click.echo(f"  synthesis {s['method']} {s['inputs']}: " + ", ".join(
             f"{k} {1e3 * v:.3f} mm" for k, v in s["lengths_m"].items()))
-    click.echo(f"  {'body':<9} {'angle min..max [deg]':>22} {'K min..max':>20} {'L min..max':>20}")
+    click.echo("  extremes over the cycle as value@crank angle [deg]")
+    click.echo(f"  {'body':<9} {'angle [deg]':^27} {'K = dtheta/dq':^29} {'L = dK/dq':^29}")
     for name, b in doc["bodies"].items():
         a, K, L = b["angle_deg"], b["K"], b["L"]
-        span = f"{a['min']:>10.3f}..{a['max']:<10.3f}" if a else f"{'full turn':^22}"
-        click.echo(f"  {name:<9} {span} "
-                   f"{K['min']:>9.4f}..{K['max']:<9.4f} {L['min']:>9.4f}..{L['max']:<9.4f}")
+        span = _span(a, ".3f") if a else f"{'full turn':^27}"
+        click.echo(f"  {name:<9} {span} {_span(K, '.4f')} {_span(L, '.4f')}")
         for lim in b.get("limit_positions", []):
             click.echo(f"            limit position {lim['angle_deg']:.3f} deg at crank "
                        f"{lim['crank_deg']:.3f} deg")
