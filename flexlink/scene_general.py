@@ -250,7 +250,10 @@ def load_general(r: SceneReader, path: Path) -> GeneralScene:
             return r.quantity(field, dim, positive=True, allow_zero=True)
         mass = (r.quantity(f"joints.{joint}.mass", "mass", allow_zero=True)
                 if r.has(f"joints.{joint}.mass") else 0.0)
-        welded = bool(r.raw(f"joints.{joint}.welded", False))
+        welded = r.raw(f"joints.{joint}.welded", False)
+        if not isinstance(welded, bool):
+            raise InputError(f"got {welded!r}", source=r.src(f"joints.{joint}.welded"),
+                             field=f"joints.{joint}.welded", expected="true or false")
         joints.append(JointSpec(joint, joint in ground, stiff("Kt", "translational stiffness"),
                                 stiff("Kr", "rotational stiffness"), mass, welded))
     drive = None
