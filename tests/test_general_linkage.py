@@ -102,3 +102,21 @@ def test_mobility_other_than_one_is_an_input_error():
     with pytest.raises(InputError, match="one degree of freedom"):
         Linkage(ground={"O": (0.0, 0.0)}, bodies=(Body.bar("crank", "O", "A", 1.0),
                                                   Body.bar("free", "A", "B", 1.0)), driver="crank")
+
+
+def test_two_loop_velocity_coefficients_match_finite_differences():
+    # the wiper's two loops and rigid triangle: K and L of every body against central
+    # differences of the solved angles and K (h = 1e-5: truncation ~ 1e-10)
+    from pathlib import Path
+
+    from flexlink.scene import load_scene
+
+    scene = load_scene(Path(__file__).resolve().parent.parent / "scenes" / "wiper.toml")
+    cycle = scene.linkage.cycle(crank_angles(36), scene.guess)
+    h = 1e-5
+    for state in cycle.states[::5]:
+        plus = scene.linkage.solve(state.q + h, state.points)
+        minus = scene.linkage.solve(state.q - h, state.points)
+        dA = np.remainder(plus.angles - minus.angles + math.pi, 2 * math.pi) - math.pi
+        np.testing.assert_allclose(state.K, dA / (2 * h), atol=1e-8)
+        np.testing.assert_allclose(state.L, (plus.K - minus.K) / (2 * h), atol=1e-7)
