@@ -7,7 +7,10 @@ chain of nodes, so two links meeting at a joint have two coincident nodes; the j
 them through explicit spring elements:
   - a pin (or bearing) between two links: a translational spring Kt [N/m] in x and in y and a
     torsional spring Kr [N m/rad] between the two end nodes;
-  - a ground bearing: the same springs between the link's node and the ground;
+  - a ground bearing: the same springs between the link's node and the ground; a ``welded``
+    ground joint (links fixed to each other, turning together in one bearing, e.g. a
+    triangular rocker built from two beams) has the bearing springs on its first link's node
+    only and ties the other links' nodes to that node rigidly;
   - a drive: a torsional spring between the driven link's node and the ground, in parallel with
     its bearing's Kr.
 A stiffness of ``inf`` ("rigid" in a scene file) is an exact constraint, not a penalty: the
@@ -58,6 +61,17 @@ class Section:
         return cls(E=E, G=G, density=density, area=width * thickness,
                    second_moment=thickness * width**3 / 12.0, depth=width, name=name)
 
+    @classmethod
+    def tube(cls, E, G, density, outer_radius, inner_radius, name=""):
+        """Round tube [m]: A = pi (ro^2 - ri^2), I = pi (ro^4 - ri^4) / 4, depth 2 ro."""
+        if not 0 <= inner_radius < outer_radius:
+            raise InputError(f"need 0 <= inner radius < outer radius, got {inner_radius!r}, "
+                             f"{outer_radius!r}", source=name or None, field="tube")
+        ro2, ri2 = outer_radius**2, inner_radius**2
+        return cls(E=E, G=G, density=density, area=math.pi * (ro2 - ri2),
+                   second_moment=math.pi * (ro2**2 - ri2**2) / 4.0, depth=2 * outer_radius,
+                   name=name)
+
     @property
     def EA(self) -> float:
         return self.E * self.area
@@ -91,6 +105,7 @@ class JointSpec:
     Kt: float
     Kr: float
     mass: float = 0.0  # lumped joint mass [kg] (pin, bearing), added to every link end's node share
+    welded: bool = False  # ground joint only: its links are welded together (see module docstring)
 
     def __post_init__(self):
         for field in ("Kt", "Kr", "mass"):
@@ -98,6 +113,9 @@ class JointSpec:
             if not (value >= 0) or math.isnan(value):
                 raise InputError(f"must be >= 0, got {value!r}", source=f"joint {self.name}",
                                  field=field, expected="N/m, N*m/rad or kg, >= 0")
+        if self.welded and not self.ground:
+            raise InputError("only a ground joint can be welded (a moving weld is Kt = Kr = rigid)",
+                             source=f"joint {self.name}", field="welded")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -203,6 +221,11 @@ def build_model(topology: Topology, points: dict[str, tuple[float, float]]) -> F
         if not attached:
             raise InputError(f"joint {joint.name!r} has no link attached", field=f"joints.{joint.name}")
         partners = [GROUND] * len(attached) if joint.ground else [attached[0]] * len(attached)
+        if joint.welded:
+            for node in attached[1:]:
+                for dof, name in ((0, "x"), (1, "y"), (2, "r")):
+                    spring(node, attached[0], dof, math.inf, f"{joint.name} weld {name}")
+            attached, partners = attached[:1], partners[:1]
         for node, other in zip(attached, partners):
             if node == other:
                 continue

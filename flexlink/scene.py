@@ -233,8 +233,10 @@ def _set_dotted(data: dict, origin: dict, field: str, value):
     origin[field] = "overrides"
 
 
-def load_scene(path: str | Path, overrides: dict | None = None) -> Scene:
-    """Read and validate a scene file (and its base). Raises InputError naming file and field.
+def load_scene(path: str | Path, overrides: dict | None = None):
+    """Read and validate a scene file (and its base): a ``Scene`` for a four-bar, a
+    ``scene_general.GeneralScene`` for ``linkage.type = "general"``. Raises InputError naming
+    file and field.
 
     ``overrides`` maps dotted fields to values as they would be written in the file, e.g.
     ``{"section.width": "25 mm", "joints.Kt": "1e7 N/m"}``: sweeps, calibration and Monte Carlo
@@ -247,9 +249,12 @@ def load_scene(path: str | Path, overrides: dict | None = None) -> Scene:
     name = r.raw("name", path.stem)
 
     kind = r.raw("linkage.type", "four-bar")
+    if kind == "general":
+        from .scene_general import load_general  # any linkage as data; see that module
+        return load_general(r, path)
     if kind != "four-bar":
         raise InputError(f"unknown linkage type {kind!r}", source=r.src("linkage.type"),
-                         field="linkage.type", expected="'four-bar'")
+                         field="linkage.type", expected="'four-bar' or 'general'")
     if r.has("linkage.R2"):
         ratios = [r.number(f"linkage.{k}", 1e-6, 1e6) for k in ("R2", "R3", "R4")]
         ground = r.quantity("linkage.ground", "length")

@@ -1,0 +1,99 @@
+"""``flexlink cycle SCENE``: the modal map over one crank revolution and a resonance check."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import click
+
+from ..cli import dumps, json_option, out_option
+
+
+@click.command("cycle")
+@click.argument("scene_path", metavar="SCENE", type=click.Path())
+@click.option("-n", "--modes", "n_modes", default=3, show_default=True,
+              type=click.IntRange(1, 50), help="Elastic modes per pose.")
+@click.option("--poses", default=360, show_default=True, type=click.IntRange(3, 100000),
+              help="Crank angles over one revolution.")
+@click.option("-e", "--elements", default=None, type=click.IntRange(1, 100000),
+              help="Elements per link (default: the scene's).")
+@click.option("--speed", default=None,
+              help="Crank speed for the resonance check, e.g. '2000 rev/min' (default: the "
+                   "scene's operation.crank_speed; none: no check).")
+@click.option("--margin", default=0.05, show_default=True, type=click.FloatRange(0, 1),
+              help="Relative distance that counts as near a natural frequency.")
+@click.option("--harmonics", default=10, show_default=True, type=click.IntRange(1, 10000),
+              help="Crank harmonics n = 1 ... this number.")
+@json_option
+@out_option
+def command(scene_path, n_modes, poses, elements, speed, margin, harmonics, as_json, out_dir):
+    """Natural frequencies of the first modes at every crank angle of SCENE (CSV and PNG in
+    --out), the poses where the transmission angle is 90 deg, and the crank harmonics that
+    come within --margin of a natural frequency anywhere in the cycle."""
+    from ..cycle import csv_text, modal_map, plot_map, resonances, runs
+    from ..fileio import prepare_out_dir, write_atomic
+    from ..scene import load_scene
+    from ..scene_general import as_general
+    from ..units import parse_quantity
+    from ._progress import progress_bar
+
+    out = prepare_out_dir(out_dir)
+    scene = as_general(load_scene(scene_path))
+    if speed is not None:
+        omega = parse_quantity(speed, "angular speed", source="command line", field="--speed")
+    else:
+        omega = scene.reader().quantity("operation.crank_speed", "angular speed", default=None)
+    result = modal_map(scene, poses, n_modes, elements,
+                       progress=progress_bar("modal map", as_json))
+    hits = resonances(result, omega, margin, harmonics) if omega else []
+    stem = Path(scene_path).stem
+    csv_path, png_path = out / f"{stem}-cycle.csv", out / f"{stem}-cycle.png"
+    write_atomic(csv_path, csv_text(result))
+    plot_map(result, png_path, omega, hits)
+    f = result.frequencies
+    document = {
+        "command": "cycle", "scene": scene.name, "poses": poses,
+        "synthesis": scene.synthesis,
+        "modes": [{"mode": j + 1, "min_Hz": float(f[:, j].min()),
+                   "at_crank_deg": math.degrees(result.q[f[:, j].argmin()]) % 360.0,
+                   "max_Hz": float(f[:, j].max()),
+                   "at_crank_deg_max": math.degrees(result.q[f[:, j].argmax()]) % 360.0}
+                  for j in range(f.shape[1])],
+        "mu90_crank_deg": {k: [math.degrees(a) for a in v] for k, v in result.mu90.items()},
+        "mechanism_modes_max": int(result.mechanism_counts.max()),
+        "crank_speed_rev_per_min": omega * 60 / (2 * math.pi) if omega else None,
+        "margin": margin,
+        "resonances": [{"harmonic": h.harmonic, "harmonic_Hz": h.frequency, "mode": h.mode,
+                        "closest_relative_gap": h.closest,
+                        "crank_deg_ranges": [[round(math.degrees(a), 2), round(math.degrees(b), 2)]
+                                             for a, b in runs(h.angles, 2 * math.pi / poses)]}
+                       for h in hits],
+        "files": [str(csv_path), str(png_path)],
+        "assumptions": [f"{a.field}: {a.note}" for a in scene.assumptions],
+    }
+    write_atomic(out / f"{stem}-cycle.json", dumps(document))
+    if as_json:
+        click.echo(dumps(document))
+        return
+    click.echo(f"{scene.name}: first {n_modes} elastic modes over {poses} crank angles")
+    if scene.synthesis:
+        click.echo(f"synthesis {scene.synthesis['method']}: " + ", ".join(
+            f"{k} {1e3 * v:.3f} mm" for k, v in scene.synthesis["lengths_m"].items()))
+    click.echo(f"{'mode':>4} {'min [Hz]':>10} {'at [deg]':>9} {'max [Hz]':>10} {'at [deg]':>9}")
+    for m in document["modes"]:
+        click.echo(f"{m['mode']:>4} {m['min_Hz']:>10.2f} {m['at_crank_deg']:>9.1f} "
+                   f"{m['max_Hz']:>10.2f} {m['at_crank_deg_max']:>9.1f}")
+    for pair, angles in document["mu90_crank_deg"].items():
+        where = (", ".join(f"{a:.2f}" for a in angles) + " deg") if angles else "never in the cycle"
+        click.echo(f"mu = 90 deg ({pair}) at crank {where}")
+    if omega:
+        rpm = document["crank_speed_rev_per_min"]
+        if not hits:
+            click.echo(f"resonance check at {rpm:g} rev/min: no harmonic 1..{harmonics} within "
+                       f"{100 * margin:g} % of a natural frequency")
+        for h in document["resonances"]:
+            ranges = ", ".join(f"{a:.1f}-{b:.1f}" for a, b in h["crank_deg_ranges"])
+            click.echo(f"resonance: harmonic {h['harmonic']} ({h['harmonic_Hz']:.2f} Hz) within "
+                       f"{100 * margin:g} % of mode {h['mode']} at crank {ranges} deg")
+    click.echo(f"written: {csv_path}, {png_path}, {out / (stem + '-cycle.json')}")

@@ -1,0 +1,71 @@
+"""``flexlink prb SCENE``: a partially compliant linkage's FE modes beside its pseudo-rigid-body
+first frequency."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import click
+
+from ..cli import dumps, json_option, out_option
+
+
+@click.command("prb")
+@click.argument("scene_path", metavar="SCENE", type=click.Path())
+@click.option("-n", "--modes", "n_modes", default=4, show_default=True,
+              type=click.IntRange(1, 50), help="FE elastic modes to list.")
+@click.option("-e", "--elements", default=None, type=click.IntRange(1, 100000),
+              help="Elements per link (default: the scene's).")
+@json_option
+@out_option
+def command(scene_path, n_modes, elements, as_json, out_dir):
+    """Modes of SCENE (a scene with a [prb] table) at its start pose, where the compliant strip
+    is unstressed, with the strip as a flexible beam (FE), and the first frequency of the
+    pseudo-rigid-body model (rigid link + torsional spring K = gamma K_Theta E I / l)."""
+    from ..analysis import lambda_scale
+    from ..assembly import assemble, reduction
+    from ..fileio import prepare_out_dir, write_atomic
+    from ..model import build_model
+    from ..prb import prb_frequency
+    from ..scene import load_scene
+    from ..scene_general import as_general
+    from ..solve import ELASTIC, solve_modes
+
+    out = prepare_out_dir(out_dir)
+    scene = as_general(load_scene(scene_path))
+    r = scene.reader()
+    state = scene.linkage.solve(scene.start, scene.guess)
+    prb = prb_frequency(scene, state, r.raw("prb.strip"), r.raw("prb.pivot"), r.raw("prb.link"),
+                        r.raw("prb.clamp"), r.number("prb.gamma", 0.5, 1.0),
+                        r.number("prb.K_theta", 0.1, 10.0))
+    model = build_model(scene.topology(elements), state.points)
+    K, M = assemble(model)
+    modes = solve_modes(K, M, n_modes + 4, T=reduction(model), lambda_ref=lambda_scale(model))
+    fe = [float(f) for f, k in zip(modes.frequencies, modes.kinds) if k == ELASTIC][:n_modes]
+    document = {
+        "command": "prb", "scene": scene.name, "synthesis": scene.synthesis,
+        "pose_crank_deg": math.degrees(scene.start),
+        "points_m": state.points,
+        "fe_Hz": fe,
+        "prb": {"spring_N_m_per_rad": prb.spring, "generalized_stiffness_N_m": prb.stiffness,
+                "generalized_mass_kg_m2": prb.mass, "first_Hz": prb.frequency},
+        "prb_vs_fe_pct": 100 * (prb.frequency - fe[0]) / fe[0],
+        "assumptions": [f"{a.field}: {a.note}" for a in scene.assumptions],
+    }
+    stem = Path(scene_path).stem
+    write_atomic(out / f"{stem}-prb.json", dumps(document))
+    if as_json:
+        click.echo(dumps(document))
+        return
+    s = scene.synthesis
+    click.echo(scene.name)
+    if s:
+        click.echo(f"  synthesis {s['method']} {s['inputs']}: " + ", ".join(
+            f"{k} {1e3 * v:.3f} mm" for k, v in s["lengths_m"].items()))
+    click.echo(f"  pose: crank {document['pose_crank_deg']:.3f} deg (strip straight)")
+    click.echo("  FE modes [Hz]: " + ", ".join(f"{f:.3f}" for f in fe))
+    click.echo(f"  PRB: K = {prb.spring:.4f} N m/rad, k_q = {prb.stiffness:.4f} N m, m_q = "
+               f"{prb.mass:.5g} kg m^2, first frequency {prb.frequency:.3f} Hz "
+               f"({document['prb_vs_fe_pct']:+.1f} % vs FE {fe[0]:.3f} Hz)")
+    click.echo(f"written: {out / (stem + '-prb.json')}")
