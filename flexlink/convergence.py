@@ -1,0 +1,185 @@
+"""Mesh convergence: frequencies, error and run time over mesh levels and solver/mass choices.
+
+Discretisation error is measured against a Richardson extrapolation of the finest levels,
+    f_ref = f_h/2 + (f_h/2 - f_h) / (2^p - 1),
+with p = ORDER = 2: the axial P1 element (with consistent mass) has eigenvalue error O(h^2)
+and every mode of a pinned frame stretches its links a little; Hermite bending alone converges
+at O(h^4) (tests/test_convergence.py shows both). The observed order
+log2(|f_h - f_h/2| / |f_h/2 - f_h/4|) is computed and compared with p. Model error (against
+measurement) is kept apart: refining the mesh does not reduce it.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import io
+import math
+import statistics
+
+import numpy as np
+
+from .analysis import analyze
+from .errors import NumericalError
+from .fileio import write_atomic
+from .scene import Scene
+from .solve import DENSE_LIMIT
+
+ORDER = 2  # see module docstring
+ORDER_SLACK = 0.5  # observed order within ORDER +- this counts as asymptotic
+DEFAULT_TOL = 1e-6  # relative frequency tolerance of the default mesh rule
+
+
+@dataclasses.dataclass(frozen=True)
+class Choice:
+    """A way to solve: eigen ``method``, ``mass`` matrix, and energy refinement (see solve.py)."""
+
+    method: str
+    mass: str
+    refine: bool = True
+
+    @property
+    def label(self) -> str:
+        return f"{self.method}/{self.mass}" + ("" if self.refine else " (unrefined)")
+
+
+CHOICES = (Choice("sparse", "consistent"), Choice("dense", "consistent"),
+           Choice("sparse", "lumped"), Choice("dense", "lumped"),
+           Choice("sparse", "consistent", refine=False))
+
+
+@dataclasses.dataclass(frozen=True)
+class Level:
+    """One mesh level of one choice: median times [s] and the lowest elastic frequencies [Hz]."""
+
+    choice: Choice
+    elements: int
+    dofs: int
+    assembly_s: float
+    solve_s: float
+    frequencies: np.ndarray
+
+    @property
+    def total_s(self) -> float:
+        return self.assembly_s + self.solve_s
+
+
+@dataclasses.dataclass(frozen=True)
+class Extrapolation:
+    """Richardson reference [Hz] from the finest levels ``elements`` (h, h/2, h/4) of one choice,
+    with the order used and the observed order per mode."""
+
+    reference: np.ndarray
+    order: int
+    observed: np.ndarray
+    elements: tuple[int, ...]
+
+    @property
+    def asymptotic(self) -> bool:
+        return bool(np.all(np.abs(self.observed - self.order) <= ORDER_SLACK))
+
+
+def mesh_levels(max_elements: int = 256) -> tuple[int, ...]:
+    """1, 2, 4, ... up to ``max_elements`` elements per link."""
+    return tuple(2**k for k in range(int(math.log2(max_elements)) + 1))
+
+
+def run_level(scene: Scene, choice: Choice, elements: int, n_modes: int, repeats: int) -> Level:
+    """Solve ``repeats`` times; median assembly and solve wall times."""
+    runs = [analyze(scene, n_modes, elements, choice.method, choice.mass, choice.refine)
+            for _ in range(repeats)]
+    freqs = runs[-1].elastic_frequencies(n_modes)
+    return Level(choice=choice, elements=elements, dofs=runs[-1].modes.n_dofs,
+                 assembly_s=statistics.median(r.seconds["assembly"] for r in runs),
+                 solve_s=statistics.median(r.seconds["solve"] for r in runs), frequencies=freqs)
+
+
+def runs_dense(elements: int, scene: Scene) -> bool:
+    """Dense choices stop where ``auto`` would leave the dense solver (DENSE_LIMIT DOFs)."""
+    return 3 * (elements + 1) * len(scene.sections) <= DENSE_LIMIT
+
+
+def observed_order(coarse: np.ndarray, middle: np.ndarray, fine: np.ndarray) -> np.ndarray:
+    """log2 of successive difference ratios, per mode (NaN where a difference is zero)."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.log2(np.abs(middle - coarse) / np.abs(fine - middle))
+
+
+def richardson(levels: list[Level], order: int = ORDER) -> Extrapolation:
+    """Extrapolate the finest two of ``levels`` (one choice, ascending elements) at ``order``."""
+    if len(levels) < 3:
+        raise ValueError("Richardson extrapolation with an order check needs three levels")
+    c, m, f = levels[-3:]
+    reference = f.frequencies + (f.frequencies - m.frequencies) / (2**order - 1)
+    return Extrapolation(reference=reference, order=order,
+                         observed=observed_order(c.frequencies, m.frequencies, f.frequencies),
+                         elements=(c.elements, m.elements, f.elements))
+
+
+def relative_errors(levels: list[Level], reference: np.ndarray) -> np.ndarray:
+    """(len(levels), n) |f - f_ref| / f_ref."""
+    return np.array([np.abs(l.frequencies - reference) / reference for l in levels])
+
+
+def cheapest(levels: list[Level], reference: np.ndarray, tol: float) -> Level | None:
+    """The level (of any choice) with the smallest median time whose every frequency is within
+    ``tol`` (relative) of ``reference``; None if none is."""
+    ok = [l for l, e in zip(levels, relative_errors(levels, reference)) if e.max() <= tol]
+    return min(ok, key=lambda l: l.total_s) if ok else None
+
+
+@dataclasses.dataclass(frozen=True)
+class MeshRule:
+    """The default mesh: the coarsest level 2^k whose Richardson error estimate
+    |f_h - f_h/2| / (2^p - 1) / f is at most ``tol`` for every reported mode."""
+
+    elements: int
+    tol: float
+    estimate: float
+    history: tuple[tuple[int, float], ...]  # (elements, estimate) per refinement step
+
+
+def mesh_for_tolerance(scene: Scene, n_modes: int, tol: float = DEFAULT_TOL,
+                       method: str = "auto", start: int = 4, max_elements: int = 4096) -> MeshRule:
+    """Refine by doubling from ``start`` until the estimated relative error <= ``tol``."""
+    previous = analyze(scene, n_modes, start, method).elastic_frequencies(n_modes)
+    elements, history = start, []
+    while elements < max_elements:
+        elements *= 2
+        current = analyze(scene, n_modes, elements, method).elastic_frequencies(n_modes)
+        n = min(len(previous), len(current))
+        estimate = float((np.abs(current[:n] - previous[:n]) / (2**ORDER - 1) / current[:n]).max())
+        history.append((elements, estimate))
+        if estimate <= tol:
+            return MeshRule(elements, tol, estimate, tuple(history))
+        previous = current
+    raise NumericalError(f"no mesh up to {max_elements} elements per link meets the relative "
+                         f"frequency tolerance {tol:g} (last estimate {history[-1][1]:.2g})")
+
+
+def plot_error_time(levels: list[Level], reference: np.ndarray, path, title: str = "") -> None:
+    """Log-log PNG of max relative discretisation error against median solve time, one line
+    per choice."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    errors = relative_errors(levels, reference).max(axis=1)
+    fig, ax = plt.subplots(figsize=(7, 5))
+    for choice in dict.fromkeys(l.choice for l in levels):
+        pick = [i for i, l in enumerate(levels) if l.choice == choice]
+        t = [levels[i].total_s for i in pick]
+        e = np.maximum(errors[pick], 1e-16)  # an exact match would vanish from a log axis
+        ax.loglog(t, e, "o-", label=choice.label)
+        for i in pick[::2]:
+            ax.annotate(str(levels[i].elements), (levels[i].total_s, max(errors[i], 1e-16)),
+                        fontsize=7, textcoords="offset points", xytext=(3, 3))
+    ax.set_xlabel("median wall time per solve, assembly + eigen solve [s]")
+    ax.set_ylabel("max relative frequency error vs Richardson reference")
+    ax.set_title(title or "error against run time (labels: elements per link)")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend()
+    fig.tight_layout()
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=120)
+    plt.close(fig)
+    write_atomic(path, buf.getvalue())
