@@ -185,6 +185,9 @@ def solve_modes(K, M, n_modes: int, *, T=None, lambda_ref: float, method: str = 
         vals = np.asarray(energy(shapes), dtype=float)  # v^T M v = 1: the Rayleigh quotient
         order = np.argsort(vals, kind="stable")
         vals, shapes, residuals, backward = vals[order], shapes[:, order], residuals[order], backward[order]
+        # The quotient of a mechanism mode is ~ (eps lambda_max)^2 / lambda: the round-off floor
+        # above no longer applies (it passes lambda_1 near 512 elements per link).
+        zero = zero_tol * lambda_ref
     kinds = tuple(MECHANISM if v < zero else ELASTIC for v in vals)
     lam = np.clip(vals, 0.0, None)
     return ModalResult(eigenvalues=vals, frequencies=np.sqrt(lam) / (2 * np.pi), shapes=shapes,

@@ -13,7 +13,7 @@ from ..cli import dumps, json_option, out_option
 @click.argument("scene_path", metavar="SCENE", type=click.Path())
 @click.option("-n", "--modes", "n_modes", default=4, show_default=True,
               type=click.IntRange(1, 50), help="Number of elastic modes to follow.")
-@click.option("--max-elements", default=256, show_default=True, type=click.IntRange(4, 8192),
+@click.option("--max-elements", default=512, show_default=True, type=click.IntRange(4, 8192),
               help="Finest level (elements per link; levels are 1, 2, 4, ...).")
 @click.option("--repeats", default=3, show_default=True, type=click.IntRange(1, 50),
               help="Solves per level; the median time is reported.")
@@ -55,7 +55,7 @@ def command(scene_path, n_modes, max_elements, repeats, tol, as_json, out_dir):
         row = {"choice": level.choice.label, "method": level.choice.method,
                "mass": level.choice.mass, "refined": level.choice.refine,
                "elements_per_link": level.elements, "dofs": level.dofs,
-               "assembly_s": level.assembly_s, "solve_s": level.solve_s,
+               "assembly_s": level.assembly_s, "solve_s": level.solve_s, "runs": level.runs,
                "frequencies_Hz": level.frequencies, "relative_error": err,
                "max_relative_error": float(err.max())}
         if measured is not None:
@@ -69,7 +69,8 @@ def command(scene_path, n_modes, max_elements, repeats, tol, as_json, out_dir):
         "repeats": repeats,
         "reference": {"choice": main_choice.label, "frequencies_Hz": ref,
                       "order_used": extrapolation.order, "observed_order": extrapolation.observed,
-                      "levels": extrapolation.elements, "asymptotic": extrapolation.asymptotic},
+                      "levels": extrapolation.elements, "asymptotic": extrapolation.asymptotic,
+                      "second_step_change": extrapolation.uncertainty},
         "model_error": _model_error(ref, measured),
         "tolerance": tol,
         "cheapest": None if best is None else {
@@ -87,6 +88,12 @@ def command(scene_path, n_modes, max_elements, repeats, tol, as_json, out_dir):
         return
     click.echo(_text(scene, document, main_choice.label, n_modes))
     click.echo(f"written: {out / 'converge.json'}, {out / 'converge.csv'}, {png}")
+
+
+def _dense_note():
+    from ..solve import DENSE_LIMIT
+
+    return f"{DENSE_LIMIT} DOFs, where 'auto' leaves it"
 
 
 def _measured(scene):
@@ -124,9 +131,11 @@ def _text(scene, doc, main_label, n_modes):
     observed = " ".join(f"{p:.2f}" for p in ref["observed_order"])
     lines = [f"{scene.name} ({scene.path}): mesh convergence of {n_modes} elastic modes, "
              f"median of {doc['repeats']} runs per level",
-             f"Richardson reference: {main_label} at {ref['levels'][1]} and {ref['levels'][2]} "
-             f"elements/link, order used p = {ref['order_used']} (P1 axial element; Hermite "
-             f"bending alone is 4); observed order {observed} "
+             f"Richardson reference: {main_label} at {'/'.join(map(str, ref['levels']))} "
+             f"elements/link; order used p = {ref['order_used']} (P1 axial element), then "
+             f"{ref['order_used'] + 2} (Hermite bending), which moved it by at most "
+             f"{max(ref['second_step_change']):.0e}",
+             f"observed order {observed} "
              f"({'asymptotic' if ref['asymptotic'] else 'NOT in the asymptotic range'})",
              "", f"Discretisation error (relative, vs the Richardson reference), {main_label}:"]
     head = f"{'el/link':>7} {'DOFs':>6} {'asm ms':>7} {'eig ms':>7}"
@@ -148,7 +157,8 @@ def _text(scene, doc, main_label, n_modes):
                   f"{'mode':>4} {'reference Hz':>14} {model['column'] + ' Hz':>8} {'err %':>9}"]
         for i, (m, e) in enumerate(zip(model["measured_Hz"], model["error_pct"])):
             lines.append(f"{i + 1:>4} {ref['frequencies_Hz'][i]:>14.6f} {m:>8.1f} {e:>+9.1f}")
-    lines += ["", "Error against run time, every choice (time = median assembly + eigen solve):",
+    lines += ["", "Error against run time, every choice (time = median assembly + eigen solve; "
+                  f"dense stops at {_dense_note()}):",
               f"{'choice':<28} {'el/link':>7} {'DOFs':>6} {'time ms':>9} {'max rel err':>11}"]
     for r in doc["levels"]:
         lines.append(f"{r['choice']:<28} {r['elements_per_link']:>7} {r['dofs']:>6} "
