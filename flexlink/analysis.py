@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import dataclasses
+import logging
 import time
 
 import numpy as np
@@ -11,8 +12,12 @@ from .assembly import assemble, reduction
 from .energy import lumped_mass, twice_strain_energy
 from .kinematics import Pose
 from .model import FrameModel, build_model
+from .plausibility import model_warnings, pose_warnings
+from .rigid import rigidified
 from .scene import Scene
 from .solve import ModalResult, solve_modes
+
+log = logging.getLogger(__name__)
 
 EXTRA_MODES = 4  # solved beyond the requested count, so mechanism modes cannot crowd them out
 
@@ -33,6 +38,7 @@ class CaseResult:
     modes: ModalResult
     elements_per_link: int
     seconds: dict[str, float]
+    warnings: tuple[str, ...] = ()  # model outside its range (plausibility.py), also logged
 
     def elastic_frequencies(self, n: int) -> np.ndarray:
         return self.modes.elastic_frequencies[:n]
@@ -54,7 +60,10 @@ def analyze(scene: Scene, n_modes: int = 4, elements_per_link: int | None = None
     t0 = time.perf_counter()
     pose = scene.rigid_pose()
     topology = scene.topology(elements_per_link)
-    model = build_model(topology, pose.joints)
+    model = rigidified(build_model(topology, pose.joints))
+    warnings = tuple(pose_warnings(scene.linkage, pose) + model_warnings(model))
+    for w in warnings:
+        log.warning("%s: %s", scene.path, w)
     K, M = assemble(model)
     if mass == "lumped":
         M = lumped_mass(model)
@@ -66,4 +75,4 @@ def analyze(scene: Scene, n_modes: int = 4, elements_per_link: int | None = None
     t2 = time.perf_counter()
     return CaseResult(scene=scene, pose=pose, model=model, modes=modes,
                       elements_per_link=topology.links[0].elements,
-                      seconds={"assembly": t1 - t0, "solve": t2 - t1})
+                      seconds={"assembly": t1 - t0, "solve": t2 - t1}, warnings=warnings)
