@@ -37,8 +37,9 @@ def command(scenes, n_modes, elements, method, tol, as_json, out_dir):
     for path in files:
         scene = load_scene(path)
         chosen, mesh = _mesh(scene, n_modes, elements, DEFAULT_TOL if tol is None else tol)
-        summary = case_summary(analyze(scene, n_modes, chosen, method), n_modes)
-        summaries.append({**summary, "mesh": mesh})
+        result = analyze(scene, n_modes, chosen, method)
+        summaries.append({**case_summary(result, n_modes), "mesh": mesh,
+                          "warnings": list(result.warnings)})
     document = {"command": "modes", "cases": summaries,
                 "overall_mean_abs_error_pct": overall_mean_abs(summaries)}
     write_atomic(out / "modes.json", dumps(document))
@@ -47,7 +48,8 @@ def command(scenes, n_modes, elements, method, tol, as_json, out_dir):
         click.echo(dumps(document))
         return
     for s in summaries:
-        click.echo(format_case(s) + "\n" + _mesh_line(s["mesh"]) + "\n")
+        click.echo(format_case(s) + "\n" + _mesh_line(s["mesh"]) + "".join(
+            f"\nwarning: {w}" for w in s["warnings"]) + "\n")
     overall = document["overall_mean_abs_error_pct"]
     if overall:
         click.echo("overall mean |error|: " + ", ".join(
