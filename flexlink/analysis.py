@@ -19,6 +19,7 @@ from .solve import ModalResult, solve_modes
 
 log = logging.getLogger(__name__)
 
+_WARNED: set[tuple[str, str]] = set()
 EXTRA_MODES = 4  # solved beyond the requested count, so mechanism modes cannot crowd them out
 
 
@@ -63,7 +64,9 @@ def analyze(scene: Scene, n_modes: int = 4, elements_per_link: int | None = None
     model = rigidified(build_model(topology, pose.joints))
     warnings = tuple(pose_warnings(scene.linkage, pose) + model_warnings(model))
     for w in warnings:
-        log.warning("%s: %s", scene.path, w)
+        if (scene.path, w) not in _WARNED:  # once per process: sweeps call this many times
+            _WARNED.add((scene.path, w))
+            log.warning("%s: %s", scene.path, w)
     K, M = assemble(model)
     if mass == "lumped":
         M = lumped_mass(model)

@@ -1,6 +1,6 @@
 """Plausibility of inputs: catch unit slips that explicit units cannot (a "300 m" link typed
-for "300 mm", "53 Pa" for "53 GPa"), and warn where the model leaves its range (stubby links
-for Euler-Bernoulli beams, poses near a dead centre, linkages whose crank cannot turn).
+for "300 mm", "53 Pa" for "53 GPa"), and warn where the model leaves its range (stubby or
+shear-soft links for Euler-Bernoulli beams, poses near a dead centre, linkages whose crank cannot turn).
 
 Ranges are deliberately wide: a value outside them is almost surely a unit mistake. A scene
 that really means it sets ``[checks] plausibility = "warn"``.
@@ -27,6 +27,7 @@ RANGES = {
 HINTS = {"m": ((1e-3, "mm"), (1e-2, "cm"), (1e3, "km")), "Pa": ((1e9, "GPa"), (1e6, "MPa")),
          "kg/m^3": ((1e3, "g/cm^3"), (1e-3, "g/m^3"))}
 SLENDER_LIMIT = 10.0  # L/h below this: shear and rotary inertia matter (Euler-Bernoulli off)
+SHEAR_WARN = 0.05  # ... or where they lower the first bending frequency by more than this
 TOGGLE_WARN_DEG = 10.0  # mu within this of 0 or 180 deg: near a dead centre
 
 
@@ -101,16 +102,18 @@ def timoshenko_drop(section, length: float) -> float:
 
 
 def model_warnings(model) -> list[str]:
-    """Links too stubby for Euler-Bernoulli theory (L/h < SLENDER_LIMIT)."""
+    """Links outside Euler-Bernoulli theory: stubby (L/h < SLENDER_LIMIT), or so soft in shear
+    (E/G large, as in fabric composites) that Timoshenko theory lowers the first bending
+    frequency by more than SHEAR_WARN."""
     out = []
     for link in model.links:
-        ratio = link.length / link.section.depth
-        if ratio < SLENDER_LIMIT:
-            out.append(f"link {link.name}: slenderness L/h = {ratio:.3g} is below "
-                       f"{SLENDER_LIMIT:g}, outside Euler-Bernoulli theory (plane sections, no shear "
-                       f"strain, no rotary inertia): Timoshenko theory puts its first bending "
-                       f"frequency about {100 * timoshenko_drop(link.section, link.length):.0f} % "
-                       "lower")
+        s = link.section
+        ratio, drop = link.length / s.depth, timoshenko_drop(s, link.length)
+        if ratio < SLENDER_LIMIT or drop > SHEAR_WARN:
+            out.append(f"link {link.name}: slenderness L/h = {ratio:.3g} with E/G = {s.E / s.G:.3g} "
+                       "is outside Euler-Bernoulli theory (no shear strain, no rotary inertia): "
+                       "Timoshenko theory puts its first bending frequency as a pinned-pinned "
+                       f"beam about {100 * drop:.0f} % lower")
     return out
 
 

@@ -24,7 +24,7 @@ from .energy import lumped_mass, twice_strain_energy
 from .errors import FlexlinkError, InputError, KinematicsError, NumericalError
 from .kinematics import FourBar
 from .model import JointSpec, LinkSpec, Section, Topology, build_model
-from .plausibility import SLENDER_LIMIT, model_warnings, pose_warnings
+from .plausibility import SHEAR_WARN, SLENDER_LIMIT, model_warnings, pose_warnings, timoshenko_drop
 from .rigid import RIGID_RATIO, element_stiffness_scale, rigidified
 from .scene import Scene, load_scene
 from .solve import DENSE_REFUSE, ELASTIC, MECHANISM, solve_modes
@@ -175,30 +175,40 @@ def sparse_mechanism(scene: Scene) -> Check:
 
 # -- 3 --------------------------------------------------------------------------------------
 def slenderness(scene: Scene) -> Check:
-    """Every link's in-plane depth set to L / ratio, ratio from 1e4 down to 3."""
+    """Every link's in-plane depth set to L / ratio, ratio from 1e4 down to 3; once with the
+    scene's material, once with steel (E/G = 2.6)."""
     pose, topo = scene.rigid_pose(), scene.topology(ELEMENTS)
     ratios = (1e4, 1e3, 100.0, 30.0, 10.0, 5.0, 3.0)
     rows, ok = [], True
-    for ratio in ratios:
-        links = []
-        for spec in topo.links:
-            length = math.dist(pose.joints[spec.start], pose.joints[spec.end])
-            s = spec.section
-            thickness = s.area / s.depth
-            links.append(dataclasses.replace(spec, section=Section.rectangle(
-                s.E, s.G, s.density, length / ratio, thickness, name=spec.name)))
-        model = build_model(dataclasses.replace(topo, links=tuple(links)), pose.joints)
-        r = _solve(model, 4)
-        warnings = model_warnings(model)
-        finite = bool(np.all(np.isfinite(r.frequencies)) and r.frequencies.min() > 0)
-        ok &= finite and (len(warnings) == 3) == (ratio < SLENDER_LIMIT)
-        rows.append({"L_over_h": ratio, "f_Hz": r.frequencies.tolist(), "warnings": warnings})
+    for material in ("scene", "steel"):
+        for ratio in ratios:
+            links = []
+            for spec in topo.links:
+                length = math.dist(pose.joints[spec.start], pose.joints[spec.end])
+                s = spec.section
+                E, G, rho = (s.E, s.G, s.density) if material == "scene" else (210e9, 81e9, 7850.0)
+                links.append(dataclasses.replace(spec, section=Section.rectangle(
+                    E, G, rho, length / ratio, s.area / s.depth, name=spec.name)))
+            model = build_model(dataclasses.replace(topo, links=tuple(links)), pose.joints)
+            r = _solve(model, 4)
+            warnings = model_warnings(model)
+            drop = max(timoshenko_drop(l.section, l.length) for l in model.links)
+            expect = ratio < SLENDER_LIMIT or drop > SHEAR_WARN
+            finite = bool(np.all(np.isfinite(r.frequencies)) and r.frequencies.min() > 0)
+            ok &= finite and bool(warnings) == expect and all("L/h" in w for w in warnings)
+            rows.append({"material": material, "L_over_h": ratio, "f_Hz": r.frequencies.tolist(),
+                         "timoshenko_drop": drop, "warnings": warnings})
+    first = {m: min(r["L_over_h"] for r in rows if r["material"] == m and not r["warnings"])
+             if any(r["material"] == m and not r["warnings"] for r in rows) else None
+             for m in ("scene", "steel")}
     stubby = rows[-1]["warnings"][0] if rows[-1]["warnings"] else "(no warning)"
-    return Check("3", "slender L/h = 1e4 to stubby L/h = 3",
-                 f"finite positive frequencies at every L/h; a warning naming L/h for every link "
-                 f"exactly when L/h < {SLENDER_LIMIT:g}",
-                 f"f1 from {rows[0]['f_Hz'][0]:.4g} Hz (L/h 1e4) to {rows[-1]['f_Hz'][0]:.4g} Hz "
-                 f"(L/h 3); at L/h 3: \"{stubby}\"", ok, {"rows": rows})
+    return Check("3", "slender L/h = 1e4 to stubby L/h = 3 (scene material, then steel)",
+                 f"finite positive frequencies; a warning naming L/h exactly where L/h < "
+                 f"{SLENDER_LIMIT:g} or shear lowers the first bending frequency by > "
+                 f"{100 * SHEAR_WARN:g} % (Timoshenko)",
+                 f"no warning down to L/h = {first['scene']:g} (scene material, E/G = "
+                 f"{topo.links[0].section.E / topo.links[0].section.G:.0f}) and {first['steel']:g} "
+                 f"(steel); steel at L/h 3: \"{stubby}\"", ok, {"rows": rows})
 
 
 # -- 4 --------------------------------------------------------------------------------------
