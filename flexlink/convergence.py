@@ -89,16 +89,29 @@ def mesh_levels(max_elements: int = 512) -> tuple[int, ...]:
 
 
 def run_level(scene: Scene, choice: Choice, elements: int, n_modes: int, repeats: int) -> Level:
-    """Solve up to ``repeats`` times (fewer once REPEAT_BUDGET_S is spent); median assembly and
-    solve wall times."""
-    runs = []
-    while len(runs) < repeats and sum(sum(r.seconds.values()) for r in runs) < REPEAT_BUDGET_S:
-        runs.append(analyze(scene, n_modes, elements, choice.method, choice.mass, choice.refine))
-    freqs = runs[-1].elastic_frequencies(n_modes)
-    return Level(choice=choice, elements=elements, dofs=runs[-1].modes.n_dofs,
-                 assembly_s=statistics.median(r.seconds["assembly"] for r in runs),
-                 solve_s=statistics.median(r.seconds["solve"] for r in runs), frequencies=freqs,
-                 runs=len(runs))
+    """One level of one choice, solved up to ``repeats`` times (see ``run_levels``)."""
+    return run_levels(scene, [(choice, elements)], n_modes, repeats)[0]
+
+
+def run_levels(scene: Scene, work, n_modes: int, repeats: int, progress=None) -> list[Level]:
+    """Every (choice, elements) of ``work``, solved ``repeats`` times, round-robin: each round
+    runs every level once, so a change in machine load during the study hits every choice
+    alike. A level whose runs took REPEAT_BUDGET_S in all is not repeated further. Median
+    assembly and solve wall times [s]."""
+    work = list(work)
+    runs: list[list] = [[] for _ in work]
+    rounds = range(repeats)
+    for _ in (progress(rounds) if progress else rounds):
+        for (choice, elements), done in zip(work, runs):
+            if done and sum(sum(r.seconds.values()) for r in done) >= REPEAT_BUDGET_S:
+                continue
+            done.append(analyze(scene, n_modes, elements, choice.method, choice.mass,
+                                choice.refine))
+    return [Level(choice=c, elements=e, dofs=done[-1].modes.n_dofs,
+                  assembly_s=statistics.median(r.seconds["assembly"] for r in done),
+                  solve_s=statistics.median(r.seconds["solve"] for r in done),
+                  frequencies=done[-1].elastic_frequencies(n_modes), runs=len(done))
+            for (c, e), done in zip(work, runs)]
 
 
 def runs_dense(elements: int, scene: Scene) -> bool:

@@ -39,9 +39,11 @@ def command(scene_path, n_modes, max_elements, repeats, tol, as_json, out_dir):
     levels_all = cv.mesh_levels(max_elements)
     work = [(c, e) for c in cv.CHOICES for e in levels_all
             if c.method != "dense" or cv.runs_dense(e, scene)]
-    bar = tqdm(work, desc="converge", unit="level", file=sys.stderr,
-               disable=as_json or not sys.stderr.isatty())
-    levels = [cv.run_level(scene, c, e, n_modes, repeats) for c, e in bar]
+    def progress(rounds):
+        return tqdm(rounds, desc="converge (rounds over all levels)", unit="round",
+                    file=sys.stderr, disable=as_json or not sys.stderr.isatty())
+
+    levels = cv.run_levels(scene, work, n_modes, repeats, progress)
     main_choice = cv.CHOICES[0]
     main = [l for l in levels if l.choice == main_choice]
     extrapolation = cv.richardson(main)
