@@ -3,16 +3,23 @@
 from __future__ import annotations
 
 import dataclasses
+import logging
 import time
 
 import numpy as np
 
 from .assembly import assemble, reduction
+from .energy import lumped_mass, twice_strain_energy
 from .kinematics import Pose
 from .model import FrameModel, build_model
+from .plausibility import model_warnings, pose_warnings
+from .rigid import rigidified
 from .scene import Scene
 from .solve import ModalResult, solve_modes
 
+log = logging.getLogger(__name__)
+
+_WARNED: set[tuple[str, str]] = set()
 EXTRA_MODES = 4  # solved beyond the requested count, so mechanism modes cannot crowd them out
 
 
@@ -32,25 +39,43 @@ class CaseResult:
     modes: ModalResult
     elements_per_link: int
     seconds: dict[str, float]
+    warnings: tuple[str, ...] = ()  # model outside its range (plausibility.py), also logged
 
     def elastic_frequencies(self, n: int) -> np.ndarray:
         return self.modes.elastic_frequencies[:n]
 
 
+MASSES = ("consistent", "lumped")
+
+
 def analyze(scene: Scene, n_modes: int = 4, elements_per_link: int | None = None,
-            method: str = "auto") -> CaseResult:
+            method: str = "auto", mass: str = "consistent", refine: bool = True) -> CaseResult:
     """Natural frequencies of ``scene`` at its pose: the lowest ``n_modes`` elastic modes
-    (plus any rigid-body/mechanism modes below them, labelled as such)."""
+    (plus any rigid-body/mechanism modes below them, labelled as such).
+
+    ``mass``: "consistent" (the element's own) or "lumped" (HRZ diagonal, ``energy.py``).
+    ``refine``: eigenvalues as Rayleigh quotients of the strain energy computed from element
+    deformations (``energy.py``), so fine meshes are not limited by the round-off of K."""
+    if mass not in MASSES:
+        raise ValueError(f"unknown mass {mass!r}: one of {MASSES}")
     t0 = time.perf_counter()
     pose = scene.rigid_pose()
     topology = scene.topology(elements_per_link)
-    model = build_model(topology, pose.joints)
+    model = rigidified(build_model(topology, pose.joints))
+    warnings = tuple(pose_warnings(scene.linkage, pose) + model_warnings(model))
+    for w in warnings:
+        if (scene.path, w) not in _WARNED:  # once per process: sweeps call this many times
+            _WARNED.add((scene.path, w))
+            log.warning("%s: %s", scene.path, w)
     K, M = assemble(model)
+    if mass == "lumped":
+        M = lumped_mass(model)
     T = reduction(model)
     t1 = time.perf_counter()
+    energy = (lambda shapes: twice_strain_energy(model, shapes)) if refine else None
     modes = solve_modes(K, M, n_modes + EXTRA_MODES, T=T, lambda_ref=lambda_scale(model),
-                        method=method)
+                        method=method, energy=energy)
     t2 = time.perf_counter()
     return CaseResult(scene=scene, pose=pose, model=model, modes=modes,
                       elements_per_link=topology.links[0].elements,
-                      seconds={"assembly": t1 - t0, "solve": t2 - t1})
+                      seconds={"assembly": t1 - t0, "solve": t2 - t1}, warnings=warnings)

@@ -43,8 +43,13 @@ def _mass(u, v, w):
 
 @functools.lru_cache(maxsize=256)
 def _unit_chain(length: float, elements: int):
-    """Unit-property chain matrices (EA = EI = rhoA = 1) and their local DOF maps."""
-    mesh = MeshLine(np.linspace(0.0, length, elements + 1))
+    """Unit-property chain matrices (EA = EI = rhoA = 1) and their local DOF maps.
+
+    The chain is assembled on unit-length elements and scaled to h = length / elements exactly
+    (axial K / h, M h; bending S K S / h^3, h S M S with S = h on rotation DOFs): scikit-fem's
+    Hermite line basis works in global coordinates and loses about eps (x / h)^3 far from the
+    origin, 1e-8 relative at 256 elements, which would swamp a converged answer."""
+    mesh = MeshLine(np.arange(elements + 1, dtype=float))
     axial = Basis(mesh, ElementLineP1())
     bending = Basis(mesh, ElementLineHermite())
     nodes = np.arange(elements + 1)
@@ -60,10 +65,12 @@ def _unit_chain(length: float, elements: int):
         coo = matrix.tocoo()
         return sp.coo_matrix((coo.data, (dof_map[coo.row], dof_map[coo.col])), shape=(n, n)).tocsr()
 
-    return (to_local(_axial_stiffness.assemble(axial), axial_map),
-            to_local(_mass.assemble(axial), axial_map),
-            to_local(_bending_stiffness.assemble(bending), bending_map),
-            to_local(_mass.assemble(bending), bending_map))
+    h = length / elements
+    S = sp.diags(np.where(np.arange(n) % 3 == 2, h, 1.0))
+    return (to_local(_axial_stiffness.assemble(axial), axial_map) / h,
+            to_local(_mass.assemble(axial), axial_map) * h,
+            (S @ to_local(_bending_stiffness.assemble(bending), bending_map) @ S / h**3).tocsr(),
+            (S @ to_local(_mass.assemble(bending), bending_map) @ S * h).tocsr())
 
 
 def link_matrices(length: float, elements: int, EA: float, EI: float, mass_per_length: float):

@@ -18,6 +18,7 @@ from .errors import InputError
 from .kinematics import BRANCHES, FourBar
 from .materials import BeamMaterial, isotropic, load_constituent, woven_composite
 from .model import DriveSpec, JointSpec, LinkSpec, Section, Topology
+from .plausibility import check_scene
 from .units import parse_quantity
 
 FOUR_BAR_LINKS = (("crank", "O2", "A"), ("coupler", "A", "B"), ("rocker", "O4", "B"))
@@ -310,10 +311,12 @@ def load_scene(path: str | Path, overrides: dict | None = None):
                 columns[key[:-3]] = tuple(float(v) for v in value)
         reference = Reference(source=str(r.raw("reference.source", "")), columns=columns)
 
-    return Scene(name=str(name), path=str(path), linkage=linkage, pose=pose, sections=sections,
-                 joints=tuple(joints), drive=drive, elements_per_link=elements,
-                 reference=reference, assumptions=tuple(_unique(r.assumptions)), data=data,
-                 origin=origin)
+    scene = Scene(name=str(name), path=str(path), linkage=linkage, pose=pose, sections=sections,
+                  joints=tuple(joints), drive=drive, elements_per_link=elements,
+                  reference=reference, assumptions=tuple(_unique(r.assumptions)), data=data,
+                  origin=origin)
+    check_scene(scene)  # unit slips such as "300 m" for "300 mm" (plausibility.py)
+    return scene
 
 
 def _unique(items):

@@ -42,6 +42,8 @@ class ModalResult:
     orthogonality_error: float
     solver: str
     n_dofs: int
+    refined: bool = False  # eigenvalues are energy Rayleigh quotients (see solve_modes)
+    condensed: int = 0  # massless DOFs condensed statically before the eigen solve
 
     @property
     def elastic(self) -> np.ndarray:
@@ -83,43 +85,82 @@ def _sparse(K, M, k, shift):
     return vals[order], vecs[:, order]
 
 
+def _condense_massless(Kr, Mr):
+    """Exact static condensation of DOFs with no mass (their rows of M are zero, M being PSD):
+    K_c = K_mm - K_ms K_ss^-1 K_sm, and u_s = -K_ss^-1 K_sm u_m. Returns (K_c, M_c, expand) or
+    None when every DOF has mass."""
+    massless = Mr.diagonal() <= 0
+    if not massless.any():
+        return None
+    s, m = np.flatnonzero(massless), np.flatnonzero(~massless)
+    if m.size == 0:
+        raise NumericalError("no DOF has mass: the model has no inertia to vibrate with")
+    Kss = Kr[s][:, s].tocsc()
+    Ksm = Kr[s][:, m].tocsc()
+    try:
+        lu = spla.splu(Kss)
+    except RuntimeError:
+        lu = None
+    if lu is None or not np.all(np.isfinite(lu.U.diagonal())) or np.any(lu.U.diagonal() == 0):
+        raise NumericalError(f"{s.size} DOF(s) have neither mass nor stiffness (first: reduced "
+                             f"DOF {s[0]}): they are free to move without energy; give the "
+                             "joint a mass or a spring")
+    X = lu.solve(Ksm.toarray())  # K_ss^-1 K_sm, dense (n_s x n_m): few massless DOFs expected
+    Kc = Kr[m][:, m] - sp.csr_matrix(Ksm.T @ X)
+    Kc = ((Kc + Kc.T) / 2).tocsr()  # symmetric to round-off; make it exact for the solvers
+    log.info("condensed %d massless DOF(s) statically (exact for zero mass)", s.size)
+
+    def expand(vecs):
+        full = np.zeros((Kr.shape[0], vecs.shape[1]))
+        full[m], full[s] = vecs, -X @ vecs
+        return full
+
+    return Kc, Mr[m][:, m].tocsr(), expand
+
+
 def solve_modes(K, M, n_modes: int, *, T=None, lambda_ref: float, method: str = "auto",
-                zero_tol: float = 1e-6, backward_tol: float = 1e-10) -> ModalResult:
+                zero_tol: float = 1e-6, backward_tol: float = 1e-10, energy=None) -> ModalResult:
     """Lowest ``n_modes`` modes of (K, M), optionally reduced by u = T q.
 
     ``lambda_ref`` [rad^2/s^2] is the model's own scale (e.g. the lowest bare-beam eigenvalue);
     modes below ``zero_tol * lambda_ref`` are labelled rigid-body/mechanism. ``method`` is
-    "dense", "sparse" or "auto" (dense up to DENSE_LIMIT DOFs). Raises NumericalError on NaN,
-    clearly negative eigenvalues, a backward error above ``backward_tol`` or lost M-orthogonality.
+    "dense", "sparse" or "auto" (dense up to DENSE_LIMIT DOFs). DOFs without mass are condensed
+    exactly (never handed to the eigen solver). ``energy``: optional callable giving u^T K u
+    for full-size shapes without cancellation (``energy.twice_strain_energy``); the eigenvalues
+    are then its Rayleigh quotients, free of the round-off of K's large entries. Raises
+    NumericalError on NaN, clearly negative eigenvalues, a backward error above
+    ``backward_tol`` or lost M-orthogonality.
     """
     Kr, Mr = (K, M) if T is None else ((T.T @ K @ T).tocsr(), (T.T @ M @ T).tocsr())
+    Kr, Mr = sp.csr_matrix(Kr), sp.csr_matrix(Mr)
     n = Kr.shape[0]
     if n == 0:
         raise NumericalError("the model has no free DOFs: every DOF is constrained")
-    k = min(n_modes, n)
+    condensed = _condense_massless(Kr, Mr)
+    Ks, Ms = (Kr, Mr) if condensed is None else condensed[:2]
+    ns = Ks.shape[0]
+    k = min(n_modes, ns)
     if method == "auto":
-        method = "dense" if n <= DENSE_LIMIT or k >= n - 1 else "sparse"
-    if method == "dense" and n > DENSE_REFUSE:
-        raise NumericalError(f"dense solve refused for {n} DOFs (limit {DENSE_REFUSE}): it needs "
-                             f"{8 * 2 * n * n / 1e9:.1f} GB; use method='sparse'")
-    if method == "sparse" and k >= n - 1:
+        method = "dense" if ns <= DENSE_LIMIT or k >= ns - 1 else "sparse"
+    if method == "dense" and ns > DENSE_REFUSE:
+        raise NumericalError(f"dense solve refused for {ns} DOFs (limit {DENSE_REFUSE}): it needs "
+                             f"{8 * 2 * ns * ns / 1e9:.1f} GB; use method='sparse'")
+    if method == "sparse" and k >= ns - 1:
         method = "dense"  # ARPACK needs k < n - 1
-    massless = np.flatnonzero(Mr.diagonal() <= 0)
-    if massless.size:
-        raise NumericalError(f"{massless.size} DOF(s) have no mass (first: reduced DOF "
-                             f"{massless[0]}); give joints a mass or condense them")
     if method == "dense":
-        vals, vecs = _dense(Kr, Mr, k, shift=-lambda_ref)
+        vals, vecs = _dense(Ks, Ms, k, shift=-lambda_ref)
     elif method == "sparse":
-        vals, vecs = _sparse(Kr, Mr, k, shift=-lambda_ref)
+        vals, vecs = _sparse(Ks, Ms, k, shift=-lambda_ref)
     else:
         raise ValueError(f"unknown eigen method {method!r}: dense, sparse or auto")
+    if condensed is not None:
+        vecs = condensed[2](vecs)
 
     if not np.all(np.isfinite(vals)):
         raise NumericalError("eigen solve returned NaN or infinite eigenvalues")
     # K's own round-off leaves a rigid-body mode about eps * lambda_max above zero (lambda_max
     # grows with mesh refinement); the diagonal ratio estimates lambda_max from below.
-    lambda_max = float((Kr.diagonal() / Mr.diagonal()).max())
+    lambda_max = float((Ks.diagonal() / Ms.diagonal()).max())
     zero = max(zero_tol * lambda_ref, 100 * np.finfo(float).eps * lambda_max)
     if vals.min() < -zero:
         raise NumericalError(f"negative eigenvalue {vals.min():.6g} rad^2/s^2: K is not positive "
@@ -139,10 +180,17 @@ def solve_modes(K, M, n_modes: int, *, T=None, lambda_ref: float, method: str = 
                              f"(mode {int(backward.argmax()) + 1}, {method} solver)")
     if ortho > 1e-6:
         raise NumericalError(f"eigenvectors lost M-orthogonality: max |V^T M V - I| = {ortho:.3g}")
+    shapes = vecs if T is None else np.asarray(T @ vecs)
+    if energy is not None:
+        vals = np.asarray(energy(shapes), dtype=float)  # v^T M v = 1: the Rayleigh quotient
+        order = np.argsort(vals, kind="stable")
+        vals, shapes, residuals, backward = vals[order], shapes[:, order], residuals[order], backward[order]
+        # The quotient of a mechanism mode is ~ (eps lambda_max)^2 / lambda: the round-off floor
+        # above no longer applies (it passes lambda_1 near 512 elements per link).
+        zero = zero_tol * lambda_ref
     kinds = tuple(MECHANISM if v < zero else ELASTIC for v in vals)
     lam = np.clip(vals, 0.0, None)
-    shapes = vecs if T is None else np.asarray(T @ vecs)
     return ModalResult(eigenvalues=vals, frequencies=np.sqrt(lam) / (2 * np.pi), shapes=shapes,
                        kinds=kinds, residuals=residuals, backward_errors=backward,
-                       orthogonality_error=ortho, solver=method,
-                       n_dofs=n)
+                       orthogonality_error=ortho, solver=method, n_dofs=n,
+                       refined=energy is not None, condensed=0 if condensed is None else n - ns)

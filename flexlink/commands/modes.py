@@ -12,15 +12,21 @@ from ..cli import dumps, json_option, out_option
 @click.option("-n", "--modes", "n_modes", default=4, show_default=True,
               type=click.IntRange(1, 200), help="Number of elastic modes to report.")
 @click.option("-e", "--elements", default=None, type=click.IntRange(1, 100000),
-              help="Elements per link (default: the scene's mesh.elements_per_link).")
+              help="Elements per link (default: the scene's mesh.elements_per_link if it pins "
+                   "one, else the coarsest mesh meeting --tol).")
+@click.option("--tol", default=None, type=click.FloatRange(0, 1, min_open=True),
+              help="Relative frequency tolerance of the default mesh: the coarsest of 8, 16, "
+                   "32, ... elements/link whose Richardson error estimate meets it "
+                   "[default: 1e-6].")
 @click.option("--method", type=click.Choice(["auto", "dense", "sparse"]), default="auto",
               show_default=True, help="Eigen solver.")
 @json_option
 @out_option
-def command(scenes, n_modes, elements, method, as_json, out_dir):
+def command(scenes, n_modes, elements, method, tol, as_json, out_dir):
     """Natural frequencies of each SCENE (a scene file or a folder of them) at its pose,
     compared with the scene's reference columns (measured Ex, published FE)."""
     from ..analysis import analyze
+    from ..convergence import DEFAULT_TOL
     from ..fileio import prepare_out_dir, write_atomic
     from ..report import case_summary, csv_text, format_case, overall_mean_abs
     from ..scene import load_scene, scene_files
@@ -30,7 +36,10 @@ def command(scenes, n_modes, elements, method, as_json, out_dir):
     summaries = []
     for path in files:
         scene = load_scene(path)
-        summaries.append(case_summary(analyze(scene, n_modes, elements, method), n_modes))
+        chosen, mesh = _mesh(scene, n_modes, elements, DEFAULT_TOL if tol is None else tol)
+        result = analyze(scene, n_modes, chosen, method)
+        summaries.append({**case_summary(result, n_modes), "mesh": mesh,
+                          "warnings": list(result.warnings)})
     document = {"command": "modes", "cases": summaries,
                 "overall_mean_abs_error_pct": overall_mean_abs(summaries)}
     write_atomic(out / "modes.json", dumps(document))
@@ -39,9 +48,36 @@ def command(scenes, n_modes, elements, method, as_json, out_dir):
         click.echo(dumps(document))
         return
     for s in summaries:
-        click.echo(format_case(s) + "\n")
+        click.echo(format_case(s) + "\n" + _mesh_line(s["mesh"]) + "".join(
+            f"\nwarning: {w}" for w in s["warnings"]) + "\n")
     overall = document["overall_mean_abs_error_pct"]
     if overall:
         click.echo("overall mean |error|: " + ", ".join(
             f"vs {k} {v:.1f} %" for k, v in sorted(overall.items())))
     click.echo(f"written: {out / 'modes.json'}, {out / 'modes.csv'}")
+
+
+def _mesh(scene, n_modes, elements, tol):
+    """(elements per link, how it was chosen) for one scene: command line, scene, or the
+    tolerance rule of ``convergence.mesh_for_tolerance``."""
+    from ..convergence import ORDER, mesh_for_tolerance
+
+    if elements is not None:
+        return elements, {"rule": "command line (-e)", "elements_per_link": elements}
+    if scene.reader().has("mesh.elements_per_link"):
+        return scene.elements_per_link, {"rule": "scene (mesh.elements_per_link)",
+                                         "elements_per_link": scene.elements_per_link}
+    rule = mesh_for_tolerance(scene, n_modes, tol)
+    return rule.elements, {"rule": "tolerance", "elements_per_link": rule.elements,
+                           "tolerance": tol, "estimated_relative_error": rule.estimate,
+                           "richardson_order": ORDER}
+
+
+def _mesh_line(mesh: dict) -> str:
+    if mesh["rule"] != "tolerance":
+        return (f"mesh: {mesh['elements_per_link']} elements/link from the {mesh['rule']}; "
+                "discretisation error not estimated (omit it to use --tol)")
+    return (f"mesh: {mesh['elements_per_link']} elements/link, the coarsest meeting the relative "
+            f"frequency tolerance {mesh['tolerance']:g} (estimated discretisation error "
+            f"{mesh['estimated_relative_error']:.1e}, order-{mesh['richardson_order']} Richardson "
+            "estimate)")
