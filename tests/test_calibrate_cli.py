@@ -12,7 +12,7 @@ CASES = Path(__file__).resolve().parent.parent / "cases"
 
 def test_calibrate_writes_report_json_and_plots(tmp_path):
     args = ["calibrate", str(CASES / "case1.toml"), str(CASES / "case2.toml"),
-            "--free", "L1=100 mm:1 m", "--starts", "1", "--samples", "2", "-e", "2",
+            "--free", "Kt=1e4 N/m:1e9 N/m", "--starts", "1", "--samples", "2", "-e", "2",
             "--jobs", "1", "--json", "--out", str(tmp_path)]
     result = CliRunner().invoke(main, args)
     assert result.exit_code == 0, result.output
