@@ -121,10 +121,20 @@ def family_section(s: dict, plots: dict[str, str]) -> str:
                      f"{s['per_case_fits'][i]['mean_abs_pct']:.1f}"])
     worst = float(np.nanmax(np.abs(np.array(r["best_errors_pct"], dtype=float))))
     c2c = np.array(r["case_to_case_measured"], dtype=float)
+    model = np.array(s["fit_Ex"]["predicted_Hz"], dtype=float)
+    model_c2c = model / model[:1]
+    spread = lambda m: 100 * (np.nanmax(m, axis=1) / np.nanmin(m, axis=1) - 1)  # noqa: E731
+    rows_c2c = [[c, ", ".join(f"{v:.2f}" for v in a), f"{sa:.1f}",
+                 ", ".join(_f(v, "{:.2f}") for v in b), f"{sb:.1f}"]
+                for c, a, sa, b, sb in zip(cases, c2c, spread(c2c), model_c2c, spread(model_c2c))]
     out += ["### Proportionality test (mode ratios f_k / f_1)", "",
-            "Measured case-to-case ratios per mode (case / " + cases[0] + "): " + "; ".join(
-                f"{c}: " + ", ".join(f"{v:.2f}" for v in row) for c, row in zip(cases, c2c)) + ".",
-            "",
+            f"Case-to-case ratios per mode (case / {cases[0]}), measured and from the model "
+            "calibrated to Ex; 'spread' = how much that ratio varies over the modes (0 % = "
+            "exactly proportional spectra):", "",
+            _table(["case", "measured, modes 1..4", "spread %", "model (calibrated), modes 1..4",
+                    "spread %"], rows_c2c), "",
+            "Within each case, the measured mode ratios against the best this family can do "
+            "for that case alone (ratio fit, scale-free):", "",
             _table(["case", "measured", "model, assumed inputs", "model, best inputs for this case",
                     "best ratio error % (modes 2..4)", "abs. fit of this case alone, mean |err| %"],
                    rows), "",
