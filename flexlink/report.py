@@ -17,14 +17,17 @@ def percent_error(computed: float, reference: float) -> float:
     return 100.0 * (computed - reference) / reference
 
 
-def comparison_rows(result: CaseResult, n_modes: int) -> list[dict]:
+def comparison_rows(result: CaseResult, n_modes: int, computed=None, kinds=None) -> list[dict]:
     """One dict per elastic mode: mode, computed [Hz], and for each reference column its value
     [Hz] and % error (computed vs reference)."""
-    computed = result.elastic_frequencies(n_modes)
+    if computed is None:
+        computed = result.elastic_frequencies(n_modes)
     columns = result.scene.reference.columns if result.scene.reference else {}
     rows = []
     for i, f in enumerate(computed):
         row = {"mode": i + 1, "computed_Hz": float(f)}
+        if kinds is not None:
+            row["kind"] = kinds[i]
         for name, values in columns.items():
             if i < len(values):
                 row[f"{name}_Hz"] = values[i]
@@ -42,14 +45,17 @@ def mean_abs_errors(rows: list[dict]) -> dict[str, float]:
     return out
 
 
-def case_summary(result: CaseResult, n_modes: int) -> dict:
-    """JSON-ready summary of one case."""
+def case_summary(result: CaseResult, n_modes: int, family: str = "planar", computed=None,
+                 kinds=None) -> dict:
+    """JSON-ready summary of one case. ``computed``/``kinds``: the frequencies [Hz] and mode
+    kinds of a model family other than the planar one of ``result`` (see ``families.py``)."""
     scene, pose, modes = result.scene, result.pose, result.modes
-    rows = comparison_rows(result, n_modes)
+    rows = comparison_rows(result, n_modes, computed, kinds)
     mechanism = [float(f) for f, k in zip(modes.frequencies, modes.kinds) if k != "elastic"]
     return {
         "scene": scene.name,
         "file": scene.path,
+        "family": family,
         "linkage": {"ground_m": scene.linkage.ground, "crank_m": scene.linkage.crank,
                     "coupler_m": scene.linkage.coupler, "rocker_m": scene.linkage.rocker,
                     "grashof": scene.linkage.grashof_class()},
@@ -89,16 +95,21 @@ def format_case(summary: dict) -> str:
     pose = summary["pose"]
     lines = [head, "-" * len(head),
              f"pose: theta2 = {pose['theta2_deg']:.3f} deg, mu = {pose['mu_deg']:.3f} deg, "
-             f"{pose['branch']} branch; {summary['elements_per_link']} elements/link, "
+             f"{pose['branch']} branch; {summary.get('family', 'planar')} model; "
+             f"{summary['elements_per_link']} elements/link, "
              f"{summary['dofs']} DOFs, {summary['solver']} solver, "
              f"max residual {summary['max_residual']:.1e}"]
     header = f"{'mode':>4} {'computed Hz':>12}" + "".join(f" {r + ' Hz':>9} {'err %':>8}" for r in refs)
+    if rows and "kind" in rows[0]:
+        header += "  kind"
     lines.append(header)
     for row in rows:
         line = f"{row['mode']:>4} {row['computed_Hz']:>12.2f}"
         for r in refs:
             if f"{r}_Hz" in row:
                 line += f" {row[f'{r}_Hz']:>9.1f} {row[f'error_vs_{r}_pct']:>+8.1f}"
+        if "kind" in row:
+            line += f"  {row['kind']}"
         lines.append(line)
     if summary["mean_abs_error_pct"]:
         lines.append("mean |error|: " + ", ".join(

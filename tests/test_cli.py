@@ -58,3 +58,20 @@ def test_console_script_help():
     out = subprocess.run([sys.executable, "-m", "flexlink.cli", "--help"], capture_output=True,
                          text=True, check=True).stdout
     assert "modes" in out
+
+
+def test_modes_follows_the_scene_model_family(tmp_path):
+    """A scene that chooses the out-of-plane family is reported with that family's modes."""
+    from flexlink.families import elastic_modes
+    from flexlink.scene import load_scene
+
+    scene_file = tmp_path / "oop.toml"
+    scene_file.write_text(f'base = "{ROOT / "cases" / "case1.toml"}"\n[model]\nfamily = "out-of-plane"\n')
+    result = CliRunner().invoke(main, ["modes", str(scene_file), "--json", "--out", str(tmp_path),
+                                       "-e", "6"])
+    assert result.exit_code == 0, result.output
+    case = json.loads(result.output)["cases"][0]
+    assert case["family"] == "out-of-plane"
+    expected, kinds = elastic_modes(load_scene(scene_file), 4, 6)
+    assert [r["computed_Hz"] for r in case["modes"]] == list(expected)
+    assert {r["kind"] for r in case["modes"]} == {"out-of-plane"}

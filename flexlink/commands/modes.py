@@ -27,6 +27,7 @@ def command(scenes, n_modes, elements, method, tol, as_json, out_dir):
     compared with the scene's reference columns (measured Ex, published FE)."""
     from ..analysis import analyze
     from ..convergence import DEFAULT_TOL
+    from ..families import elastic_modes, scene_family
     from ..fileio import prepare_out_dir, write_atomic
     from ..report import case_summary, csv_text, format_case, overall_mean_abs
     from ..scene import load_scene, scene_files
@@ -38,7 +39,10 @@ def command(scenes, n_modes, elements, method, tol, as_json, out_dir):
         scene = load_scene(path)
         chosen, mesh = _mesh(scene, n_modes, elements, DEFAULT_TOL if tol is None else tol)
         result = analyze(scene, n_modes, chosen, method)
-        summaries.append({**case_summary(result, n_modes), "mesh": mesh,
+        family = scene_family(scene)
+        other = {} if family == "planar" else dict(
+            zip(("computed", "kinds"), elastic_modes(scene, n_modes, chosen, method)))
+        summaries.append({**case_summary(result, n_modes, family, **other), "mesh": mesh,
                           "warnings": list(result.warnings)})
     document = {"command": "modes", "cases": summaries,
                 "overall_mean_abs_error_pct": overall_mean_abs(summaries)}
