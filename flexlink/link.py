@@ -66,12 +66,7 @@ def _unit_chain(length: float, elements: int):
             to_local(_mass.assemble(bending), bending_map))
 
 
-def link_matrices(length: float, elements: int, EA: float, EI: float, mass_per_length: float):
-    """Local stiffness and consistent mass of a uniform link, as sparse CSR matrices.
-
-    length [m], elements (>= 1), EA [N], EI [N m^2], mass_per_length [kg/m].
-    Returns (K, M) of size 3 (elements + 1), DOF order as in the module docstring.
-    """
+def _check(length, elements, EA, EI, mass_per_length):
     if not (isinstance(elements, (int, np.integer)) and elements >= 1):
         raise InputError(f"elements per link must be a whole number >= 1, got {elements!r}",
                          field="elements_per_link")
@@ -79,5 +74,35 @@ def link_matrices(length: float, elements: int, EA: float, EI: float, mass_per_l
                         ("mass_per_length", mass_per_length)):
         if not (np.isfinite(value) and value > 0):
             raise InputError(f"{name} must be positive and finite, got {value!r}", field=name)
+
+
+def link_matrices(length: float, elements: int, EA: float, EI: float, mass_per_length: float):
+    """Local stiffness and consistent mass of a uniform link, as sparse CSR matrices.
+
+    length [m], elements (>= 1), EA [N], EI [N m^2], mass_per_length [kg/m].
+    Returns (K, M) of size 3 (elements + 1), DOF order as in the module docstring.
+    """
+    _check(length, elements, EA, EI, mass_per_length)
     k_ax, m_ax, k_b, m_b = _unit_chain(float(length), int(elements))
     return EA * k_ax + EI * k_b, mass_per_length * (m_ax + m_b)
+
+
+@functools.lru_cache(maxsize=256)
+def link_entries(length: float, elements: int, EA: float, EI: float, mass_per_length: float):
+    """The same K and M as ``link_matrices`` as one list of local entries, for assemblers
+    that rotate and scatter many links at once: (rows, cols, k_values, m_values), read-only
+    arrays; K[rows, cols] and M[rows, cols] sum over repeated (row, col) pairs. Cached, since a
+    sweep asks for the same link at every pose."""
+    _check(length, elements, EA, EI, mass_per_length)
+    k_ax, m_ax, k_b, m_b = (m.tocoo() for m in _unit_chain(float(length), int(elements)))
+    # the stiffness and mass of one basis have the same entries, so K and M share one list
+    if not (np.array_equal(k_ax.row, m_ax.row) and np.array_equal(k_b.row, m_b.row)
+            and np.array_equal(k_ax.col, m_ax.col) and np.array_equal(k_b.col, m_b.col)):
+        raise AssertionError("stiffness and mass of one basis must share their sparsity")
+    rows = np.concatenate([k_ax.row, k_b.row]).astype(np.int64)
+    cols = np.concatenate([k_ax.col, k_b.col]).astype(np.int64)
+    k_values = np.concatenate([EA * k_ax.data, EI * k_b.data])
+    m_values = mass_per_length * np.concatenate([m_ax.data, m_b.data])
+    for a in (rows, cols, k_values, m_values):
+        a.flags.writeable = False
+    return rows, cols, k_values, m_values
