@@ -41,30 +41,37 @@ def _mass(u, v, w):
     return u * v
 
 
-@functools.lru_cache(maxsize=256)
-def _unit_chain(length: float, elements: int):
-    """Unit-property chain matrices (EA = EI = rhoA = 1) and their local DOF maps."""
-    mesh = MeshLine(np.linspace(0.0, length, elements + 1))
+@functools.lru_cache(maxsize=64)
+def _unit_chain(elements: int):
+    """Unit-property matrices (EA = EI = rhoA = 1) of a chain of ``elements`` unit-length
+    elements, as COO in the local numbering: axial K, axial M, bending K, bending M.
+
+    One element is assembled with scikit-fem on [0, 1] and tiled along the chain (repeated
+    entries at shared nodes add up when summed). Assembling the whole chain on its own mesh
+    instead evaluates the Hermite basis far from the origin and loses digits as x / h grows:
+    measured 2e-12 relative error at 16 elements and 2e-10 at 64 against the closed form."""
+    mesh = MeshLine(np.array([0.0, 1.0]))
     axial = Basis(mesh, ElementLineP1())
     bending = Basis(mesh, ElementLineHermite())
-    nodes = np.arange(elements + 1)
     # scikit-fem numbering -> local frame numbering (3 DOFs per node)
     axial_map = np.empty(axial.N, dtype=np.int64)
-    axial_map[axial.nodal_dofs[0]] = 3 * nodes
+    axial_map[axial.nodal_dofs[0]] = [0, 3]
     bending_map = np.empty(bending.N, dtype=np.int64)
-    bending_map[bending.nodal_dofs[0]] = 3 * nodes + 1
-    bending_map[bending.nodal_dofs[1]] = 3 * nodes + 2
+    bending_map[bending.nodal_dofs[0]] = [1, 4]
+    bending_map[bending.nodal_dofs[1]] = [2, 5]
     n = 3 * (elements + 1)
+    shift = 3 * np.arange(elements)[:, None]
 
-    def to_local(matrix, dof_map):
+    def tiled(matrix, dof_map):
         coo = matrix.tocoo()
-        return sp.coo_matrix((coo.data, (dof_map[coo.row], dof_map[coo.col])), shape=(n, n)).tocsr()
+        rows = (dof_map[coo.row][None, :] + shift).ravel()
+        cols = (dof_map[coo.col][None, :] + shift).ravel()
+        return sp.coo_matrix((np.tile(coo.data, elements), (rows, cols)), shape=(n, n))
 
-    return (to_local(_axial_stiffness.assemble(axial), axial_map),
-            to_local(_mass.assemble(axial), axial_map),
-            to_local(_bending_stiffness.assemble(bending), bending_map),
-            to_local(_mass.assemble(bending), bending_map))
-
+    return (tiled(_axial_stiffness.assemble(axial), axial_map),
+            tiled(_mass.assemble(axial), axial_map),
+            tiled(_bending_stiffness.assemble(bending), bending_map),
+            tiled(_mass.assemble(bending), bending_map))
 
 def _check(length, elements, EA, EI, mass_per_length):
     if not (isinstance(elements, (int, np.integer)) and elements >= 1):
@@ -82,9 +89,10 @@ def link_matrices(length: float, elements: int, EA: float, EI: float, mass_per_l
     length [m], elements (>= 1), EA [N], EI [N m^2], mass_per_length [kg/m].
     Returns (K, M) of size 3 (elements + 1), DOF order as in the module docstring.
     """
-    _check(length, elements, EA, EI, mass_per_length)
-    k_ax, m_ax, k_b, m_b = _unit_chain(float(length), int(elements))
-    return EA * k_ax + EI * k_b, mass_per_length * (m_ax + m_b)
+    rows, cols, k, m = link_entries(length, elements, EA, EI, mass_per_length)
+    n = 3 * (elements + 1)
+    return (sp.coo_matrix((k, (rows, cols)), shape=(n, n)).tocsr(),
+            sp.coo_matrix((m, (rows, cols)), shape=(n, n)).tocsr())
 
 
 @functools.lru_cache(maxsize=256)
@@ -94,15 +102,20 @@ def link_entries(length: float, elements: int, EA: float, EI: float, mass_per_le
     arrays; K[rows, cols] and M[rows, cols] sum over repeated (row, col) pairs. Cached, since a
     sweep asks for the same link at every pose."""
     _check(length, elements, EA, EI, mass_per_length)
-    k_ax, m_ax, k_b, m_b = (m.tocoo() for m in _unit_chain(float(length), int(elements)))
+    k_ax, m_ax, k_b, m_b = _unit_chain(int(elements))
     # the stiffness and mass of one basis have the same entries, so K and M share one list
     if not (np.array_equal(k_ax.row, m_ax.row) and np.array_equal(k_b.row, m_b.row)
             and np.array_equal(k_ax.col, m_ax.col) and np.array_equal(k_b.col, m_b.col)):
         raise AssertionError("stiffness and mass of one basis must share their sparsity")
     rows = np.concatenate([k_ax.row, k_b.row]).astype(np.int64)
     cols = np.concatenate([k_ax.col, k_b.col]).astype(np.int64)
-    k_values = np.concatenate([EA * k_ax.data, EI * k_b.data])
-    m_values = mass_per_length * np.concatenate([m_ax.data, m_b.data])
+    # From unit-length elements to length h by x = h xi: the slope DOF rz = (1 / h) dw/dxi, so
+    # with d = h on rz DOFs (1 elsewhere), K_b = d K_b1 d / h^3, M_b = h d M_b1 d,
+    # K_ax = K_ax1 / h, M_ax = h M_ax1. Exact, and no new assembly for a new length.
+    h = float(length) / int(elements)
+    d = np.where(k_b.row % 3 == 2, h, 1.0) * np.where(k_b.col % 3 == 2, h, 1.0)
+    k_values = np.concatenate([(EA / h) * k_ax.data, (EI / h**3) * d * k_b.data])
+    m_values = mass_per_length * h * np.concatenate([m_ax.data, d * m_b.data])
     for a in (rows, cols, k_values, m_values):
         a.flags.writeable = False
     return rows, cols, k_values, m_values
