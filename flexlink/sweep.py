@@ -13,6 +13,7 @@ little more than the eigen solve itself.
 from __future__ import annotations
 
 import dataclasses
+import functools
 from collections.abc import Iterable, Mapping
 
 import numpy as np
@@ -22,9 +23,6 @@ from .assembly import assemble, link_entries, point_mass_entries, reduction, spr
 from .link import link_entries as local_entries
 from .model import FrameModel, Topology, build_model
 from .solve import DENSE_LIMIT, ELASTIC, solve_modes
-
-EXTRA_MODES = 4  # solved beyond n_modes so that mechanism modes cannot crowd out elastic ones
-
 
 @dataclasses.dataclass(frozen=True)
 class SweepResult:
@@ -116,6 +114,20 @@ class _DensePlan:
         return K + self.constant[0], M + self.constant[1]
 
 
+def _lowest_elastic(solve, n_modes: int, expected_mechanisms: int):
+    """``solve(k)`` -> ModalResult of the lowest k modes; solves for n_modes plus the expected
+    number of mechanism modes (these sit lowest) and again with more if more turned up.
+    Returns (elastic frequencies [Hz], mechanism count)."""
+    k = n_modes + expected_mechanisms
+    while True:
+        result = solve(k)
+        elastic = np.array([kind == ELASTIC for kind in result.kinds])
+        n_mechanism = len(elastic) - int(elastic.sum())
+        if elastic.sum() >= n_modes or len(elastic) < k:  # enough, or every mode of the model
+            return result.frequencies[elastic][:n_modes], n_mechanism
+        k = n_modes + n_mechanism
+
+
 def modal_sweep(topology: Topology, poses: Iterable[Mapping[str, tuple[float, float]]],
                 n_modes: int, method: str = "auto", progress=None) -> SweepResult:
     """Lowest ``n_modes`` elastic frequencies [Hz] at each pose (joint name -> (x, y) [m]).
@@ -126,22 +138,22 @@ def modal_sweep(topology: Topology, poses: Iterable[Mapping[str, tuple[float, fl
     freqs = np.full((len(poses), n_modes), np.nan)
     mechanism = np.zeros(len(poses), dtype=int)
     plan = None
+    expected = 0  # mechanism modes found at the previous pose: usually the same at the next
     for i, points in enumerate(iterator):
         model = build_model(topology, points)
+        lambda_ref = lambda_scale(model)
         if plan is None and method in ("auto", "dense"):
             plan = _DensePlan(model)
             if method == "auto" and plan.n > DENSE_LIMIT:
-                plan = None
-                method = "sparse"
+                plan, method = None, "sparse"
         if plan is not None:
             K, M = plan.matrices(model)
-            result = solve_modes(K, M, n_modes + EXTRA_MODES, lambda_ref=lambda_scale(model),
-                                 method="dense")
+            solve = functools.partial(solve_modes, K, M, lambda_ref=lambda_ref, method="dense")
         else:
             K, M = assemble(model)
-            result = solve_modes(K, M, n_modes + EXTRA_MODES, T=reduction(model),
-                                 lambda_ref=lambda_scale(model), method=method)
-        elastic = result.frequencies[[k == ELASTIC for k in result.kinds]][:n_modes]
+            solve = functools.partial(solve_modes, K, M, T=reduction(model), lambda_ref=lambda_ref,
+                                      method=method)
+        elastic, expected = _lowest_elastic(solve, n_modes, expected)
         freqs[i, :len(elastic)] = elastic
-        mechanism[i] = len(result.kinds) - int(sum(k == ELASTIC for k in result.kinds))
+        mechanism[i] = expected
     return SweepResult(frequencies=freqs, mechanism_counts=mechanism)
