@@ -1,0 +1,263 @@
+"""flexlink speed, side by side with OpenSeesPy and with the bare LAPACK eigen call.
+
+Run through ``bash benchmarks/run.sh`` (sets up OpenSeesPy and its system libraries first).
+Every target is printed with its measured value; none is asserted except the agreement of the
+frequencies with OpenSees (exit code 1 if they differ by more than 1e-8 relative).
+
+Per-pose and cycle-map times are CPU times of this process (``time.process_time``) with BLAS held
+to one thread, medians over repeats: on a machine shared with other jobs the CPU time of a
+single-threaded run is what the run costs, while its wall time also counts the waits for a core.
+The parallel section measures wall time, which is what parallel runs shorten.
+"""
+
+from __future__ import annotations
+
+import os
+
+for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_var, "1")  # one core: set before numpy loads its BLAS
+
+import argparse  # noqa: E402
+import json  # noqa: E402
+import math  # noqa: E402
+import statistics  # noqa: E402
+import subprocess  # noqa: E402
+import sys  # noqa: E402
+import tempfile  # noqa: E402
+import time  # noqa: E402
+from pathlib import Path  # noqa: E402
+
+import numpy as np  # noqa: E402
+import scipy.linalg as la  # noqa: E402
+
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from flexlink.analysis import lambda_scale  # noqa: E402
+from flexlink.model import build_model  # noqa: E402
+from flexlink.scene import load_scene  # noqa: E402
+from flexlink.sweep import _DensePlan, modal_sweep  # noqa: E402
+
+CASES = [ROOT / "cases" / f"case{i}.toml" for i in (1, 2, 3, 4)]
+N_MODES = 6
+TOLERANCE = 1e-8
+
+
+def median_time(work, repeats: int, clock=time.process_time) -> float:
+    """Median over ``repeats`` of the seconds ``work()`` takes on ``clock``."""
+    times = []
+    for _ in range(repeats):
+        start = clock()
+        work()
+        times.append(clock() - start)
+    return statistics.median(times)
+
+
+def cycle_poses(scene, count: int):
+    """``count`` poses evenly spaced over one crank turn, on the scene's branch."""
+    thetas = np.radians(np.arange(count) * 360.0 / count + 0.5)
+    return [scene.linkage.pose(t, scene.pose.branch).joints for t in thetas]
+
+
+def target(name: str, measured: str, goal: str, met: bool) -> None:
+    print(f"  target {name}: {measured} (goal {goal}) {'MET' if met else 'NOT MET'}")
+
+
+# -- 1. one pose: flexlink vs OpenSeesPy vs bare LAPACK -------------------------------------------
+def per_pose(repeats: int) -> bool:
+    import openseespy.opensees as ops
+
+    import opensees_frame
+
+    ops.logFile(os.devnull, "-noEcho")  # OpenSees chats on every eigen call
+    scene = load_scene(CASES[1])
+    topology = scene.topology(8)
+    poses = cycle_poses(scene, 36)
+    models = [build_model(topology, p) for p in poses]
+    print(f"1. per pose: {scene.name}, 8 elements/link, {models[0].n_dofs} DOFs, "
+          f"{N_MODES} modes, {len(poses)} poses over the cycle, medians of {repeats} repeats")
+
+    ours = modal_sweep(topology, poses, N_MODES).frequencies
+    solvers = ("-genBandArpack", "-fullGenLapack")
+    worst = {}
+    for solver in solvers:
+        theirs = []
+        for model in models:
+            opensees_frame.build(ops, model)
+            theirs.append(opensees_frame.frequencies(ops, N_MODES, solver))
+        worst[solver] = float(np.max(np.abs(np.array(theirs) - ours) / ours))
+    agree = all(w <= TOLERANCE for w in worst.values())
+    for solver in solvers:
+        print(f"  frequencies vs OpenSees eigen {solver}: max relative difference "
+              f"{worst[solver]:.2e} (tolerance {TOLERANCE:g})")
+
+    t_flex = median_time(lambda: modal_sweep(topology, poses, N_MODES), repeats) / len(poses)
+    t_os = {}
+    for solver in solvers:
+        def opensees_all(solver=solver):
+            for model in models:
+                opensees_frame.build(ops, model)
+                opensees_frame.frequencies(ops, N_MODES, solver)
+        t_os[solver] = median_time(opensees_all, repeats) / len(poses)
+    plan = _DensePlan(models[0])
+    matrices = [plan.matrices(m) for m in models]
+    n = matrices[0][0].shape[0]
+
+    def bare(subset):
+        for K, M in matrices:
+            la.eigh(K, M, subset_by_index=subset)
+    t_bare = median_time(lambda: bare([0, N_MODES - 1]), repeats) / len(poses)
+    t_full = median_time(lambda: bare(None), repeats) / len(poses)
+    ms = 1e3
+    print(f"  flexlink  modal_sweep (model + assembly + solve + checks): {t_flex * ms:7.3f} ms/pose")
+    for solver in solvers:
+        print(f"  OpenSees  rebuild + eigen {solver:15s}:        {t_os[solver] * ms:7.3f} ms/pose"
+              f"  ratio {t_os[solver] / t_flex:.1f}x")
+    print(f"  LAPACK    scipy.linalg.eigh(K, M), lowest {N_MODES} of {n}:       "
+          f"{t_bare * ms:7.3f} ms/pose  flexlink/bare ratio {t_flex / t_bare:.2f}x")
+    print(f"  LAPACK    scipy.linalg.eigh(K, M), all {n}:                 {t_full * ms:7.3f} ms/pose")
+    fastest = min(t_os.values())
+    target(">= 10x faster than OpenSeesPy (its faster solver)", f"ratio {fastest / t_flex:.1f}x",
+           ">= 10x", fastest / t_flex >= 10)
+    target("<= 2x the bare LAPACK call", f"ratio {t_flex / t_bare:.2f}x", "<= 2x",
+           t_flex / t_bare <= 2)
+    return agree
+
+
+# -- 2. whole-cycle map ---------------------------------------------------------------------------
+def cycle_map(scene_path, n_poses=360):
+    """Frequencies over a whole crank turn: kinematics + sweep (what a cycle map computes)."""
+    scene = load_scene(scene_path)
+    return modal_sweep(scene.topology(), cycle_poses(scene, n_poses), N_MODES).frequencies
+
+
+def whole_cycle(repeats: int) -> None:
+    scenes = [load_scene(p) for p in CASES]
+    elements = scenes[0].elements_per_link
+    print(f"2. whole-cycle map: 360 poses x {len(CASES)} cases, {elements} elements/link "
+          f"({build_model(scenes[0].topology(), scenes[0].rigid_pose().joints).n_dofs} DOFs), "
+          f"{N_MODES} modes, one core, medians of {repeats} repeats")
+
+    def all_cases():
+        for path in CASES:
+            cycle_map(path)
+    cpu = median_time(all_cases, repeats)
+    wall = median_time(all_cases, repeats, time.perf_counter)
+    print(f"  {cpu:.3f} s CPU ({cpu / (360 * len(CASES)) * 1e3:.3f} ms/pose), {wall:.3f} s wall")
+    target("under 1 s on one core", f"{cpu:.3f} s", "< 1 s", cpu < 1.0)
+
+
+# -- 3. sparse-path scaling -----------------------------------------------------------------------
+def scaling_point(elements: int) -> dict:
+    """One size, run in its own process so that its peak memory is its own."""
+    scene = load_scene(CASES[1])
+    topology = scene.topology(elements)
+    pose = [scene.rigid_pose().joints]
+    modal_sweep(scene.topology(2), pose, N_MODES, method="sparse")  # load the code paths
+    rss = lambda key: int(next(line.split()[1] for line in  # noqa: E731  [kB]
+                               Path("/proc/self/status").read_text().splitlines()
+                               if line.startswith(key)))
+    Path("/proc/self/clear_refs").write_text("5")  # restart the peak-RSS count from here
+    before = rss("VmRSS:")
+    seconds = median_time(lambda: modal_sweep(topology, pose, N_MODES, method="sparse"), 3)
+    peak = rss("VmHWM:") - before
+    n = build_model(topology, pose[0]).n_dofs
+    return {"elements": elements, "dofs": n, "seconds": seconds, "peak_mb": peak / 1024}
+
+
+def scaling() -> None:
+    sizes = [1e3, 3e3, 1e4, 3e4, 1e5]
+    print("3. sparse path (assembly + reduction + shift-invert ARPACK, 6 modes), one pose, "
+          "CPU medians of 3, peak RSS above the start")
+    rows = []
+    for dofs in sizes:
+        elements = max(1, round(dofs / 9))  # 3 links x (elements + 1) nodes x 3 DOFs
+        out = subprocess.run([sys.executable, __file__, "--scaling-point", str(elements)],
+                             check=True, capture_output=True, text=True).stdout
+        row = json.loads(out.strip().splitlines()[-1])
+        rows.append(row)
+        print(f"  {row['dofs']:7d} DOFs: {row['seconds']:8.4f} s  {row['peak_mb']:8.1f} MB")
+    n = np.log([r["dofs"] for r in rows])
+    t_exp = np.polyfit(n, np.log([r["seconds"] for r in rows]), 1)[0]
+    m_exp = np.polyfit(n, np.log([max(r["peak_mb"], 1e-3) for r in rows]), 1)[0]
+    target("time ~ DOFs^1", f"fitted exponent {t_exp:.2f}", "close to 1", t_exp < 1.25)
+    target("peak memory ~ DOFs^1", f"fitted exponent {m_exp:.2f}", "close to 1", m_exp < 1.25)
+
+
+# -- 4. start-up and imports ----------------------------------------------------------------------
+_PROBE = """
+import contextlib, io, json, sys, time
+start = time.perf_counter()
+from flexlink.cli import main
+with contextlib.redirect_stdout(io.StringIO()):
+    try:
+        main(sys.argv[1:], prog_name="flexlink")
+    except SystemExit:
+        pass
+print(json.dumps({"seconds": time.perf_counter() - start,
+                  "heavy": sorted(m for m in ("pyvista", "matplotlib", "vtk") if m in sys.modules)}))
+"""
+
+
+def startup(repeats: int) -> None:
+    print(f"4. start-up (wall, medians of {repeats} fresh processes)")
+    flexlink = Path(sys.executable).parent / "flexlink"
+    with tempfile.TemporaryDirectory() as out:
+        runs = {"flexlink --help": ["--help"],
+                "flexlink modes cases/case2.toml --json": ["modes", str(CASES[1]), "--json",
+                                                          "--out", out]}
+        for label, args in runs.items():
+            probes = [json.loads(subprocess.run([sys.executable, "-c", _PROBE, *args], check=True,
+                                                capture_output=True, text=True,
+                                                cwd=ROOT).stdout.splitlines()[-1])
+                      for _ in range(repeats)]
+            heavy = sorted({m for p in probes for m in p["heavy"]})
+            inside = statistics.median(p["seconds"] for p in probes)
+            whole = median_time(lambda: subprocess.run([str(flexlink), *args], check=True,
+                                                       capture_output=True, cwd=ROOT),
+                                repeats, time.perf_counter)
+            print(f"  {label}: {whole:.3f} s whole process ({inside:.3f} s after the "
+                  f"interpreter started); imports pyvista/matplotlib: "
+                  f"{', '.join(heavy) if heavy else 'neither'}")
+            target(f"{label} without pictures", "imports " + (', '.join(heavy) or "neither"),
+                   "neither", not heavy)
+
+
+# -- 5. parallel sweeps ---------------------------------------------------------------------------
+def parallel(repeats: int) -> None:
+    from joblib import Parallel, delayed
+
+    jobs = os.cpu_count() or 1
+    print(f"5. parallel: the 4 cycle maps of section 2 on {jobs} workers (joblib, loky "
+          f"processes) vs one after the other; wall, medians of {repeats}")
+    pool = Parallel(n_jobs=jobs)
+    pool(delayed(cycle_map)(p, 2) for p in CASES)  # start the workers before timing
+    serial = median_time(lambda: [cycle_map(p) for p in CASES], repeats, time.perf_counter)
+    together = median_time(lambda: pool(delayed(cycle_map)(p) for p in CASES), repeats,
+                           time.perf_counter)
+    print(f"  serial {serial:.3f} s, {jobs} workers {together:.3f} s: speed-up "
+          f"{serial / together:.2f}x on {jobs} cores")
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--repeats", type=int, default=5)
+    parser.add_argument("--scaling-point", type=int, help=argparse.SUPPRESS)
+    args = parser.parse_args()
+    if args.scaling_point:
+        print(json.dumps(scaling_point(args.scaling_point)))
+        return 0
+    print(f"flexlink benchmark: {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}, "
+          f"{os.cpu_count()} cores, load average {os.getloadavg()[0]:.2f} at start")
+    agree = per_pose(args.repeats)
+    whole_cycle(max(3, args.repeats // 2))
+    scaling()
+    startup(args.repeats)
+    parallel(max(3, args.repeats // 2))
+    print(f"load average {os.getloadavg()[0]:.2f} at the end; frequencies agree with OpenSees "
+          f"to {TOLERANCE:g}: {'yes' if agree else 'NO'}")
+    return 0 if agree else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
