@@ -150,25 +150,27 @@ def whole_cycle(repeats: int) -> None:
 # -- 3. sparse-path scaling -----------------------------------------------------------------------
 def scaling_point(elements: int) -> dict:
     """One size, run in its own process so that its peak memory is its own."""
+    from flexlink.analysis import analyze
+
     scene = load_scene(CASES[1])
-    topology = scene.topology(elements)
-    pose = [scene.rigid_pose().joints]
-    modal_sweep(scene.topology(2), pose, N_MODES, method="sparse")  # load the code paths
+    analyze(scene, N_MODES, 2, method="sparse")  # load the code paths first
     rss = lambda key: int(next(line.split()[1] for line in  # noqa: E731  [kB]
                                Path("/proc/self/status").read_text().splitlines()
                                if line.startswith(key)))
     Path("/proc/self/clear_refs").write_text("5")  # restart the peak-RSS count from here
     before = rss("VmRSS:")
-    seconds = median_time(lambda: modal_sweep(topology, pose, N_MODES, method="sparse"), 3)
+    seconds = median_time(lambda: analyze(scene, N_MODES, elements, method="sparse"), 3)
     peak = rss("VmHWM:") - before
-    n = build_model(topology, pose[0]).n_dofs
-    return {"elements": elements, "dofs": n, "seconds": seconds, "peak_mb": peak / 1024}
+    result = analyze(scene, N_MODES, elements, method="sparse")
+    return {"elements": elements, "dofs": result.model.n_dofs, "seconds": seconds,
+            "peak_mb": peak / 1024, "f1": float(result.modes.frequencies[0]),
+            "elastic": len(result.modes.elastic)}
 
 
 def scaling() -> None:
     sizes = [1e3, 3e3, 1e4, 3e4, 1e5]
-    print("3. sparse path (assembly + reduction + shift-invert ARPACK, 6 modes), one pose, "
-          "CPU medians of 3, peak RSS above the start")
+    print("3. sparse path: analyze() at the scene's pose (model, assembly, reduction, shift-invert "
+          f"ARPACK for {N_MODES}+4 modes), CPU medians of 3, peak RSS above the start")
     rows = []
     for dofs in sizes:
         elements = max(1, round(dofs / 9))  # 3 links x (elements + 1) nodes x 3 DOFs
@@ -176,7 +178,8 @@ def scaling() -> None:
                              check=True, capture_output=True, text=True).stdout
         row = json.loads(out.strip().splitlines()[-1])
         rows.append(row)
-        print(f"  {row['dofs']:7d} DOFs: {row['seconds']:8.4f} s  {row['peak_mb']:8.1f} MB")
+        print(f"  {row['dofs']:7d} DOFs: {row['seconds']:8.4f} s  {row['peak_mb']:8.1f} MB   "
+              f"lowest mode {row['f1']:9.3f} Hz, {row['elastic']} of {N_MODES + 4} labelled elastic")
     n = np.log([r["dofs"] for r in rows])
     t_exp = np.polyfit(n, np.log([r["seconds"] for r in rows]), 1)[0]
     m_exp = np.polyfit(n, np.log([max(r["peak_mb"], 1e-3) for r in rows]), 1)[0]

@@ -24,6 +24,8 @@ from .link import link_entries as local_entries
 from .model import FrameModel, Topology, build_model
 from .solve import DENSE_LIMIT, ELASTIC, solve_modes
 
+EXTRA_MODES = 4  # room for mechanism modes when more turn up than at the previous pose
+
 @dataclasses.dataclass(frozen=True)
 class SweepResult:
     """frequencies[i, j]: j-th elastic natural frequency [Hz] at pose i (NaN if fewer found);
@@ -115,17 +117,18 @@ class _DensePlan:
 
 
 def _lowest_elastic(solve, n_modes: int, expected_mechanisms: int):
-    """``solve(k)`` -> ModalResult of the lowest k modes; solves for n_modes plus the expected
-    number of mechanism modes (these sit lowest) and again with more if more turned up.
-    Returns (elastic frequencies [Hz], mechanism count)."""
+    """``solve(k)`` -> ModalResult of the lowest k modes. Solves for n_modes plus the mechanism
+    modes expected (these sit lowest); if more turn up, solves once more with room for them
+    (at least EXTRA_MODES). Returns (elastic frequencies [Hz], at most n_modes; mechanism count)."""
     k = n_modes + expected_mechanisms
-    while True:
+    for _ in range(2):
         result = solve(k)
         elastic = np.array([kind == ELASTIC for kind in result.kinds])
         n_mechanism = len(elastic) - int(elastic.sum())
         if elastic.sum() >= n_modes or len(elastic) < k:  # enough, or every mode of the model
-            return result.frequencies[elastic][:n_modes], n_mechanism
-        k = n_modes + n_mechanism
+            break
+        k = n_modes + max(n_mechanism + 1, EXTRA_MODES)
+    return result.frequencies[elastic][:n_modes], n_mechanism
 
 
 def modal_sweep(topology: Topology, poses: Iterable[Mapping[str, tuple[float, float]]],
