@@ -244,17 +244,24 @@ def _fractions(elements: int) -> np.ndarray:
     return t
 
 
-def build_model(topology: Topology, points: dict[str, tuple[float, float]]) -> FrameModel:
+def layout(topology: Topology) -> _Layout:
+    """The pose-independent part of ``topology``'s models, cached per topology."""
+    try:
+        return _cached_layout(topology)
+    except TypeError:  # a topology built from lists is not hashable: nothing to cache
+        return _layout(topology)
+
+
+def build_model(topology: Topology, points: dict[str, tuple[float, float]],
+                layout_: _Layout | None = None) -> FrameModel:
     """Mesh every link between its joints' positions ``points`` [m] and join them with springs.
 
     Node numbering, springs and masses depend on the topology alone and are worked out once per
-    topology (cached), so that a sweep over many poses pays only for the geometry."""
-    try:
-        layout = _cached_layout(topology)
-    except TypeError:  # a topology built from lists is not hashable: nothing to cache
-        layout = _layout(topology)
+    topology (cached; a caller looping over poses may pass ``layout(topology)`` as ``layout_``
+    to skip even the cache look-up, which hashes the whole topology)."""
+    lay = layout_ or layout(topology)
     nodes, links = [], []
-    for spec, first in zip(topology.links, layout.first_nodes):
+    for spec, first in zip(topology.links, lay.first_nodes):
         for joint in (spec.start, spec.end):
             if joint not in points:
                 raise InputError(f"no position for joint {joint!r}", field="pose")
@@ -267,5 +274,5 @@ def build_model(topology: Topology, points: dict[str, tuple[float, float]]) -> F
         nodes.append(np.array([x0, y0], dtype=float) + _fractions(spec.elements) * (dx, dy))
         links.append(LinkMesh(spec.name, first, spec.elements, length, math.atan2(dy, dx),
                               spec.section))
-    return FrameModel(nodes=np.concatenate(nodes), links=tuple(links), springs=layout.springs,
-                      point_masses=layout.point_masses, joint_nodes=dict(layout.joint_nodes))
+    return FrameModel(nodes=np.concatenate(nodes), links=tuple(links), springs=lay.springs,
+                      point_masses=lay.point_masses, joint_nodes=dict(lay.joint_nodes))

@@ -21,7 +21,7 @@ import numpy as np
 from .analysis import lambda_scale
 from .assembly import assemble, link_entries, point_mass_entries, reduction, spring_entries
 from .link import link_entries as local_entries
-from .model import FrameModel, Topology, build_model
+from .model import FrameModel, Topology, build_model, layout
 from .solve import DENSE_LIMIT, ELASTIC, solve_modes
 
 EXTRA_MODES = 4  # room for mechanism modes when more turn up than at the previous pose
@@ -142,8 +142,9 @@ def modal_sweep(topology: Topology, poses: Iterable[Mapping[str, tuple[float, fl
     mechanism = np.zeros(len(poses), dtype=int)
     plan = None
     expected = 0  # mechanism modes found at the previous pose: usually the same at the next
+    fixed = layout(topology)
     for i, points in enumerate(iterator):
-        model = build_model(topology, points)
+        model = build_model(topology, points, fixed)
         lambda_ref = lambda_scale(model)
         if plan is None and method in ("auto", "dense"):
             plan = _DensePlan(model)
