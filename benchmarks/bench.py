@@ -180,10 +180,10 @@ def scaling() -> None:
         rows.append(row)
         print(f"  {row['dofs']:7d} DOFs: {row['seconds']:8.4f} s  {row['peak_mb']:8.1f} MB   "
               f"lowest mode {row['f1']:9.3f} Hz, {row['elastic']} of {N_MODES + 4} labelled elastic")
-    print("  note: past ~1e4 DOFs a 3-link chain is too fine for double precision (elements 70 to"
-          " 180 times\n  shorter than the section is deep, lambda_max/lambda_1 ~ 1e14 and more): the lowest mode drifts and"
-          " the zero-mode labels fail;\n  the sizes time the path, not a meaningful model"
-          " (docs/performance.md)")
+    print("  note: past ~1e4 DOFs a 3-link chain is too fine for double precision (elements 70"
+          " to 180 times\n  shorter than the section is deep, lambda_max / lambda_1 ~ 1e14 and"
+          " more): the lowest mode\n  drifts and the zero-mode labels fail; these sizes time"
+          " the path, not a meaningful model")
     n = np.log([r["dofs"] for r in rows])
     t_exp = np.polyfit(n, np.log([r["seconds"] for r in rows]), 1)[0]
     m_exp = np.polyfit(n, np.log([max(r["peak_mb"], 1e-3) for r in rows]), 1)[0]
