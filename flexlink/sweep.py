@@ -26,6 +26,7 @@ from .solve import DENSE_LIMIT, ELASTIC, solve_modes
 
 EXTRA_MODES = 4  # room for mechanism modes when more turn up than at the previous pose
 
+
 @dataclasses.dataclass(frozen=True)
 class SweepResult:
     """frequencies[i, j]: j-th elastic natural frequency [Hz] at pose i (NaN if fewer found);
@@ -40,9 +41,10 @@ class SweepResult:
 # is then +- one of the products c c, c s, s s, c, s, 1 (or 0), indexed by _PRODUCT.
 _R_SIGN = np.array([[1, 1, 1], [-1, 1, 1], [1, 1, 1]])
 _R_FACTOR = np.array([[0, 1, 3], [1, 0, 3], [3, 3, 2]])
-_PRODUCT = np.full((4, 4), -1)
-for (f, g), k in {(0, 0): 0, (0, 1): 1, (1, 1): 2, (0, 2): 3, (1, 2): 4, (2, 2): 5}.items():
-    _PRODUCT[f, g] = _PRODUCT[g, f] = k
+_PRODUCT = np.array([[0, 1, 3, -1],   # c c, c s, c 1, c 0
+                     [1, 2, 4, -1],   # s c, s s, s 1, s 0
+                     [3, 4, 5, -1],   # 1 c, 1 s, 1 1, 1 0
+                     [-1, -1, -1, -1]])
 
 
 class _DensePlan:

@@ -13,7 +13,7 @@ import pytest
 import scipy.sparse as sp
 
 from flexlink.analysis import analyze
-from flexlink.assembly import assemble, reduction, rotation
+from flexlink.assembly import _rotated, assemble, reduction, rotation
 from flexlink.link import link_matrices
 from flexlink.model import GROUND, build_model
 from flexlink.scene import load_scene
@@ -103,3 +103,10 @@ def test_sweep_finds_elastic_modes_past_a_mechanism():
     single = analyze(scene, 4, 6).elastic_frequencies(4)
     np.testing.assert_allclose(sweep.frequencies[0], single, rtol=1e-12)
     assert list(sweep.mechanism_counts) == [1, 1]
+
+
+def test_rotated_equals_explicit_transformation():
+    k, _ = link_matrices(0.3, 4, 5e6, 12.0, 0.3)
+    for angle in (0.3, 2.0, -2.9):
+        T = sp.kron(sp.identity(5), sp.csr_matrix(rotation(angle)))
+        assert close(_rotated(k, angle, 5).toarray(), (T.T @ k @ T).toarray())
