@@ -231,19 +231,37 @@ def startup(repeats: int) -> None:
 
 
 # -- 5. parallel sweeps ---------------------------------------------------------------------------
+def _burn(n: int) -> int:
+    total = 0
+    for i in range(n):
+        total += i * i
+    return total
+
+
 def parallel(repeats: int) -> None:
     from joblib import Parallel, delayed
 
+    from flexlink.sweep import parallel_modal_sweep
+
     jobs = os.cpu_count() or 1
-    print(f"5. parallel: the 4 cycle maps of section 2 on {jobs} workers (joblib, loky "
-          f"processes) vs one after the other; wall, medians of {repeats}")
-    pool = Parallel(n_jobs=jobs)
-    pool(delayed(cycle_map)(p, 2) for p in CASES)  # start the workers before timing
-    serial = median_time(lambda: [cycle_map(p) for p in CASES], repeats, time.perf_counter)
-    together = median_time(lambda: pool(delayed(cycle_map)(p) for p in CASES), repeats,
-                           time.perf_counter)
+    print(f"5. parallel: the 4 cycle maps of section 2 with parallel_modal_sweep ({jobs} joblib "
+          f"worker processes, poses split in {jobs} chunks) vs modal_sweep; wall, medians of "
+          f"{repeats}")
+    work = [(load_scene(p).topology(), cycle_poses(load_scene(p), 360)) for p in CASES]
+    parallel_modal_sweep(work[0][0], work[0][1][:jobs], N_MODES)  # start the workers first
+    serial = median_time(lambda: [modal_sweep(t, poses, N_MODES) for t, poses in work], repeats,
+                         time.perf_counter)
+    together = median_time(lambda: [parallel_modal_sweep(t, poses, N_MODES) for t, poses in work],
+                           repeats, time.perf_counter)
     print(f"  serial {serial:.3f} s, {jobs} workers {together:.3f} s: speed-up "
-          f"{serial / together:.2f}x on {jobs} cores")
+          f"{serial / together:.2f}x on {jobs} cores (load average now "
+          f"{os.getloadavg()[0]:.2f})")
+    # what the machine gives two processes right now, whatever the code: a pure-Python loop
+    burn = [3_000_000] * jobs
+    alone = median_time(lambda: [_burn(n) for n in burn], repeats, time.perf_counter)
+    shared = median_time(lambda: Parallel(n_jobs=jobs)(delayed(_burn)(n) for n in burn), repeats,
+                         time.perf_counter)
+    print(f"  for scale, a pure-Python loop on {jobs} workers: speed-up {alone / shared:.2f}x")
 
 
 def main() -> int:

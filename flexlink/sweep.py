@@ -163,3 +163,19 @@ def modal_sweep(topology: Topology, poses: Iterable[Mapping[str, tuple[float, fl
         freqs[i, :len(elastic)] = elastic
         mechanism[i] = expected
     return SweepResult(frequencies=freqs, mechanism_counts=mechanism)
+
+
+def parallel_modal_sweep(topology: Topology, poses: Iterable[Mapping[str, tuple[float, float]]],
+                         n_modes: int, method: str = "auto", n_jobs: int = -1) -> SweepResult:
+    """``modal_sweep`` with the poses split into one contiguous chunk per worker process
+    (joblib, loky backend; ``n_jobs`` = -1: one per core). Same result as the serial sweep;
+    worth it from a few hundred poses on, below that starting the workers costs more."""
+    from joblib import Parallel, delayed, effective_n_jobs
+
+    poses = list(poses)
+    chunks = [c for c in np.array_split(np.arange(len(poses)), effective_n_jobs(n_jobs)) if len(c)]
+    parts = Parallel(n_jobs=n_jobs)(
+        delayed(modal_sweep)(topology, [poses[i] for i in chunk], n_modes, method)
+        for chunk in chunks)
+    return SweepResult(frequencies=np.concatenate([p.frequencies for p in parts]),
+                       mechanism_counts=np.concatenate([p.mechanism_counts for p in parts]))

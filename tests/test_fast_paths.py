@@ -17,7 +17,7 @@ from flexlink.assembly import _rotated, assemble, reduction, rotation
 from flexlink.link import link_matrices
 from flexlink.model import GROUND, build_model
 from flexlink.scene import load_scene
-from flexlink.sweep import _DensePlan, modal_sweep
+from flexlink.sweep import _DensePlan, modal_sweep, parallel_modal_sweep
 
 CASES = Path(__file__).resolve().parent.parent / "cases"
 ROUND_OFF = 1e-14
@@ -110,3 +110,12 @@ def test_rotated_equals_explicit_transformation():
     for angle in (0.3, 2.0, -2.9):
         T = sp.kron(sp.identity(5), sp.csr_matrix(rotation(angle)))
         assert close(_rotated(k, angle, 5).toarray(), (T.T @ k @ T).toarray())
+
+
+def test_parallel_sweep_equals_serial():
+    scene = load_scene(CASES / "case4.toml")
+    poses = [scene.linkage.pose(t, "open").joints for t in np.radians([5.0, 95.0, 185.0, 275.0, 300.0])]
+    serial = modal_sweep(scene.topology(4), poses, 3)
+    parallel = parallel_modal_sweep(scene.topology(4), poses, 3, n_jobs=2)
+    np.testing.assert_array_equal(parallel.frequencies, serial.frequencies)
+    np.testing.assert_array_equal(parallel.mechanism_counts, serial.mechanism_counts)
