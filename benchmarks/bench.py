@@ -33,7 +33,7 @@ import scipy.linalg as la  # noqa: E402
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from flexlink.analysis import lambda_scale  # noqa: E402
+from flexlink.assembly import reduction  # noqa: E402
 from flexlink.model import build_model  # noqa: E402
 from flexlink.scene import load_scene  # noqa: E402
 from flexlink.sweep import _DensePlan, modal_sweep  # noqa: E402
@@ -99,7 +99,7 @@ def per_pose(repeats: int) -> bool:
                 opensees_frame.build(ops, model)
                 opensees_frame.frequencies(ops, N_MODES, solver)
         t_os[solver] = median_time(opensees_all, repeats) / len(poses)
-    plan = _DensePlan(models[0])
+    plan = _DensePlan(models[0], reduction(models[0]))
     matrices = [plan.matrices(m) for m in models]
     n = matrices[0][0].shape[0]
 

@@ -22,7 +22,7 @@ from .analysis import lambda_scale
 from .assembly import assemble, link_entries, point_mass_entries, reduction, spring_entries
 from .link import link_entries as local_entries
 from .model import FrameModel, Topology, build_model, layout
-from .solve import DENSE_LIMIT, ELASTIC, solve_modes
+from .solve import DENSE_LIMIT, DENSE_REFUSE, ELASTIC, solve_modes
 
 EXTRA_MODES = 4  # room for mechanism modes when more turn up than at the previous pose
 
@@ -57,8 +57,7 @@ class _DensePlan:
     nonzero share, its source entry, its sign and product and its slot in the reduced matrix, so
     a pose costs two gathers, a multiply and one ``np.bincount`` per matrix."""
 
-    def __init__(self, model: FrameModel):
-        T = reduction(model)
+    def __init__(self, model: FrameModel, T):
         n_full = model.n_dofs
         if T is None:
             column, self.n = np.arange(n_full), n_full
@@ -148,17 +147,19 @@ def modal_sweep(topology: Topology, poses: Iterable[Mapping[str, tuple[float, fl
     for i, points in enumerate(iterator):
         model = build_model(topology, points, fixed)
         lambda_ref = lambda_scale(model)
-        if plan is None and method in ("auto", "dense"):
-            plan = _DensePlan(model)
-            if method == "auto" and plan.n > DENSE_LIMIT:
-                plan, method = None, "sparse"
+        if i == 0:
+            T = reduction(model)  # depends on the topology only
+            n = model.n_dofs if T is None else T.shape[1]
+            if method == "auto":
+                method = "dense" if n <= DENSE_LIMIT else "sparse"
+            if method == "dense" and n <= DENSE_REFUSE:  # else solve_modes refuses it
+                plan = _DensePlan(model, T)
         if plan is not None:
             K, M = plan.matrices(model)
             solve = functools.partial(solve_modes, K, M, lambda_ref=lambda_ref, method="dense")
         else:
             K, M = assemble(model)
-            solve = functools.partial(solve_modes, K, M, T=reduction(model), lambda_ref=lambda_ref,
-                                      method=method)
+            solve = functools.partial(solve_modes, K, M, T=T, lambda_ref=lambda_ref, method=method)
         elastic, expected = _lowest_elastic(solve, n_modes, expected)
         freqs[i, :len(elastic)] = elastic
         mechanism[i] = expected
