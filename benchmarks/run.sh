@@ -3,8 +3,9 @@
 # OpenSeesPy (PyPI) links the system's libblas.so.3 and liblapack.so.3, which a bare Debian lacks;
 # they are installed only when missing. pyinstrument is for benchmarks/profile_sweep.py.
 source "$(dirname "$0")/../scripts/venv.sh"
+python -c "import pyinstrument" >/dev/null 2>&1 || python -m pip install --quiet pyinstrument
 if ! python -c "import openseespy.opensees" >/dev/null 2>&1; then
-    python -m pip install --quiet openseespy pyinstrument
+    python -m pip install --quiet openseespy
     missing=()
     for lib in libblas.so.3 liblapack.so.3; do
         ldconfig -p | grep -q "$lib" || missing+=("${lib%%.so.3}3")
