@@ -253,13 +253,13 @@ def layout(topology: Topology) -> _Layout:
 
 
 def build_model(topology: Topology, points: dict[str, tuple[float, float]],
-                layout_: _Layout | None = None) -> FrameModel:
+                known_layout: _Layout | None = None) -> FrameModel:
     """Mesh every link between its joints' positions ``points`` [m] and join them with springs.
 
     Node numbering, springs and masses depend on the topology alone and are worked out once per
-    topology (cached; a caller looping over poses may pass ``layout(topology)`` as ``layout_``
+    topology (cached; a caller looping over poses may pass ``layout(topology)`` as ``known_layout``
     to skip even the cache look-up, which hashes the whole topology)."""
-    lay = layout_ or layout(topology)
+    lay = known_layout or layout(topology)
     nodes, links = [], []
     for spec, first in zip(topology.links, lay.first_nodes):
         for joint in (spec.start, spec.end):
