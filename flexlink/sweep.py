@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import dataclasses
 import functools
+import math
 from collections.abc import Iterable, Mapping
 
 import numpy as np
@@ -85,6 +86,9 @@ class _DensePlan:
         # products of link l with sign +-1 sit at 12 l + 6 (sign < 0) + product in one table
         self.factor = (12 * link_of[:, None, None] + 6 * (sign < 0) + product)[keep]
         self.slot = slot[keep]
+        self.size = self.spare + 1
+        self.both_slots = np.concatenate([self.slot, self.slot + self.size])
+        self._sources = {}  # link lengths -> (2, shares) local values
         self.constant = []
         for rows, cols, vals in (spring_entries(model), point_mass_entries(model)):
             self.constant.append(self.scatter(self.slots(rows, cols), vals))
@@ -102,19 +106,33 @@ class _DensePlan:
         summed = np.bincount(slots, weights=values, minlength=self.spare + 1)
         return summed[:self.spare].reshape(self.n, self.n)
 
+    def _source_values(self, model: FrameModel) -> np.ndarray:
+        """(2, shares): each share's local K and M value. They depend on the link lengths only,
+        which a rigid linkage repeats from pose to pose (up to a few last-bit variants)."""
+        key = tuple(link.length for link in model.links)
+        if key not in self._sources:
+            if len(self._sources) >= 64:
+                self._sources.clear()
+            entries = [self._local(link) for link in model.links]
+            self._sources[key] = np.stack([np.concatenate([e[2] for e in entries]),
+                                           np.concatenate([e[3] for e in entries])])[:, self.source]
+        return self._sources[key]
+
     def matrices(self, model: FrameModel) -> tuple[np.ndarray, np.ndarray]:
         """Reduced dense (K, M) of ``model`` (same topology as the plan's): T^T K T, T^T M T."""
         if len(model.links) != self.n_links:
             raise AssertionError("every pose of a sweep must have the plan's topology")
-        angles = np.array([link.angle for link in model.links])
-        c, s = np.cos(angles), np.sin(angles)
-        products = np.stack([c * c, c * s, s * s, c, s, np.ones_like(c)], axis=1)
-        table = np.concatenate([products, -products], axis=1).ravel()
-        locals_ = [self._local(link) for link in model.links]
-        share = table[self.factor]
-        K = self.scatter(self.slot, np.concatenate([e[2] for e in locals_])[self.source] * share)
-        M = self.scatter(self.slot, np.concatenate([e[3] for e in locals_])[self.source] * share)
-        return K + self.constant[0], M + self.constant[1]
+        table = []
+        for link in model.links:
+            c, s = math.cos(link.angle), math.sin(link.angle)
+            products = [c * c, c * s, s * s, c, s, 1.0]
+            table += products + [-p for p in products]
+        shares = self._source_values(model) * np.array(table)[self.factor]
+        # K and M in one bincount: M's slots follow K's
+        summed = np.bincount(self.both_slots, weights=shares.ravel(), minlength=2 * self.size)
+        K = summed[:self.spare].reshape(self.n, self.n) + self.constant[0]
+        M = summed[self.size:self.size + self.spare].reshape(self.n, self.n) + self.constant[1]
+        return K, M
 
 
 def _lowest_elastic(solve, n_modes: int, expected_mechanisms: int):
