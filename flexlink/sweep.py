@@ -56,7 +56,8 @@ class _DensePlan:
     A link entry (3a + p, 3b + q) of value v adds v R[p, i] R[q, j] to (3a + i, 3b + j), and
     R[p, i] R[q, j] is +- one of six products of the link's cos and sin. The plan keeps, for each
     nonzero share, its source entry, its sign and product and its slot in the reduced matrix, so
-    a pose costs two gathers, a multiply and one ``np.bincount`` per matrix."""
+    a pose costs a small table of products, one gather, one multiply and one ``np.bincount``
+    for K and M together."""
 
     def __init__(self, model: FrameModel, T):
         n_full = model.n_dofs
