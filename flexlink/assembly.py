@@ -16,6 +16,7 @@ import math
 import numpy as np
 import scipy.sparse as sp
 
+from .link import link_entries as local_entries
 from .model import GROUND, FrameModel
 
 
@@ -25,26 +26,60 @@ def rotation(angle: float) -> np.ndarray:
     return np.array([[c, s, 0.0], [-s, c, 0.0], [0.0, 0.0, 1.0]])
 
 
+def rotated_entries(rows, cols, values, cos, sin):
+    """Entries of T^T A T from entries of A, T = blockdiag(R) with a rotation per entry.
+
+    rows, cols (e,): DOF indices (3 per node); values (v, e): v matrices sharing those entries;
+    cos, sin (e,): the rotation of each entry's link. Each entry (3a + p, 3b + q) spreads over
+    its 3 x 3 node block: A'[3a + i, 3b + j] += R[p, i] A[3a + p, 3b + q] R[q, j].
+    Returns (rows (9e,), cols (9e,), values (v, 9e)); repeated (row, col) pairs are to be summed.
+    """
+    rows, cols = np.asarray(rows), np.asarray(cols)
+    zero, one = np.zeros_like(cos), np.ones_like(cos)
+    R = np.stack([np.stack([cos, sin, zero], -1), np.stack([-sin, cos, zero], -1),
+                  np.stack([zero, zero, one], -1)], 1)  # (e, 3, 3)
+    e = np.arange(len(rows))
+    a, b = R[e, rows % 3], R[e, cols % 3]  # (e, 3): row p of R, row q of R
+    spread = np.asarray(values)[:, :, None, None] * (a[:, :, None] * b[:, None, :])
+    block = np.arange(3)
+    out_rows = (rows - rows % 3)[:, None, None] + block[None, :, None]
+    out_cols = (cols - cols % 3)[:, None, None] + block[None, None, :]
+    shape = (len(rows), 3, 3)
+    return (np.broadcast_to(out_rows, shape).ravel(), np.broadcast_to(out_cols, shape).ravel(),
+            spread.reshape(spread.shape[0], -1))
+
+
 def _rotated(matrix, angle: float, nodes: int):
-    T = sp.kron(sp.identity(nodes, format="csr"), sp.csr_matrix(rotation(angle)), format="csr")
-    return (T.T @ matrix @ T).tocsr()
+    coo = sp.coo_matrix(matrix)
+    c, s = np.full(coo.nnz, math.cos(angle)), np.full(coo.nnz, math.sin(angle))
+    rows, cols, values = rotated_entries(coo.row, coo.col, coo.data[None], c, s)
+    n = 3 * nodes
+    return sp.coo_matrix((values[0], (rows, cols)), shape=(n, n)).tocsr()
 
 
-def assemble(model: FrameModel) -> tuple[sp.csr_matrix, sp.csr_matrix]:
-    """(K [N/m, N, N m per rad], M [kg, kg m, kg m^2]) for the whole model, CSR, not reduced."""
-    k_blocks, m_blocks = [], []
+def link_entries(model: FrameModel):
+    """All links' local entries at their global node offsets, not yet rotated:
+    (rows, cols, values (2, e) = K and M, cos, sin (e,) of each entry's link)."""
+    parts = []
     next_node = 0
     for link in model.links:
         if link.first_node != next_node:  # build_model numbers links contiguously
             raise AssertionError("links must own consecutive node ranges")
-        k_local, m_local = link.local_matrices()
-        n = link.elements + 1
-        k_blocks.append(_rotated(k_local, link.angle, n))
-        m_blocks.append(_rotated(m_local, link.angle, n))
-        next_node += n
-    K = sp.block_diag(k_blocks, format="csr")
-    M = sp.block_diag(m_blocks, format="csr")
+        s = link.section
+        rows, cols, k, m = local_entries(link.length, link.elements, s.EA, s.EI,
+                                         s.mass_per_length)
+        offset = 3 * link.first_node
+        parts.append((rows + offset, cols + offset, k, m,
+                      np.full(len(rows), math.cos(link.angle)),
+                      np.full(len(rows), math.sin(link.angle))))
+        next_node += link.elements + 1
+    rows, cols, k, m, c, s = (np.concatenate(column) for column in zip(*parts))
+    return rows, cols, np.stack([k, m]), c, s
 
+
+def spring_entries(model: FrameModel):
+    """(rows, cols, values) of the finite springs' stiffness; rigid ones are left to
+    ``reduction``."""
     springs = model.springs
     finite = np.isfinite(springs.stiffness)
     a, b, k = springs.dof_a[finite], springs.dof_b[finite], springs.stiffness[finite]
@@ -52,14 +87,29 @@ def assemble(model: FrameModel) -> tuple[sp.csr_matrix, sp.csr_matrix]:
     rows = np.concatenate([a, b[to_node], a[to_node], b[to_node]])
     cols = np.concatenate([a, b[to_node], b[to_node], a[to_node]])
     vals = np.concatenate([k, k[to_node], -k[to_node], -k[to_node]])
-    n = model.n_dofs
-    K = K + sp.coo_matrix((vals, (rows, cols)), shape=(n, n)).tocsr()
+    return rows, cols, vals
 
-    if model.point_masses:
-        nodes = np.array([p[0] for p in model.point_masses])
-        mass = np.array([p[1] for p in model.point_masses])
-        idx = np.concatenate([3 * nodes, 3 * nodes + 1])
-        M = M + sp.coo_matrix((np.concatenate([mass, mass]), (idx, idx)), shape=(n, n)).tocsr()
+
+def point_mass_entries(model: FrameModel):
+    """(rows, cols, values) of the lumped joint masses (translational DOFs only)."""
+    nodes = np.array([p[0] for p in model.point_masses], dtype=np.int64)
+    mass = np.array([p[1] for p in model.point_masses], dtype=float)
+    idx = np.concatenate([3 * nodes, 3 * nodes + 1])
+    return idx, idx, np.concatenate([mass, mass])
+
+
+def assemble(model: FrameModel) -> tuple[sp.csr_matrix, sp.csr_matrix]:
+    """(K [N/m, N, N m per rad], M [kg, kg m, kg m^2]) for the whole model, CSR, not reduced."""
+    n = model.n_dofs
+    rows, cols, values = rotated_entries(*link_entries(model))
+    k_rows, k_cols, k_vals = spring_entries(model)
+    m_rows, m_cols, m_vals = point_mass_entries(model)
+    K = sp.coo_matrix((np.concatenate([values[0], k_vals]),
+                       (np.concatenate([rows, k_rows]), np.concatenate([cols, k_cols]))),
+                      shape=(n, n)).tocsr()
+    M = sp.coo_matrix((np.concatenate([values[1], m_vals]),
+                       (np.concatenate([rows, m_rows]), np.concatenate([cols, m_cols]))),
+                      shape=(n, n)).tocsr()
     return K, M
 
 

@@ -20,6 +20,7 @@ two DOFs are merged (or the DOF is fixed, for ground) by ``assembly.reduction``.
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 
 import numpy as np
@@ -182,28 +183,29 @@ class FrameModel:
         return 3 * len(self.nodes)
 
 
-def build_model(topology: Topology, points: dict[str, tuple[float, float]]) -> FrameModel:
-    """Mesh every link between its joints' positions ``points`` [m] and join them with springs."""
-    nodes, links, joint_nodes = [], [], {j.name: [] for j in topology.joints}
+@dataclasses.dataclass(frozen=True)
+class _Layout:
+    """The pose-independent part of a model: node numbering, joint nodes, springs, masses."""
+
+    first_nodes: tuple[int, ...]
+    n_nodes: int
+    springs: Springs
+    point_masses: tuple[tuple[int, float], ...]
+    joint_nodes: dict[str, tuple[int, ...]]
+
+
+def _layout(topology: Topology) -> _Layout:
+    joint_nodes = {j.name: [] for j in topology.joints}
+    first_nodes, next_node = [], 0
     for spec in topology.links:
         for joint in (spec.start, spec.end):
             if joint not in joint_nodes:
                 raise InputError(f"link {spec.name!r} names joint {joint!r}, which is not defined",
                                  field=f"links.{spec.name}", expected=f"one of {list(joint_nodes)}")
-            if joint not in points:
-                raise InputError(f"no position for joint {joint!r}", field="pose")
-        p0, p1 = np.asarray(points[spec.start], float), np.asarray(points[spec.end], float)
-        length = float(np.hypot(*(p1 - p0)))
-        if length <= 0:
-            raise InputError(f"link {spec.name!r} has zero length at this pose",
-                             field=f"links.{spec.name}")
-        first = len(nodes)
-        t = np.linspace(0.0, 1.0, spec.elements + 1)[:, None]
-        nodes.extend(p0 + t * (p1 - p0))
-        links.append(LinkMesh(spec.name, first, spec.elements, length,
-                              math.atan2(p1[1] - p0[1], p1[0] - p0[0]), spec.section))
-        joint_nodes[spec.start].append(first)
-        joint_nodes[spec.end].append(first + spec.elements)
+        first_nodes.append(next_node)
+        joint_nodes[spec.start].append(next_node)
+        joint_nodes[spec.end].append(next_node + spec.elements)
+        next_node += spec.elements + 1
 
     dof_a, dof_b, k, labels = [], [], [], []
 
@@ -239,15 +241,61 @@ def build_model(topology: Topology, points: dict[str, tuple[float, float]]) -> F
         link_index = next((i for i, s in enumerate(topology.links) if s.name == drive.link), None)
         if link_index is None:
             raise InputError(f"drive names link {drive.link!r}, which is not defined", field="drive.link")
-        spec, mesh = topology.links[link_index], links[link_index]
+        spec = topology.links[link_index]
         if drive.joint not in (spec.start, spec.end):
             raise InputError(f"drive joint {drive.joint!r} is not an end of link {drive.link!r}",
                              field="drive.joint")
-        node = mesh.first_node if drive.joint == spec.start else mesh.first_node + mesh.elements
+        node = first_nodes[link_index] + (0 if drive.joint == spec.start else spec.elements)
         spring(node, GROUND, 2, drive.stiffness, f"drive {drive.link}@{drive.joint}")
 
-    springs = Springs(np.asarray(dof_a, dtype=np.int64), np.asarray(dof_b, dtype=np.int64),
-                      np.asarray(k, dtype=float), tuple(labels))
-    return FrameModel(nodes=np.asarray(nodes, dtype=float), links=tuple(links), springs=springs,
-                      point_masses=tuple(point_masses),
-                      joint_nodes={name: tuple(v) for name, v in joint_nodes.items()})
+    arrays = (np.asarray(dof_a, dtype=np.int64), np.asarray(dof_b, dtype=np.int64),
+              np.asarray(k, dtype=float))
+    for array in arrays:
+        array.flags.writeable = False  # shared by every model of this topology
+    return _Layout(first_nodes=tuple(first_nodes), n_nodes=next_node,
+                   springs=Springs(*arrays, tuple(labels)), point_masses=tuple(point_masses),
+                   joint_nodes={name: tuple(v) for name, v in joint_nodes.items()})
+
+
+_cached_layout = functools.lru_cache(maxsize=32)(_layout)
+
+
+@functools.lru_cache(maxsize=64)
+def _fractions(elements: int) -> np.ndarray:
+    t = np.linspace(0.0, 1.0, elements + 1)[:, None]
+    t.flags.writeable = False
+    return t
+
+
+def layout(topology: Topology) -> _Layout:
+    """The pose-independent part of ``topology``'s models, cached per topology."""
+    try:
+        return _cached_layout(topology)
+    except TypeError:  # a topology built from lists is not hashable: nothing to cache
+        return _layout(topology)
+
+
+def build_model(topology: Topology, points: dict[str, tuple[float, float]],
+                known_layout: _Layout | None = None) -> FrameModel:
+    """Mesh every link between its joints' positions ``points`` [m] and join them with springs.
+
+    Node numbering, springs and masses depend on the topology alone and are worked out once per
+    topology (cached; a caller looping over poses may pass ``layout(topology)`` as ``known_layout``
+    to skip even the cache look-up, which hashes the whole topology)."""
+    lay = known_layout or layout(topology)
+    nodes, links = [], []
+    for spec, first in zip(topology.links, lay.first_nodes):
+        for joint in (spec.start, spec.end):
+            if joint not in points:
+                raise InputError(f"no position for joint {joint!r}", field="pose")
+        (x0, y0), (x1, y1) = points[spec.start], points[spec.end]
+        dx, dy = float(x1) - float(x0), float(y1) - float(y0)
+        length = math.hypot(dx, dy)
+        if length <= 0:
+            raise InputError(f"link {spec.name!r} has zero length at this pose",
+                             field=f"links.{spec.name}")
+        nodes.append(np.array([x0, y0], dtype=float) + _fractions(spec.elements) * (dx, dy))
+        links.append(LinkMesh(spec.name, first, spec.elements, length, math.atan2(dy, dx),
+                              spec.section))
+    return FrameModel(nodes=np.concatenate(nodes), links=tuple(links), springs=lay.springs,
+                      point_masses=lay.point_masses, joint_nodes=dict(lay.joint_nodes))

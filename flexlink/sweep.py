@@ -3,22 +3,29 @@ calibration and Monte Carlo.
 
 The topology (links, sections, joints, mesh) is fixed; only joint positions change from pose to
 pose, so each link's local matrices are built once (cached in ``link.py``) and every pose only
-rotates and assembles them before the eigen solve.
+rotates and assembles them before the eigen solve. Which global entry each rotated link entry
+lands in, and the springs, masses and rigid-joint reduction, depend on the topology alone; for
+models the dense solver takes, ``_DensePlan`` works them out once and each pose scatters its
+rotated entries straight into the reduced dense K and M (one ``np.bincount``), so the pose costs
+little more than the eigen solve itself.
 """
 
 from __future__ import annotations
 
 import dataclasses
+import functools
+import math
 from collections.abc import Iterable, Mapping
 
 import numpy as np
 
 from .analysis import lambda_scale
-from .assembly import assemble, reduction
-from .model import Topology, build_model
-from .solve import ELASTIC, solve_modes
+from .assembly import assemble, link_entries, point_mass_entries, reduction, spring_entries
+from .link import link_entries as local_entries
+from .model import FrameModel, Topology, build_model, layout
+from .solve import DENSE_LIMIT, DENSE_REFUSE, ELASTIC, solve_modes
 
-EXTRA_MODES = 4  # solved beyond n_modes so that mechanism modes cannot crowd out elastic ones
+EXTRA_MODES = 4  # room for mechanism modes when more turn up than at the previous pose
 
 
 @dataclasses.dataclass(frozen=True)
@@ -30,6 +37,120 @@ class SweepResult:
     mechanism_counts: np.ndarray
 
 
+# A node's rotation R = [[c, s, 0], [-s, c, 0], [0, 0, 1]] (assembly.rotation), each entry as
+# (sign, factor) with factor 0: c, 1: s, 2: 1, 3: 0; a rotated entry's coefficient R[p, i] R[q, j]
+# is then +- one of the products c c, c s, s s, c, s, 1 (or 0), indexed by _PRODUCT.
+_R_SIGN = np.array([[1, 1, 1], [-1, 1, 1], [1, 1, 1]])
+_R_FACTOR = np.array([[0, 1, 3], [1, 0, 3], [3, 3, 2]])
+_PRODUCT = np.array([[0, 1, 3, -1],   # c c, c s, c 1, c 0
+                     [1, 2, 4, -1],   # s c, s s, s 1, s 0
+                     [3, 4, 5, -1],   # 1 c, 1 s, 1 1, 1 0
+                     [-1, -1, -1, -1]])
+
+
+class _DensePlan:
+    """Where every link entry, spring and point mass goes in the reduced dense K and M of one
+    topology, worked out once (u = T q with T from ``assembly.reduction``: a 0/1 matrix, one 1
+    per kept DOF, so T^T K T only renumbers and drops entries).
+
+    A link entry (3a + p, 3b + q) of value v adds v R[p, i] R[q, j] to (3a + i, 3b + j), and
+    R[p, i] R[q, j] is +- one of six products of the link's cos and sin. The plan keeps, for each
+    nonzero share, its source entry, its sign and product and its slot in the reduced matrix, so
+    a pose costs a small table of products, one gather, one multiply and one ``np.bincount``
+    for K and M together."""
+
+    def __init__(self, model: FrameModel, T):
+        n_full = model.n_dofs
+        if T is None:
+            column, self.n = np.arange(n_full), n_full
+        else:
+            T = T.tocsr()
+            if not (np.all(T.data == 1.0) and np.all(np.diff(T.indptr) <= 1)):
+                raise AssertionError("reduction must map each DOF to at most one reduced DOF")
+            column = np.full(n_full, -1)
+            column[np.diff(T.indptr) == 1] = T.indices
+            self.n = T.shape[1]
+        self.column = column
+        self.spare = self.n * self.n
+        self.n_links = len(model.links)
+
+        rows, cols, _, _, _ = link_entries(model)
+        link_of = np.repeat(np.arange(self.n_links),
+                            [len(self._local(link)[0]) for link in model.links])
+        p, q = rows % 3, cols % 3
+        i, j = np.arange(3)[:, None], np.arange(3)[None, :]
+        product = _PRODUCT[_R_FACTOR[p][:, :, None], _R_FACTOR[q][:, None, :]]  # (e, 3, 3)
+        sign = _R_SIGN[p][:, :, None] * _R_SIGN[q][:, None, :]
+        slot = self.slots((rows - p)[:, None, None] + i, (cols - q)[:, None, None] + j)
+        keep = (product >= 0) & (slot != self.spare)
+        self.source = np.broadcast_to(np.arange(len(rows))[:, None, None], keep.shape)[keep]
+        # products of link l with sign +-1 sit at 12 l + 6 (sign < 0) + product in one table
+        self.factor = (12 * link_of[:, None, None] + 6 * (sign < 0) + product)[keep]
+        self.slot = slot[keep]
+        self.size = self.spare + 1
+        self.both_slots = np.concatenate([self.slot, self.slot + self.size])
+        self._sources = {}  # link lengths -> (2, shares) local values
+        self.constant = []
+        for rows, cols, vals in (spring_entries(model), point_mass_entries(model)):
+            self.constant.append(self.scatter(self.slots(rows, cols), vals))
+
+    @staticmethod
+    def _local(link):
+        s = link.section
+        return local_entries(link.length, link.elements, s.EA, s.EI, s.mass_per_length)
+
+    def slots(self, rows, cols) -> np.ndarray:
+        r, c = self.column[rows], self.column[cols]
+        return np.where((r >= 0) & (c >= 0), r * self.n + c, self.spare)
+
+    def scatter(self, slots, values) -> np.ndarray:
+        summed = np.bincount(slots, weights=values, minlength=self.spare + 1)
+        return summed[:self.spare].reshape(self.n, self.n)
+
+    def _source_values(self, model: FrameModel) -> np.ndarray:
+        """(2, shares): each share's local K and M value. They depend on the link lengths only,
+        which a rigid linkage repeats from pose to pose (up to a few last-bit variants)."""
+        key = tuple(link.length for link in model.links)
+        if key not in self._sources:
+            if len(self._sources) >= 64:
+                self._sources.clear()
+            entries = [self._local(link) for link in model.links]
+            self._sources[key] = np.stack([np.concatenate([e[2] for e in entries]),
+                                           np.concatenate([e[3] for e in entries])])[:, self.source]
+        return self._sources[key]
+
+    def matrices(self, model: FrameModel) -> tuple[np.ndarray, np.ndarray]:
+        """Reduced dense (K, M) of ``model`` (same topology as the plan's): T^T K T, T^T M T."""
+        if len(model.links) != self.n_links:
+            raise AssertionError("every pose of a sweep must have the plan's topology")
+        table = []
+        for link in model.links:
+            c, s = math.cos(link.angle), math.sin(link.angle)
+            products = [c * c, c * s, s * s, c, s, 1.0]
+            table += products + [-p for p in products]
+        shares = self._source_values(model) * np.array(table)[self.factor]
+        # K and M in one bincount: M's slots follow K's
+        summed = np.bincount(self.both_slots, weights=shares.ravel(), minlength=2 * self.size)
+        K = summed[:self.spare].reshape(self.n, self.n) + self.constant[0]
+        M = summed[self.size:self.size + self.spare].reshape(self.n, self.n) + self.constant[1]
+        return K, M
+
+
+def _lowest_elastic(solve, n_modes: int, expected_mechanisms: int):
+    """``solve(k)`` -> ModalResult of the lowest k modes. Solves for n_modes plus the mechanism
+    modes expected (these sit lowest); if more turn up, solves once more with room for them
+    (at least EXTRA_MODES). Returns (elastic frequencies [Hz], at most n_modes; mechanism count)."""
+    k = n_modes + expected_mechanisms
+    for _ in range(2):
+        result = solve(k)
+        elastic = np.array([kind == ELASTIC for kind in result.kinds])
+        n_mechanism = len(elastic) - int(elastic.sum())
+        if elastic.sum() >= n_modes or len(elastic) < k:  # enough, or every mode of the model
+            break
+        k = n_modes + max(n_mechanism + 1, EXTRA_MODES)
+    return result.frequencies[elastic][:n_modes], n_mechanism
+
+
 def modal_sweep(topology: Topology, poses: Iterable[Mapping[str, tuple[float, float]]],
                 n_modes: int, method: str = "auto", progress=None) -> SweepResult:
     """Lowest ``n_modes`` elastic frequencies [Hz] at each pose (joint name -> (x, y) [m]).
@@ -39,12 +160,42 @@ def modal_sweep(topology: Topology, poses: Iterable[Mapping[str, tuple[float, fl
     iterator = progress(poses) if progress else poses
     freqs = np.full((len(poses), n_modes), np.nan)
     mechanism = np.zeros(len(poses), dtype=int)
+    plan = None
+    expected = 0  # mechanism modes found at the previous pose: usually the same at the next
+    fixed = layout(topology)
     for i, points in enumerate(iterator):
-        model = build_model(topology, points)
-        K, M = assemble(model)
-        result = solve_modes(K, M, n_modes + EXTRA_MODES, T=reduction(model),
-                             lambda_ref=lambda_scale(model), method=method)
-        elastic = result.frequencies[[k == ELASTIC for k in result.kinds]][:n_modes]
+        model = build_model(topology, points, fixed)
+        lambda_ref = lambda_scale(model)
+        if i == 0:
+            T = reduction(model)  # depends on the topology only
+            n = model.n_dofs if T is None else T.shape[1]
+            if method == "auto":
+                method = "dense" if n <= DENSE_LIMIT else "sparse"
+            if method == "dense" and n <= DENSE_REFUSE:  # else solve_modes refuses it
+                plan = _DensePlan(model, T)
+        if plan is not None:
+            K, M = plan.matrices(model)
+            solve = functools.partial(solve_modes, K, M, lambda_ref=lambda_ref, method="dense")
+        else:
+            K, M = assemble(model)
+            solve = functools.partial(solve_modes, K, M, T=T, lambda_ref=lambda_ref, method=method)
+        elastic, expected = _lowest_elastic(solve, n_modes, expected)
         freqs[i, :len(elastic)] = elastic
-        mechanism[i] = len(result.kinds) - int(sum(k == ELASTIC for k in result.kinds))
+        mechanism[i] = expected
     return SweepResult(frequencies=freqs, mechanism_counts=mechanism)
+
+
+def parallel_modal_sweep(topology: Topology, poses: Iterable[Mapping[str, tuple[float, float]]],
+                         n_modes: int, method: str = "auto", n_jobs: int = -1) -> SweepResult:
+    """``modal_sweep`` with the poses split into one contiguous chunk per worker process
+    (joblib, loky backend; ``n_jobs`` = -1: one per core). Same result as the serial sweep;
+    worth it from a few hundred poses on, below that starting the workers costs more."""
+    from joblib import Parallel, delayed, effective_n_jobs
+
+    poses = list(poses)
+    chunks = [c for c in np.array_split(np.arange(len(poses)), effective_n_jobs(n_jobs)) if len(c)]
+    parts = Parallel(n_jobs=n_jobs)(
+        delayed(modal_sweep)(topology, [poses[i] for i in chunk], n_modes, method)
+        for chunk in chunks)
+    return SweepResult(frequencies=np.concatenate([p.frequencies for p in parts]),
+                       mechanism_counts=np.concatenate([p.mechanism_counts for p in parts]))

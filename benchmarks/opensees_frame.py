@@ -1,0 +1,71 @@
+"""The same frame as a flexlink FrameModel, built and solved in OpenSeesPy (optional).
+
+Node for node and element for element: every link is a chain of elasticBeamColumn elements with
+consistent mass (-cMass: the same cubic Hermite bending and linear axial mass as flexlink), every
+finite spring a zeroLength element between the two coincident joint nodes (or between the node
+and a fixed ground node at the same place), every rigid spring to ground a ``fix`` of that DOF
+and every rigid spring between two nodes an ``equalDOF``.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from flexlink.model import GROUND, FrameModel
+
+_TRANSF = 1
+
+
+def build(ops, model: FrameModel) -> None:
+    """Wipe OpenSees and define ``model`` in it (tags: node i + 1, ground nodes after them)."""
+    ops.wipe()
+    ops.model("basic", "-ndm", 2, "-ndf", 3)
+    for i, (x, y) in enumerate(model.nodes):
+        ops.node(i + 1, float(x), float(y))
+    ops.geomTransf("Linear", _TRANSF)
+    tag = 0
+    for link in model.links:
+        s = link.section
+        for e in range(link.elements):
+            tag += 1
+            a = link.first_node + e + 1
+            ops.element("elasticBeamColumn", tag, a, a + 1, s.area, s.E, s.second_moment, _TRANSF,
+                        "-mass", s.mass_per_length, "-cMass")
+    springs = model.springs
+    next_node, materials, fixed = len(model.nodes) + 1, {}, {}
+    ground_of = {}
+    for a, b, k in zip(springs.dof_a, springs.dof_b, springs.stiffness):
+        node_a, dof = int(a) // 3 + 1, int(a) % 3 + 1
+        if not math.isfinite(k):
+            if b == GROUND:
+                fixed.setdefault(node_a, [0, 0, 0])[dof - 1] = 1
+            else:
+                ops.equalDOF(int(b) // 3 + 1, node_a, dof)
+            continue
+        if b == GROUND:
+            if node_a not in ground_of:
+                x, y = model.nodes[node_a - 1]
+                ops.node(next_node, float(x), float(y))
+                ops.fix(next_node, 1, 1, 1)
+                ground_of[node_a] = next_node
+                next_node += 1
+            node_b = ground_of[node_a]
+        else:
+            node_b = int(b) // 3 + 1
+        if k not in materials:
+            materials[k] = len(materials) + 1
+            ops.uniaxialMaterial("Elastic", materials[k], float(k))
+        tag += 1
+        ops.element("zeroLength", tag, node_b, node_a, "-mat", materials[k], "-dir", dof)
+    for node, dofs in fixed.items():
+        ops.fix(node, *dofs)
+    for node, mass in model.point_masses:
+        ops.mass(node + 1, mass, mass, 0.0)
+
+
+def frequencies(ops, n_modes: int, solver: str = "-fullGenLapack") -> np.ndarray:
+    """Lowest ``n_modes`` natural frequencies [Hz] of the model defined in OpenSees."""
+    lam = np.asarray(ops.eigen(solver, n_modes), dtype=float)
+    return np.sqrt(np.clip(lam, 0.0, None)) / (2 * math.pi)
