@@ -147,10 +147,16 @@ def solve_modes(K, M, n_modes: int, *, T=None, lambda_ref: float, method: str = 
                              f"{8 * 2 * ns * ns / 1e9:.1f} GB; use method='sparse'")
     if method == "sparse" and k >= ns - 1:
         method = "dense"  # ARPACK needs k < n - 1
+    # K's own round-off leaves a rigid-body mode about eps * lambda_max above zero (lambda_max
+    # grows with mesh refinement); the diagonal ratio estimates lambda_max from below. The
+    # shift must not be smaller than that floor, or K - shift M is singular in floating point.
+    lambda_max = float((Ks.diagonal() / Ms.diagonal()).max())
+    floor = 100 * np.finfo(float).eps * lambda_max
+    shift = -max(lambda_ref, floor)
     if method == "dense":
-        vals, vecs = _dense(Ks, Ms, k, shift=-lambda_ref)
+        vals, vecs = _dense(Ks, Ms, k, shift=shift)
     elif method == "sparse":
-        vals, vecs = _sparse(Ks, Ms, k, shift=-lambda_ref)
+        vals, vecs = _sparse(Ks, Ms, k, shift=shift)
     else:
         raise ValueError(f"unknown eigen method {method!r}: dense, sparse or auto")
     if condensed is not None:
@@ -158,10 +164,7 @@ def solve_modes(K, M, n_modes: int, *, T=None, lambda_ref: float, method: str = 
 
     if not np.all(np.isfinite(vals)):
         raise NumericalError("eigen solve returned NaN or infinite eigenvalues")
-    # K's own round-off leaves a rigid-body mode about eps * lambda_max above zero (lambda_max
-    # grows with mesh refinement); the diagonal ratio estimates lambda_max from below.
-    lambda_max = float((Ks.diagonal() / Ms.diagonal()).max())
-    zero = max(zero_tol * lambda_ref, 100 * np.finfo(float).eps * lambda_max)
+    zero = max(zero_tol * lambda_ref, floor)
     if vals.min() < -zero:
         raise NumericalError(f"negative eigenvalue {vals.min():.6g} rad^2/s^2: K is not positive "
                              "semi-definite (check spring and section inputs)")
@@ -188,6 +191,21 @@ def solve_modes(K, M, n_modes: int, *, T=None, lambda_ref: float, method: str = 
         # The quotient of a mechanism mode is ~ (eps lambda_max)^2 / lambda: the round-off floor
         # above no longer applies (it passes lambda_1 near 512 elements per link).
         zero = zero_tol * lambda_ref
+    else:
+        # Between the physical threshold and the round-off floor a mode cannot be told apart
+        # from a mechanism: the mesh is too fine for double precision without refinement.
+        unsure = (vals >= zero_tol * lambda_ref) & (vals < zero)
+        if unsure.any():
+            raise NumericalError(
+                f"mode {int(np.argmax(unsure)) + 1} ({np.sqrt(max(vals[unsure][0], 0)) / (2 * np.pi):.4g} "
+                f"Hz) lies below the round-off floor of this mesh ({np.sqrt(zero) / (2 * np.pi):.4g} "
+                "Hz, 100 eps lambda_max): it cannot be told from a mechanism mode. Use fewer "
+                "elements per link, or the energy refinement (analysis.analyze does by default)")
+        elastic = vals[vals >= zero]
+        if elastic.size and np.finfo(float).eps * lambda_max / elastic[0] > 1e-7:
+            log.warning("eigenvalues carry about %.1g relative round-off (eps lambda_max / "
+                        "lambda_1): the mesh is finer than double precision supports without "
+                        "the energy refinement", np.finfo(float).eps * lambda_max / elastic[0])
     kinds = tuple(MECHANISM if v < zero else ELASTIC for v in vals)
     lam = np.clip(vals, 0.0, None)
     return ModalResult(eigenvalues=vals, frequencies=np.sqrt(lam) / (2 * np.pi), shapes=shapes,

@@ -45,3 +45,13 @@ def test_dense_and_sparse_agree_with_rigid_body_modes(method):
     exact = np.array(BETA_L["free-free"][:4]) ** 2 * beam_scale()
     np.testing.assert_allclose(bending_frequencies(result, 4), exact, rtol=1e-4)
     assert result.orthogonality_error < 1e-8
+
+
+def test_mesh_too_fine_for_double_precision_is_reported_not_returned():
+    """Without the energy refinement, a 10 000-element beam puts the round-off floor
+    (100 eps lambda_max, ~700 Hz here) above its first bending mode (334 Hz): that mode
+    cannot be told from a rigid-body mode, so the solver must say so, not label or return it."""
+    from flexlink.errors import NumericalError
+
+    with pytest.raises(NumericalError, match="round-off floor"):
+        modes_of(single_beam("free-free", 10000), 6, method="sparse")
