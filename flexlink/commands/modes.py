@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import logging
+
 import click
 
 from ..cli import dumps, json_option, out_option
@@ -32,6 +34,9 @@ def command(scenes, n_modes, elements, method, tol, as_json, out_dir):
     from ..report import case_summary, csv_text, format_case, overall_mean_abs
     from ..scene import load_scene, scene_files
 
+    # analysis warnings come back in result.warnings and are printed with their case below;
+    # logging them as well would show each one twice
+    logging.getLogger("flexlink.analysis").setLevel(logging.ERROR)
     out = prepare_out_dir(out_dir)
     files = scene_files(scenes)
     summaries = []
