@@ -55,3 +55,20 @@ def test_mesh_too_fine_for_double_precision_is_reported_not_returned():
 
     with pytest.raises(NumericalError, match="round-off floor"):
         modes_of(single_beam("free-free", 10000), 6, method="sparse")
+
+
+def test_refined_path_also_refuses_a_mesh_beyond_double_precision():
+    """With the energy refinement the eigenvalue is a Rayleigh quotient of the computed vector;
+    on a 30 000-element link the vector itself is lost, and the quotient departs from the
+    solver's eigenvalue: that must be an error, not a frequency."""
+    from flexlink.analysis import lambda_scale
+    from flexlink.assembly import assemble, reduction
+    from flexlink.energy import twice_strain_energy
+    from flexlink.errors import NumericalError
+    from flexlink.solve import solve_modes
+
+    model = single_beam("cantilever", 30000)
+    K, M = assemble(model)
+    with pytest.raises(NumericalError, match="too fine for double precision"):
+        solve_modes(K, M, 4, T=reduction(model), lambda_ref=lambda_scale(model), method="sparse",
+                    energy=lambda U: twice_strain_energy(model, U))
