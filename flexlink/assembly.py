@@ -78,9 +78,14 @@ def link_entries(model: FrameModel):
 
 
 def spring_entries(model: FrameModel):
-    """(rows, cols, values) of the finite springs' stiffness; rigid ones are left to
+    """(rows, cols, values) of the model's finite springs; rigid ones are left to
     ``reduction``."""
-    springs = model.springs
+    return springs_stiffness_entries(model.springs)
+
+
+def springs_stiffness_entries(springs):
+    """(rows, cols, values) of two-node springs k [[1, -1], [-1, 1]] (or k to ground) for the
+    finite entries of a ``model.Springs``."""
     finite = np.isfinite(springs.stiffness)
     a, b, k = springs.dof_a[finite], springs.dof_b[finite], springs.stiffness[finite]
     to_node = b != GROUND

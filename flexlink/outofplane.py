@@ -39,7 +39,7 @@ import math
 import numpy as np
 import scipy.sparse as sp
 
-from .assembly import reduction
+from .assembly import reduction, springs_stiffness_entries
 from .model import GROUND, FrameModel, Section, Springs, build_model
 from .scene import Scene
 from .solve import ModalResult, solve_modes
@@ -136,12 +136,7 @@ def assemble_out_of_plane(model: FrameModel, springs: Springs):
         m_blocks.append(T.T @ M @ T)
     K = sp.block_diag(k_blocks, format="csr")
     M = sp.block_diag(m_blocks, format="csr")
-    finite = np.isfinite(springs.stiffness)
-    a, b, k = springs.dof_a[finite], springs.dof_b[finite], springs.stiffness[finite]
-    to_node = b != GROUND
-    rows = np.concatenate([a, b[to_node], a[to_node], b[to_node]])
-    cols = np.concatenate([a, b[to_node], b[to_node], a[to_node]])
-    vals = np.concatenate([k, k[to_node], -k[to_node], -k[to_node]])
+    rows, cols, vals = springs_stiffness_entries(springs)
     n = model.n_dofs
     K = K + sp.coo_matrix((vals, (rows, cols)), shape=(n, n)).tocsr()
     if model.point_masses:

@@ -234,6 +234,19 @@ def _set_dotted(data: dict, origin: dict, field: str, value):
     origin[field] = "overrides"
 
 
+def joint_inputs(r: SceneReader, joint: str) -> tuple[float, float, float]:
+    """(Kt [N/m], Kr [N m/rad], mass [kg]) of ``joint``: its own [joints.<joint>] value where
+    given, else the shared [joints] one; mass defaults to 0."""
+    def stiff(key, dim):
+        specific = f"joints.{joint}.{key}"
+        field = specific if r.has(specific) else f"joints.{key}"
+        return r.quantity(field, dim, positive=True, allow_zero=True)
+
+    mass = (r.quantity(f"joints.{joint}.mass", "mass", allow_zero=True)
+            if r.has(f"joints.{joint}.mass") else 0.0)
+    return stiff("Kt", "translational stiffness"), stiff("Kr", "rotational stiffness"), mass
+
+
 def load_scene(path: str | Path, overrides: dict | None = None):
     """Read and validate a scene file (and its base): a ``Scene`` for a four-bar, a
     ``scene_general.GeneralScene`` for ``linkage.type = "general"``. Raises InputError naming
@@ -280,16 +293,7 @@ def load_scene(path: str | Path, overrides: dict | None = None):
 
     sections = {link: _section(r, link, _material(r, link)) for link, _, _ in FOUR_BAR_LINKS}
 
-    joints = []
-    for joint, ground in FOUR_BAR_JOINTS:
-        def stiff(key, dim, joint=joint):
-            specific = f"joints.{joint}.{key}"
-            field = specific if r.has(specific) else f"joints.{key}"
-            return r.quantity(field, dim, positive=True, allow_zero=True)
-        mass = (r.quantity(f"joints.{joint}.mass", "mass", allow_zero=True)
-                if r.has(f"joints.{joint}.mass") else 0.0)
-        joints.append(JointSpec(joint, ground, stiff("Kt", "translational stiffness"),
-                                stiff("Kr", "rotational stiffness"), mass))
+    joints = [JointSpec(joint, ground, *joint_inputs(r, joint)) for joint, ground in FOUR_BAR_JOINTS]
 
     drive = None
     if r.has("drive"):

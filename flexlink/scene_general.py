@@ -35,7 +35,7 @@ from .errors import InputError
 from .kinematics import BRANCHES, FourBar
 from .linkage import Body, Linkage, four_bar_linkage
 from .model import DriveSpec, JointSpec, LinkSpec, Section, Topology
-from .scene import Assumption, SceneReader, _material, _unique
+from .scene import Assumption, SceneReader, _material, _unique, joint_inputs
 from .synthesis import brodell_soni, extended_rocker, minimax
 from .units import parse_quantity
 
@@ -244,18 +244,11 @@ def load_general(r: SceneReader, path: Path) -> GeneralScene:
         used += [j for j in (start_j, end_j) if j not in used]
     joints = []
     for joint in used:
-        def stiff(key, dim, joint=joint):
-            specific = f"joints.{joint}.{key}"
-            field = specific if r.has(specific) else f"joints.{key}"
-            return r.quantity(field, dim, positive=True, allow_zero=True)
-        mass = (r.quantity(f"joints.{joint}.mass", "mass", allow_zero=True)
-                if r.has(f"joints.{joint}.mass") else 0.0)
         welded = r.raw(f"joints.{joint}.welded", False)
         if not isinstance(welded, bool):
             raise InputError(f"got {welded!r}", source=r.src(f"joints.{joint}.welded"),
                              field=f"joints.{joint}.welded", expected="true or false")
-        joints.append(JointSpec(joint, joint in ground, stiff("Kt", "translational stiffness"),
-                                stiff("Kr", "rotational stiffness"), mass, welded))
+        joints.append(JointSpec(joint, joint in ground, *joint_inputs(r, joint), welded))
     drive = None
     if r.has("drive"):
         drive = DriveSpec(link=r.raw("drive.link"), joint=r.raw("drive.joint"),
