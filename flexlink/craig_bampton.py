@@ -47,6 +47,7 @@ from .solve import ELASTIC, MECHANISM, ModalResult, _dense, solve_modes
 log = logging.getLogger(__name__)
 
 CUTOFF = 12.0  # fixed-interface modes kept up to this times the highest requested frequency
+SERIES = 4  # terms of the truncated modes' series in lambda / lambda_k (``flexibility_series``)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -111,9 +112,7 @@ class ReducedLink:
     axial: np.ndarray  # bool per reduced DOF: axial family
     rotation: np.ndarray  # bool per reduced DOF: boundary rotation
     basis: np.ndarray
-    coupling: np.ndarray  # (6, t) mass coupling of the boundary DOFs with the truncated modes
-    truncated: np.ndarray  # (t,) their eigenvalues at the reference length [rad^2/s^2]
-    truncated_axial: np.ndarray  # (t,) bool: axial family
+    flexibility: np.ndarray  # (2 families, SERIES, 6, 6): see ``flexibility_series``
 
     @property
     def n_modes(self) -> int:
@@ -128,13 +127,19 @@ class ReducedLink:
         b = math.sqrt(r) * np.where(self.rotation, r, 1.0)
         return a[:, None] * self.K * a, b[:, None] * self.M * b
 
-    def residual(self, length: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """The truncated modes at ``length`` [m]: (coupling (6, t), their stiffness k (t,),
-        their mass m (t,)); a truncated coordinate obeys (k - lambda m) q = lambda coupling^T u_B."""
+    def flexibility_series(self, length: float) -> np.ndarray:
+        """(SERIES, 6, 6) F_j = sum over truncated modes of c c^T m^j / k^(j + 1) at ``length``
+        [m] (c: a truncated mode's mass coupling with the boundary DOFs, k, m: its modal
+        stiffness and mass; local frame). Eliminating the truncated modes adds
+        -lambda^2 sum_k c c^T / (k - lambda m) = -lambda^2 sum_j lambda^j F_j to the reduced
+        dynamic stiffness; every truncated mode has k / m > lambda_cut >= CUTOFF^2 lambda, so
+        the terms left out are below CUTOFF^(-2 SERIES) of the first."""
         r = length / self.length
-        b_boundary = math.sqrt(r) * np.where(self.rotation[:6], r, 1.0)
-        k = self.truncated * np.where(self.truncated_axial, 1 / r, r**-3)
-        return b_boundary[:, None] * self.coupling * math.sqrt(r), k, np.full(k.shape, r)
+        beta = r * np.where(self.rotation[:6], r, 1.0)  # coupling scale (module docstring)
+        power = np.arange(SERIES)[:, None, None]
+        axial = self.flexibility[0] * r**power / (1 / r) ** (power + 1)
+        bending = self.flexibility[1] * r**power / r ** (-3 * (power + 1))
+        return np.outer(beta, beta) * (axial + bending)
 
 
 def reduce_link(length: float, elements: int, EA: float, EI: float, rhoA: float,
@@ -165,20 +170,17 @@ def reduce_link(length: float, elements: int, EA: float, EI: float, rhoA: float,
         next_mode += m
     rotation = np.zeros(n, dtype=bool)
     rotation[[2, 5]] = True
-    coupling, truncated, truncated_axial = [], [], []
+    flexibility = np.zeros((2, SERIES, 6, 6))
     for index, (fam, m) in enumerate(parts):
         nb = len(fam.boundary)
-        block = np.zeros((6, len(fam.eigenvalues) - m))
-        block[np.searchsorted(boundary_local, fam.boundary)] = fam.M[:nb, nb + m:]
-        coupling.append(block)
-        truncated.append(fam.eigenvalues[m:])
-        truncated_axial.append(np.full(len(fam.eigenvalues) - m, index == 0))
-    extra = dict(coupling=np.hstack(coupling), truncated=np.concatenate(truncated),
-                 truncated_axial=np.concatenate(truncated_axial))
-    for A in (K, M, basis, axial_mask, rotation, *extra.values()):
+        coupling = np.zeros((6, len(fam.eigenvalues) - m))  # modal masses are 1 (eigh)
+        coupling[np.searchsorted(boundary_local, fam.boundary)] = fam.M[:nb, nb + m:]
+        for j in range(SERIES):
+            flexibility[index, j] = (coupling / fam.eigenvalues[m:] ** (j + 1)) @ coupling.T
+    for A in (K, M, basis, axial_mask, rotation, flexibility):
         A.flags.writeable = False
     return ReducedLink(length=float(length), K=K, M=M, axial=axial_mask, rotation=rotation,
-                       basis=basis, **extra)
+                       basis=basis, flexibility=flexibility)
 
 
 def lowest_fixed_interface(length: float, elements: int, EA: float, EI: float,
@@ -259,6 +261,7 @@ class CraigBamptonPlan:
         self.columns = columns
         self.boundary = bmodel
         self.boundary_column = column
+        self._series = {}  # (link index, length) -> flexibility series at that length
         self.constant = []
         for rows, cols, vals in (spring_entries(bmodel), point_mass_entries(bmodel)):
             r, c = column[rows], column[cols]
@@ -297,30 +300,28 @@ class CraigBamptonPlan:
         order in the error of x, where plain truncation has first order."""
         vectors = np.asarray(vectors)
         padded = np.vstack([vectors, np.zeros((1, vectors.shape[1]))])
-        w, k, m = [], [], []
-        for rl, link, cols in zip(self.links, model.links, self.columns):
-            if not len(rl.truncated):
-                continue
+        terms = np.zeros((SERIES, vectors.shape[1]))  # u^T F_j u per eigenvector
+        for index, (rl, link, cols) in enumerate(zip(self.links, model.links, self.columns)):
+            key = (index, link.length)
+            if key not in self._series:
+                if len(self._series) >= 256:
+                    self._series.clear()
+                self._series[key] = rl.flexibility_series(link.length)
             c, s = math.cos(link.angle), math.sin(link.angle)
-            R = np.array([[c, s, 0.0], [-s, c, 0.0], [0.0, 0.0, 1.0]])
             u = padded[cols[:6]]
-            local = np.vstack([R @ u[:3], R @ u[3:]])
-            coupling, kk, mm = rl.residual(link.length)
-            w.append(coupling.T @ local)  # (t, modes)
-            k.append(kk)
-            m.append(mm)
+            local = np.empty_like(u)  # boundary DOFs in the link frame
+            local[[0, 3]] = c * u[[0, 3]] + s * u[[1, 4]]
+            local[[1, 4]] = -s * u[[0, 3]] + c * u[[1, 4]]
+            local[[2, 5]] = u[[2, 5]]
+            terms += np.einsum("im,jim->jm", local, self._series[key] @ local)
         lam = np.array(eigenvalues, dtype=float)
-        if not w:
-            return lam
-        w2 = np.vstack(w) ** 2
-        k, m = np.concatenate(k)[:, None], np.concatenate(m)[:, None]
         start = lam.copy()
+        power = np.arange(SERIES)[:, None]
         for _ in range(iterations):
-            d = k - lam * m
-            S = (w2 / d).sum(axis=0)
+            S = (lam**power * terms).sum(axis=0)
+            dS = (power[1:] * lam ** power[:-1] * terms[1:]).sum(axis=0)
             f = start - lam - lam**2 * S
-            df = -1 - 2 * lam * S - lam**2 * (w2 * m / d**2).sum(axis=0)
-            lam = lam - f / df
+            lam = lam + f / (1 + 2 * lam * S + lam**2 * dS)
         return lam
 
     def shapes(self, model: FrameModel, vectors: np.ndarray) -> np.ndarray:
