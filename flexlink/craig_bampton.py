@@ -261,7 +261,8 @@ class CraigBamptonPlan:
         self.columns = columns
         self.boundary = bmodel
         self.boundary_column = column
-        self._series = {}  # (link index, length) -> flexibility series at that length
+        self._series = {}  # link lengths -> (links, SERIES, 6, 6) flexibility series
+        self.boundary_columns = np.array([cols[:6] for cols in columns])
         self.constant = []
         for rows, cols, vals in (spring_entries(bmodel), point_mass_entries(bmodel)):
             r, c = column[rows], column[cols]
@@ -300,20 +301,21 @@ class CraigBamptonPlan:
         order in the error of x, where plain truncation has first order."""
         vectors = np.asarray(vectors)
         padded = np.vstack([vectors, np.zeros((1, vectors.shape[1]))])
-        terms = np.zeros((SERIES, vectors.shape[1]))  # u^T F_j u per eigenvector
-        for index, (rl, link, cols) in enumerate(zip(self.links, model.links, self.columns)):
-            key = (index, link.length)
-            if key not in self._series:
-                if len(self._series) >= 256:
-                    self._series.clear()
-                self._series[key] = rl.flexibility_series(link.length)
-            c, s = math.cos(link.angle), math.sin(link.angle)
-            u = padded[cols[:6]]
-            local = np.empty_like(u)  # boundary DOFs in the link frame
-            local[[0, 3]] = c * u[[0, 3]] + s * u[[1, 4]]
-            local[[1, 4]] = -s * u[[0, 3]] + c * u[[1, 4]]
-            local[[2, 5]] = u[[2, 5]]
-            terms += np.einsum("im,jim->jm", local, self._series[key] @ local)
+        lengths = tuple(link.length for link in model.links)
+        if lengths not in self._series:
+            if len(self._series) >= 64:
+                self._series.clear()
+            self._series[lengths] = np.stack([rl.flexibility_series(length)
+                                              for rl, length in zip(self.links, lengths)])
+        series = self._series[lengths]  # (links, SERIES, 6, 6)
+        angle = np.array([link.angle for link in model.links])[:, None, None]
+        c, s = np.cos(angle), np.sin(angle)
+        u = padded[self.boundary_columns]  # (links, 6, modes), global frame
+        local = np.empty_like(u)  # boundary DOFs in each link's frame
+        local[:, [0, 3]] = c * u[:, [0, 3]] + s * u[:, [1, 4]]
+        local[:, [1, 4]] = -s * u[:, [0, 3]] + c * u[:, [1, 4]]
+        local[:, [2, 5]] = u[:, [2, 5]]
+        terms = np.einsum("lim,ljim->jm", local, series @ local[:, None])  # u^T F_j u
         lam = np.array(eigenvalues, dtype=float)
         start = lam.copy()
         power = np.arange(SERIES)[:, None]
