@@ -46,7 +46,7 @@ from .solve import ELASTIC, MECHANISM, ModalResult, _dense, solve_modes
 
 log = logging.getLogger(__name__)
 
-CUTOFF = 12.0  # fixed-interface modes kept up to this times the highest requested frequency
+CUTOFF = 14.0  # fixed-interface modes kept up to this times the highest requested frequency
 SERIES = 4  # terms of the truncated modes' series in lambda / lambda_k (``flexibility_series``)
 
 
