@@ -51,7 +51,7 @@ import scipy.linalg as la
 from .assembly import point_mass_entries, reduction, spring_entries
 from .link import link_matrices
 from .errors import NumericalError
-from .model import GROUND, FrameModel, LinkMesh, Springs, Topology, _Layout
+from .model import GROUND, FrameModel, LinkMesh, Springs, _Layout
 from .solve import ELASTIC, MECHANISM, ModalResult, _dense, solve_modes
 
 log = logging.getLogger(__name__)
@@ -112,9 +112,9 @@ class ReducedLink:
     """One link reduced to its 6 boundary DOFs (start u, v, rz, end u, v, rz, local frame)
     followed by ``n_modes`` fixed-interface modal coordinates, at reference ``length`` [m].
 
-    K, M: reduced matrices; k_scale_axial etc.: which reduced DOFs scale how with the length
-    (see the module docstring); basis (3 (elements + 1), 6 + n_modes): local displacements of
-    the whole chain from the reduced coordinates at the reference length."""
+    K, M: reduced matrices; axial, rotation: which reduced DOFs scale how with the length (see
+    the module docstring); basis (3 (elements + 1), 6 + n_modes): local displacements of the
+    whole chain from the reduced coordinates at the reference length."""
 
     length: float
     K: np.ndarray
@@ -201,7 +201,7 @@ def lowest_fixed_interface(length: float, elements: int, EA: float, EI: float,
     return min(lams) if lams else math.inf
 
 
-def boundary_model(topology: Topology, lay: _Layout, model: FrameModel) -> FrameModel:
+def boundary_model(lay: _Layout, model: FrameModel) -> FrameModel:
     """The full model's end nodes only (node 2 l: start of link l, 2 l + 1: its end), with the
     layout's springs and joint masses renumbered onto them. Every spring and joint mass of the
     full model sits on an end node, so nothing is lost (checked)."""
@@ -237,14 +237,14 @@ class CraigBamptonPlan:
     rigid-joint reduction, then each link's modal coordinates), for a given cut-off
     ``lambda_cut`` [rad^2/s^2]. Built from one model of the topology."""
 
-    def __init__(self, model: FrameModel, lay: _Layout, topology: Topology, lambda_cut: float):
+    def __init__(self, model: FrameModel, lay: _Layout, lambda_cut: float):
         self.lambda_cut = lambda_cut
         self.links = []
         for link in model.links:
             s = link.section
             self.links.append(reduce_link(link.length, link.elements, s.EA, s.EI,
                                           s.mass_per_length, lambda_cut))
-        bmodel = boundary_model(topology, lay, model)
+        bmodel = boundary_model(lay, model)
         T = reduction(bmodel)
         n_b = bmodel.n_dofs
         if T is None:

@@ -222,7 +222,7 @@ def _craig_bampton_sweep(topology: Topology, poses, n_modes: int, freqs: np.ndar
         if plan is None:
             lowest = min(lowest_fixed_interface(l.length, l.elements, l.section.EA, l.section.EI,
                                                 l.section.mass_per_length) for l in model.links)
-            plan = CraigBamptonPlan(model, fixed, topology, CUTOFF**2 * lowest)
+            plan = CraigBamptonPlan(model, fixed, CUTOFF**2 * lowest)
         while True:
             K, M = plan.matrices(model)
             solve = functools.partial(dense_modes, K, M, lambda_ref=lambda_ref)
@@ -233,7 +233,7 @@ def _craig_bampton_sweep(topology: Topology, poses, n_modes: int, freqs: np.ndar
             need = (CUTOFF * 2 * math.pi * elastic[-1])**2 if len(elastic) == n_modes else math.inf
             if need <= plan.lambda_cut or math.isinf(plan.lambda_cut):
                 break
-            plan = CraigBamptonPlan(model, fixed, topology, 1.2**2 * need)
+            plan = CraigBamptonPlan(model, fixed, 1.2**2 * need)
         expected = n_mechanism
         freqs[i, :len(elastic)] = elastic
         mechanism[i] = n_mechanism

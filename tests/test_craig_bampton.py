@@ -104,7 +104,7 @@ def test_shapes_from_reduced_coordinates_satisfy_the_full_model():
     topology = scene.topology(8)
     points = cycle_poses(scene, 1)[0]
     model = build_model(topology, points)
-    plan = CraigBamptonPlan(model, layout(topology), topology, math.inf)  # every mode: exact
+    plan = CraigBamptonPlan(model, layout(topology), math.inf)  # every mode: exact
     K, M = plan.matrices(model)
     modes = dense_modes(K, M, 4, lambda_ref=1.0)
     shapes = plan.shapes(model, modes.shapes)
