@@ -240,7 +240,8 @@ def _craig_bampton_sweep(topology: Topology, poses, n_modes: int, freqs: np.ndar
 
 
 def parallel_modal_sweep(topology: Topology, poses: Iterable[Mapping[str, tuple[float, float]]],
-                         n_modes: int, method: str = "auto", n_jobs: int = -1) -> SweepResult:
+                         n_modes: int, method: str = "auto", n_jobs: int = -1,
+                         reduction: str | None = None) -> SweepResult:
     """``modal_sweep`` with the poses split into one contiguous chunk per worker process
     (joblib, loky backend; ``n_jobs`` = -1: one per core). Same result as the serial sweep;
     worth it from a few hundred poses on, below that starting the workers costs more."""
@@ -249,7 +250,8 @@ def parallel_modal_sweep(topology: Topology, poses: Iterable[Mapping[str, tuple[
     poses = list(poses)
     chunks = [c for c in np.array_split(np.arange(len(poses)), effective_n_jobs(n_jobs)) if len(c)]
     parts = Parallel(n_jobs=n_jobs)(
-        delayed(modal_sweep)(topology, [poses[i] for i in chunk], n_modes, method)
+        delayed(modal_sweep)(topology, [poses[i] for i in chunk], n_modes, method,
+                             reduction=reduction)
         for chunk in chunks)
     return SweepResult(frequencies=np.concatenate([p.frequencies for p in parts]),
                        mechanism_counts=np.concatenate([p.mechanism_counts for p in parts]))
