@@ -78,6 +78,7 @@ def per_pose(repeats: int) -> bool:
           f"{N_MODES} modes, {len(poses)} poses over the cycle, medians of {repeats} repeats")
 
     ours = modal_sweep(topology, poses, N_MODES).frequencies
+    reduced = modal_sweep(topology, poses, N_MODES, reduction="craig-bampton").frequencies
     solvers = ("-genBandArpack", "-fullGenLapack")
     worst = {}
     for solver in solvers:
@@ -107,6 +108,8 @@ def per_pose(repeats: int) -> bool:
     # the contenders take turns within each repeat, so that a change of load on the shared
     # machine hits all of them; ratios are medians of the per-repeat ratios
     work = {"flexlink": lambda: modal_sweep(topology, poses, N_MODES),
+            "craig-bampton": lambda: modal_sweep(topology, poses, N_MODES,
+                                                 reduction="craig-bampton"),
             **{s: (lambda s=s: opensees_all(s)) for s in solvers},
             "bare": lambda: bare([0, N_MODES - 1]), "full": lambda: bare(None)}
     runs = {name: [] for name in work}
@@ -128,9 +131,18 @@ def per_pose(repeats: int) -> bool:
           f"{t['bare'] * ms:7.3f} ms/pose  flexlink/bare ratio {1 / ratio['bare']:.2f}x")
     print(f"  LAPACK    scipy.linalg.eigh(K, M), all {n}:                 "
           f"{t['full'] * ms:7.3f} ms/pose")
+    cb_ratio = {s: statistics.median(np.array(runs[s]) / np.array(runs["craig-bampton"]))
+                for s in solvers}
+    print(f"  flexlink  modal_sweep(reduction='craig-bampton'):              "
+          f"{t['craig-bampton'] * ms:7.3f} ms/pose  ratio vs OpenSees "
+          + ", ".join(f"{s} {cb_ratio[s]:.1f}x" for s in solvers)
+          + f"; max relative difference from the full model {_deviation(reduced, ours):.1e}")
     fastest = min(ratio[s] for s in solvers)
     target(">= 10x faster than OpenSeesPy (its faster solver)", f"ratio {fastest:.1f}x",
            ">= 10x", fastest >= 10)
+    cb_fastest = min(cb_ratio.values())
+    target(">= 10x faster than OpenSeesPy, Craig-Bampton path", f"ratio {cb_fastest:.1f}x",
+           ">= 10x", cb_fastest >= 10)
     target("<= 2x the bare LAPACK call", f"ratio {1 / ratio['bare']:.2f}x", "<= 2x",
            1 / ratio["bare"] <= 2)
     return agree
@@ -165,6 +177,51 @@ def whole_cycle(repeats: int) -> None:
                                      for K, M in pencils], repeats)
     print(f"  for scale, scipy.linalg.eigh(K, M) alone on the same 1440 pencils: {bare:.3f} s CPU")
     target("under 1 s on one core", f"{cpu:.3f} s", "< 1 s", cpu < 1.0)
+
+
+# -- 2b. whole-cycle map at the default converged mesh, Craig-Bampton links ---------------------
+def _deviation(reduced: np.ndarray, full: np.ndarray) -> float:
+    return float(np.max(np.abs(reduced - full) / full))
+
+
+def converged_cycle(repeats: int, every: int = 10) -> None:
+    """The 4 cycle maps at the mesh ``convergence.mesh_for_tolerance`` picks (6 modes,
+    relative tolerance DEFAULT_TOL), through the Craig-Bampton sweep; the full model is solved
+    at every ``every``-th pose to measure the deviation (all 1440 would take a minute)."""
+    from flexlink.convergence import DEFAULT_TOL, mesh_for_tolerance
+
+    scenes = [load_scene(p) for p in CASES]
+    rules = [mesh_for_tolerance(scene, N_MODES) for scene in scenes]
+    print(f"2b. whole-cycle map at the default converged mesh (convergence.mesh_for_tolerance, "
+          f"{N_MODES} modes, tol {DEFAULT_TOL:g}): " + ", ".join(
+              f"{Path(s.path).stem} {r.elements} elements/link (estimate {r.estimate:.1e})"
+              for s, r in zip(scenes, rules)))
+    work = [(s.topology(r.elements), cycle_poses(s, 360)) for s, r in zip(scenes, rules)]
+    model = build_model(work[0][0], work[0][1][0])
+    print(f"  360 poses x {len(CASES)} cases, {model.n_dofs} DOFs in the full model, "
+          f"modal_sweep(reduction='craig-bampton'), one core, medians of {repeats} repeats "
+          "(each repeat builds its reductions afresh)")
+
+    def all_cases():
+        return [modal_sweep(t, poses, N_MODES, reduction="craig-bampton").frequencies
+                for t, poses in work]
+    maps = all_cases()
+    cpu = median_time(all_cases, repeats)
+    wall = median_time(all_cases, repeats, time.perf_counter)
+    print(f"  {cpu:.3f} s CPU ({cpu / (360 * len(CASES)) * 1e3:.3f} ms/pose), {wall:.3f} s wall")
+    worst, full_cpu = 0.0, 0.0
+    for (t, poses), reduced in zip(work, maps):
+        start = time.process_time()
+        full = modal_sweep(t, poses[::every], N_MODES).frequencies
+        full_cpu += time.process_time() - start
+        worst = max(worst, _deviation(reduced[::every], full))
+    n_full = len(CASES) * len(work[0][1][::every])
+    print(f"  full model at every {every}th pose ({n_full} poses): {full_cpu / n_full * 1e3:.2f} "
+          f"ms/pose CPU, i.e. about {full_cpu / n_full * 360 * len(CASES):.1f} s for the 1440")
+    target("under 1 s on one core at the default converged mesh", f"{cpu:.3f} s", "< 1 s",
+           cpu < 1.0)
+    target("Craig-Bampton vs full model, first 6 modes", f"max relative difference {worst:.1e}",
+           "<= 1e-6", worst <= 1e-6)
 
 
 # -- 3. sparse-path scaling -----------------------------------------------------------------------
@@ -296,6 +353,7 @@ def main() -> int:
           f"{os.cpu_count()} cores, load average {os.getloadavg()[0]:.2f} at start")
     agree = per_pose(args.repeats)
     whole_cycle(max(3, args.repeats // 2))
+    converged_cycle(max(3, args.repeats // 2))
     scaling()
     startup(args.repeats)
     parallel(max(3, args.repeats // 2))

@@ -66,11 +66,15 @@ class ModalMap:
 
 
 def modal_map(scene: GeneralScene, n_poses: int = 360, n_modes: int = 3,
-              elements_per_link: int | None = None, progress=None) -> ModalMap:
-    """The first ``n_modes`` elastic frequencies at ``n_poses`` input angles over the cycle."""
+              elements_per_link: int | None = None, progress=None,
+              reduction: str | None = "craig-bampton") -> ModalMap:
+    """The first ``n_modes`` elastic frequencies at ``n_poses`` input angles over the cycle.
+
+    ``reduction``: as in ``sweep.modal_sweep``; by default the Craig-Bampton links
+    (tests/test_craig_bampton.py: within 1e-6 of the full model), None for the full model."""
     cycle = kinematic_cycle(scene, n_poses)
     sweep = modal_sweep(scene.topology(elements_per_link), [s.points for s in cycle.states],
-                        n_modes, progress=progress)
+                        n_modes, progress=progress, reduction=reduction)
     mu90 = {k: crossings(cycle.q, mu, math.pi / 2)
             for k, mu in transmission_angles(scene, cycle).items()}
     return ModalMap(scene=scene.name, q=cycle.q, frequencies=sweep.frequencies,

@@ -20,7 +20,9 @@ from collections.abc import Iterable, Mapping
 import numpy as np
 
 from .analysis import lambda_scale
-from .assembly import assemble, link_entries, point_mass_entries, reduction, spring_entries
+from .assembly import assemble, link_entries, point_mass_entries, spring_entries
+from .assembly import reduction as rigid_reduction
+from .craig_bampton import CUTOFF, CraigBamptonPlan, dense_modes, lowest_fixed_interface
 from .link import link_entries as local_entries
 from .model import FrameModel, Topology, build_model, layout
 from .solve import DENSE_LIMIT, DENSE_REFUSE, ELASTIC, solve_modes
@@ -136,10 +138,10 @@ class _DensePlan:
         return K, M
 
 
-def _lowest_elastic(solve, n_modes: int, expected_mechanisms: int):
+def _solve_lowest(solve, n_modes: int, expected_mechanisms: int):
     """``solve(k)`` -> ModalResult of the lowest k modes. Solves for n_modes plus the mechanism
     modes expected (these sit lowest); if more turn up, solves once more with room for them
-    (at least EXTRA_MODES). Returns (elastic frequencies [Hz], at most n_modes; mechanism count)."""
+    (at least EXTRA_MODES). Returns (the ModalResult, bool mask of its elastic modes)."""
     k = n_modes + expected_mechanisms
     for _ in range(2):
         result = solve(k)
@@ -148,18 +150,35 @@ def _lowest_elastic(solve, n_modes: int, expected_mechanisms: int):
         if elastic.sum() >= n_modes or len(elastic) < k:  # enough, or every mode of the model
             break
         k = n_modes + max(n_mechanism + 1, EXTRA_MODES)
-    return result.frequencies[elastic][:n_modes], n_mechanism
+    return result, elastic
+
+
+def _lowest_elastic(solve, n_modes: int, expected_mechanisms: int):
+    """(elastic frequencies [Hz], at most n_modes; mechanism count), see ``_solve_lowest``."""
+    result, elastic = _solve_lowest(solve, n_modes, expected_mechanisms)
+    return result.frequencies[elastic][:n_modes], len(elastic) - int(elastic.sum())
+
+
+REDUCTIONS = (None, "craig-bampton")
 
 
 def modal_sweep(topology: Topology, poses: Iterable[Mapping[str, tuple[float, float]]],
-                n_modes: int, method: str = "auto", progress=None) -> SweepResult:
+                n_modes: int, method: str = "auto", progress=None,
+                reduction: str | None = None) -> SweepResult:
     """Lowest ``n_modes`` elastic frequencies [Hz] at each pose (joint name -> (x, y) [m]).
 
-    ``progress``: optional callable wrapping the pose iterable (e.g. a tqdm factory)."""
+    ``progress``: optional callable wrapping the pose iterable (e.g. a tqdm factory).
+    ``reduction``: None solves the full model; "craig-bampton" solves each link reduced to its
+    end nodes and fixed-interface modes (``craig_bampton.py``; dense solve, ``method`` unused)."""
+    if reduction not in REDUCTIONS:
+        raise ValueError(f"unknown reduction {reduction!r}: one of {REDUCTIONS}")
     poses = list(poses)
     iterator = progress(poses) if progress else poses
     freqs = np.full((len(poses), n_modes), np.nan)
     mechanism = np.zeros(len(poses), dtype=int)
+    if reduction == "craig-bampton":
+        _craig_bampton_sweep(topology, iterator, n_modes, freqs, mechanism)
+        return SweepResult(frequencies=freqs, mechanism_counts=mechanism)
     plan = None
     expected = 0  # mechanism modes found at the previous pose: usually the same at the next
     fixed = layout(topology)
@@ -167,7 +186,7 @@ def modal_sweep(topology: Topology, poses: Iterable[Mapping[str, tuple[float, fl
         model = build_model(topology, points, fixed)
         lambda_ref = lambda_scale(model)
         if i == 0:
-            T = reduction(model)  # depends on the topology only
+            T = rigid_reduction(model)  # depends on the topology only
             n = model.n_dofs if T is None else T.shape[1]
             if method == "auto":
                 method = "dense" if n <= DENSE_LIMIT else "sparse"
@@ -185,8 +204,44 @@ def modal_sweep(topology: Topology, poses: Iterable[Mapping[str, tuple[float, fl
     return SweepResult(frequencies=freqs, mechanism_counts=mechanism)
 
 
+def _craig_bampton_sweep(topology: Topology, poses, n_modes: int, freqs: np.ndarray,
+                         mechanism: np.ndarray) -> None:
+    """``modal_sweep`` through ``CraigBamptonPlan``, filling ``freqs`` and ``mechanism``.
+
+    The basis keeps every fixed-interface mode up to CUTOFF times the highest requested
+    frequency: the first pose starts from CUTOFF times the lowest fixed-interface frequency of
+    any link, and whenever a pose's highest requested frequency outgrows the basis (or fewer
+    elastic modes than requested are found), the plan is rebuilt with room to spare (a factor
+    1.2 in frequency, so a slowly growing spectrum does not rebuild at every pose) and the pose
+    is solved again."""
+    fixed = layout(topology)
+    plan, expected = None, 0
+    for i, points in enumerate(poses):
+        model = build_model(topology, points, fixed)
+        lambda_ref = lambda_scale(model)
+        if plan is None:
+            lowest = min(lowest_fixed_interface(l.length, l.elements, l.section.EA, l.section.EI,
+                                                l.section.mass_per_length) for l in model.links)
+            plan = CraigBamptonPlan(model, fixed, CUTOFF**2 * lowest)
+        while True:
+            K, M = plan.matrices(model)
+            solve = functools.partial(dense_modes, K, M, lambda_ref=lambda_ref)
+            result, mask = _solve_lowest(solve, n_modes, expected)
+            n_mechanism = len(mask) - int(mask.sum())
+            lam = np.sort(plan.corrected(model, result.eigenvalues[mask], result.shapes[:, mask]))
+            elastic = np.sqrt(np.clip(lam[:n_modes], 0.0, None)) / (2 * math.pi)
+            need = (CUTOFF * 2 * math.pi * elastic[-1])**2 if len(elastic) == n_modes else math.inf
+            if need <= plan.lambda_cut or math.isinf(plan.lambda_cut):
+                break
+            plan = CraigBamptonPlan(model, fixed, 1.2**2 * need)
+        expected = n_mechanism
+        freqs[i, :len(elastic)] = elastic
+        mechanism[i] = n_mechanism
+
+
 def parallel_modal_sweep(topology: Topology, poses: Iterable[Mapping[str, tuple[float, float]]],
-                         n_modes: int, method: str = "auto", n_jobs: int = -1) -> SweepResult:
+                         n_modes: int, method: str = "auto", n_jobs: int = -1,
+                         reduction: str | None = None) -> SweepResult:
     """``modal_sweep`` with the poses split into one contiguous chunk per worker process
     (joblib, loky backend; ``n_jobs`` = -1: one per core). Same result as the serial sweep;
     worth it from a few hundred poses on, below that starting the workers costs more."""
@@ -195,7 +250,8 @@ def parallel_modal_sweep(topology: Topology, poses: Iterable[Mapping[str, tuple[
     poses = list(poses)
     chunks = [c for c in np.array_split(np.arange(len(poses)), effective_n_jobs(n_jobs)) if len(c)]
     parts = Parallel(n_jobs=n_jobs)(
-        delayed(modal_sweep)(topology, [poses[i] for i in chunk], n_modes, method)
+        delayed(modal_sweep)(topology, [poses[i] for i in chunk], n_modes, method,
+                             reduction=reduction)
         for chunk in chunks)
     return SweepResult(frequencies=np.concatenate([p.frequencies for p in parts]),
                        mechanism_counts=np.concatenate([p.mechanism_counts for p in parts]))
