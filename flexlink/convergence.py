@@ -93,29 +93,42 @@ def run_level(scene: Scene, choice: Choice, elements: int, n_modes: int, repeats
     return run_levels(scene, [(choice, elements)], n_modes, repeats)[0]
 
 
-def run_levels(scene: Scene, work, n_modes: int, repeats: int, progress=None) -> list[Level]:
+def run_levels(scene: Scene, work, n_modes: int, repeats: int, progress=None,
+               refused: list | None = None) -> list[Level]:
     """Every (choice, elements) of ``work``, solved ``repeats`` times, round-robin: each round
     runs every level once, so a change in machine load during the study hits every choice
     alike. A level whose runs took REPEAT_BUDGET_S in all is not repeated further. Median
-    assembly and solve wall times [s]."""
+    assembly and solve wall times [s].
+
+    A level the solver refuses (NumericalError, e.g. a mesh past double precision for that
+    choice) is left out of the result; with ``refused`` given, (choice, elements, message) is
+    appended there, otherwise the error propagates."""
     work = list(work)
     runs: list[list] = [[] for _ in work]
+    failed: dict[int, str] = {}
     rounds = range(repeats)
     for _ in (progress(rounds) if progress else rounds):
-        for (choice, elements), done in zip(work, runs):
-            if done and sum(sum(r.seconds.values()) for r in done) >= REPEAT_BUDGET_S:
+        for i, ((choice, elements), done) in enumerate(zip(work, runs)):
+            if i in failed or (done and sum(sum(r.seconds.values()) for r in done)
+                               >= REPEAT_BUDGET_S):
                 continue
-            done.append(analyze(scene, n_modes, elements, choice.method, choice.mass,
-                                choice.refine))
+            try:
+                done.append(analyze(scene, n_modes, elements, choice.method, choice.mass,
+                                    choice.refine))
+            except NumericalError as exc:
+                if refused is None:
+                    raise
+                failed[i] = str(exc)
+                refused.append((choice, elements, str(exc)))
     return [Level(choice=c, elements=e, dofs=done[-1].modes.n_dofs,
                   assembly_s=statistics.median(r.seconds["assembly"] for r in done),
                   solve_s=statistics.median(r.seconds["solve"] for r in done),
                   frequencies=done[-1].elastic_frequencies(n_modes), runs=len(done))
-            for (c, e), done in zip(work, runs)]
+            for i, ((c, e), done) in enumerate(zip(work, runs)) if i not in failed]
 
 
 def runs_dense(elements: int, scene: Scene) -> bool:
-    """Dense choices stop where ``auto`` would leave the dense solver (DENSE_LIMIT DOFs)."""
+    """Dense choices stop at DENSE_LIMIT DOFs (far past where sparse is faster)."""
     return 3 * (elements + 1) * len(scene.sections) <= DENSE_LIMIT
 
 

@@ -43,7 +43,8 @@ def command(scene_path, n_modes, max_elements, repeats, tol, as_json, out_dir):
         return tqdm(rounds, desc="converge (rounds over all levels)", unit="round",
                     file=sys.stderr, disable=as_json or not sys.stderr.isatty())
 
-    levels = cv.run_levels(scene, work, n_modes, repeats, progress)
+    refused: list = []
+    levels = cv.run_levels(scene, work, n_modes, repeats, progress, refused)
     main_choice = cv.CHOICES[0]
     main = [l for l in levels if l.choice == main_choice]
     extrapolation = cv.richardson(main)
@@ -80,6 +81,8 @@ def command(scene_path, n_modes, max_elements, repeats, tol, as_json, out_dir):
             "seconds": best.total_s,
             "max_relative_error": float(errors[levels.index(best)].max())},
         "levels": rows,
+        "refused": [{"choice": c.label, "elements_per_link": e, "reason": msg}
+                    for c, e, msg in refused],
     }
     png = out / "converge.png"
     cv.plot_error_time(levels, ref, png, title=f"{scene.name}: error against run time")
@@ -89,13 +92,16 @@ def command(scene_path, n_modes, max_elements, repeats, tol, as_json, out_dir):
         click.echo(dumps(document))
         return
     click.echo(_text(scene, document, main_choice.label, n_modes))
+    for r in document["refused"]:
+        click.echo(f"refused by the solver: {r['choice']} at {r['elements_per_link']} "
+                   f"elements/link: {r['reason']}")
     click.echo(f"written: {out / 'converge.json'}, {out / 'converge.csv'}, {png}")
 
 
 def _dense_note():
     from ..solve import DENSE_LIMIT
 
-    return f"{DENSE_LIMIT} DOFs, where 'auto' leaves it"
+    return f"{DENSE_LIMIT} DOFs"
 
 
 def _measured(scene):
