@@ -224,7 +224,8 @@ def solve_modes(K, M, n_modes: int, *, T=None, lambda_ref: float, method: str = 
                 "Hz, 100 eps lambda_max): it cannot be told from a mechanism mode. Use fewer "
                 "elements per link, or the energy refinement (analysis.analyze does by default)")
         elastic = vals[vals >= zero]
-        if elastic.size and np.finfo(float).eps * lambda_max / elastic[0] > 1e-7:
+        # warn where the round-off could reach the default frequency tolerance (1e-6)
+        if elastic.size and np.finfo(float).eps * lambda_max / elastic[0] > 1e-6:
             log.warning("eigenvalues carry about %.1g relative round-off (eps lambda_max / "
                         "lambda_1): the mesh is finer than double precision supports without "
                         "the energy refinement", np.finfo(float).eps * lambda_max / elastic[0])
