@@ -225,42 +225,60 @@ def converged_cycle(repeats: int, every: int = 10) -> None:
 
 
 # -- 3. sparse-path scaling -----------------------------------------------------------------------
-def scaling_point(elements: int) -> dict:
-    """One size, run in its own process so that its peak memory is its own."""
-    from flexlink.analysis import analyze
+def scaling_point(spans: int) -> dict:
+    """One size, run in its own process so that its peak memory is its own. The model is the
+    stability suite's row of graded pinned spans (``stability.graded_spans``): well conditioned
+    at any size, with a closed-form lowest frequency, unlike one link cut ever finer (which
+    flexlink refuses past double precision)."""
+    from flexlink.analysis import lambda_scale
+    from flexlink.assembly import assemble, reduction
+    from flexlink.energy import twice_strain_energy
+    from flexlink.model import build_model
+    from flexlink.solve import solve_modes
+    from flexlink.stability import LONG_SPANS, graded_spans
 
-    scene = load_scene(CASES[1])
-    analyze(scene, N_MODES, 2, method="sparse")  # load the code paths first
+    section = next(iter(load_scene(CASES[1]).sections.values()))
+
+    def solve(n):
+        topology, points = graded_spans(section, n)
+        model = build_model(topology, points)
+        K, M = assemble(model)
+        return solve_modes(K, M, N_MODES, T=reduction(model), lambda_ref=lambda_scale(model),
+                           method="sparse", energy=lambda U: twice_strain_energy(model, U))
+
+    solve(2)  # load the code paths first
     rss = lambda key: int(next(line.split()[1] for line in  # noqa: E731  [kB]
                                Path("/proc/self/status").read_text().splitlines()
                                if line.startswith(key)))
     Path("/proc/self/clear_refs").write_text("5")  # restart the peak-RSS count from here
     before = rss("VmRSS:")
-    seconds = median_time(lambda: analyze(scene, N_MODES, elements, method="sparse"), 3)
+    seconds = median_time(lambda: solve(spans), 3)
     peak = rss("VmHWM:") - before
-    result = analyze(scene, N_MODES, elements, method="sparse")
-    return {"elements": elements, "dofs": result.model.n_dofs, "seconds": seconds,
-            "peak_mb": peak / 1024, "f1": float(result.modes.frequencies[0]),
-            "elastic": len(result.modes.elastic)}
+    result = solve(spans)
+    longest = LONG_SPANS[0]
+    exact = (np.pi / longest) ** 2 * np.sqrt(section.EI / section.mass_per_length) / (2 * np.pi)
+    return {"spans": spans, "dofs": result.n_dofs, "seconds": seconds, "peak_mb": peak / 1024,
+            "f1": float(result.frequencies[0]), "f1_exact": float(exact),
+            "elastic": len(result.elastic)}
 
 
 def scaling() -> None:
+    from flexlink.stability import SPAN_ELEMENTS
+
     sizes = [1e3, 3e3, 1e4, 3e4, 1e5]
-    print("3. sparse path: analyze() at the scene's pose (model, assembly, reduction, shift-invert "
-          f"ARPACK for {N_MODES}+4 modes), CPU medians of 3, peak RSS above the start")
+    print("3. sparse path: a row of graded pinned spans (stability.graded_spans, "
+          f"{SPAN_ELEMENTS} elements each), assembly + reduction + shift-invert ARPACK for "
+          f"{N_MODES} modes, CPU medians of 3, peak RSS above the start")
     rows = []
     for dofs in sizes:
-        elements = max(1, round(dofs / 9))  # 3 links x (elements + 1) nodes x 3 DOFs
-        out = subprocess.run([sys.executable, __file__, "--scaling-point", str(elements)],
+        spans = max(1, round(dofs / (3 * (SPAN_ELEMENTS + 1) - 4)))
+        out = subprocess.run([sys.executable, __file__, "--scaling-point", str(spans)],
                              check=True, capture_output=True, text=True).stdout
         row = json.loads(out.strip().splitlines()[-1])
         rows.append(row)
         print(f"  {row['dofs']:7d} DOFs: {row['seconds']:8.4f} s  {row['peak_mb']:8.1f} MB   "
-              f"lowest mode {row['f1']:9.3f} Hz, {row['elastic']} of {N_MODES + 4} labelled elastic")
-    print("  note: past ~1e4 DOFs a 3-link chain is too fine for double precision (elements 70"
-          " to 180 times\n  shorter than the section is deep, lambda_max / lambda_1 ~ 1e14 and"
-          " more): the lowest mode\n  drifts and the zero-mode labels fail; these sizes time"
-          " the path, not a meaningful model")
+              f"lowest mode {row['f1']:9.3f} Hz (closed form {row['f1_exact']:9.3f}), "
+              f"{row['elastic']} of {N_MODES} labelled elastic")
     n = np.log([r["dofs"] for r in rows])
     t_exp = np.polyfit(n, np.log([r["seconds"] for r in rows]), 1)[0]
     m_exp = np.polyfit(n, np.log([max(r["peak_mb"], 1e-3) for r in rows]), 1)[0]
