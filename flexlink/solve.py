@@ -81,7 +81,8 @@ def _sparse(K, M, k, shift):
     # singular (mechanism or rigid-body modes), so the factorisation cannot break down, and the
     # modes nearest the shift from above are the lowest ones.
     try:
-        vals, vecs = spla.eigsh(K.tocsc(), k=k, M=M.tocsc(), sigma=shift, which="LM")
+        vals, vecs = spla.eigsh(sp.csc_matrix(K), k=k, M=sp.csc_matrix(M), sigma=shift,
+                                which="LM")
     except (RuntimeError, spla.ArpackError) as exc:
         raise NumericalError(f"sparse eigen solve failed: {exc}") from exc
     order = np.argsort(vals)
@@ -121,6 +122,15 @@ def _condense_massless(Kr, Mr):
     return Kc, Mr[m][:, m].tocsr(), expand
 
 
+def _norm1(A) -> float:
+    """||A||_1, the largest absolute column sum; for CSR straight from its arrays (scipy's
+    abs(A).sum(axis=0) builds two temporary matrices, which costs more than a small eigen solve)."""
+    if not sp.issparse(A):
+        return float(np.abs(A).sum(axis=0).max())
+    sums = np.bincount(A.indices, weights=np.abs(A.data), minlength=A.shape[1])
+    return float(sums.max()) if sums.size else 0.0
+
+
 def solve_modes(K, M, n_modes: int, *, T=None, lambda_ref: float, method: str = "auto",
                 zero_tol: float = 1e-6, backward_tol: float = 1e-10, energy=None) -> ModalResult:
     """Lowest ``n_modes`` modes of (K, M), optionally reduced by u = T q.
@@ -134,12 +144,18 @@ def solve_modes(K, M, n_modes: int, *, T=None, lambda_ref: float, method: str = 
     NumericalError on NaN, clearly negative eigenvalues, a backward error above
     ``backward_tol`` or lost M-orthogonality.
     """
-    Kr, Mr = (K, M) if T is None else ((T.T @ K @ T).tocsr(), (T.T @ M @ T).tocsr())
-    Kr, Mr = sp.csr_matrix(Kr), sp.csr_matrix(Mr)
+    if T is None and isinstance(K, np.ndarray) and isinstance(M, np.ndarray) \
+            and np.all(M.diagonal() > 0):
+        # a sweep's small dense matrices stay dense: converting them to CSR and back costs
+        # more than their eigen solve
+        Kr, Mr, condensed = K, M, None
+    else:
+        Kr, Mr = (K, M) if T is None else ((T.T @ K @ T).tocsr(), (T.T @ M @ T).tocsr())
+        Kr, Mr = sp.csr_matrix(Kr), sp.csr_matrix(Mr)
+        condensed = _condense_massless(Kr, Mr)
     n = Kr.shape[0]
     if n == 0:
         raise NumericalError("the model has no free DOFs: every DOF is constrained")
-    condensed = _condense_massless(Kr, Mr)
     Ks, Ms = (Kr, Mr) if condensed is None else condensed[:2]
     ns = Ks.shape[0]
     k = min(n_modes, ns)
@@ -182,8 +198,7 @@ def solve_modes(K, M, n_modes: int, *, T=None, lambda_ref: float, method: str = 
     R = np.linalg.norm(KV - MV * vals, axis=0)
     with np.errstate(divide="ignore", invalid="ignore"):
         residuals = R / np.linalg.norm(KV, axis=0)
-    norm1 = lambda A: float(abs(A).sum(axis=0).max())  # noqa: E731  (||A||_1, cheap for sparse)
-    backward = R / ((norm1(Kr) + np.abs(vals) * norm1(Mr)) * np.linalg.norm(vecs, axis=0))
+    backward = R / ((_norm1(Kr) + np.abs(vals) * _norm1(Mr)) * np.linalg.norm(vecs, axis=0))
     ortho = float(np.abs(vecs.T @ MV - np.eye(k)).max())
     if backward.max() > backward_tol:
         raise NumericalError(f"eigen backward error {backward.max():.3g} exceeds {backward_tol:g} "
