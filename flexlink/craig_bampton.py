@@ -50,9 +50,7 @@ import scipy.linalg as la
 
 from .assembly import point_mass_entries, reduction, spring_entries
 from .link import link_matrices
-from .errors import NumericalError
 from .model import GROUND, FrameModel, LinkMesh, Springs, _Layout
-from .solve import ELASTIC, MECHANISM, ModalResult, _dense, solve_modes
 
 log = logging.getLogger(__name__)
 
@@ -357,43 +355,3 @@ class CraigBamptonPlan:
                 out[3 * nodes + k] = sum(R[j, k] * local[j::3] for j in range(3))
         return out
 
-
-def dense_modes(K: np.ndarray, M: np.ndarray, k: int, *, lambda_ref: float,
-                zero_tol: float = 1e-6, backward_tol: float = 1e-10) -> ModalResult:
-    """``solve.solve_modes`` for the small dense reduced pencil, with the same spectral
-    transformation (``solve._dense``), labels and checks (backward error, M-orthogonality,
-    negative eigenvalues) done on dense arrays: solve_modes turns its input into sparse
-    matrices first, which costs more than the eigen solve at this size. Falls back to
-    solve_modes when a DOF has no mass (it condenses those)."""
-    diag_m = np.diag(M)
-    if np.any(diag_m <= 0):
-        return solve_modes(K, M, k, lambda_ref=lambda_ref, method="dense", zero_tol=zero_tol,
-                           backward_tol=backward_tol)
-    n = K.shape[0]
-    k = min(k, n)
-    vals, vecs = _dense(K, M, k, shift=-lambda_ref)
-    if not np.all(np.isfinite(vals)):
-        raise NumericalError("eigen solve returned NaN or infinite eigenvalues")
-    lambda_max = float((np.diag(K) / diag_m).max())
-    zero = max(zero_tol * lambda_ref, 100 * np.finfo(float).eps * lambda_max)
-    if vals.min() < -zero:
-        raise NumericalError(f"negative eigenvalue {vals.min():.6g} rad^2/s^2: K is not positive "
-                             "semi-definite (check spring and section inputs)")
-    MV = M @ vecs
-    vecs = vecs / np.sqrt(np.einsum("ij,ij->j", vecs, MV))
-    KV, MV = K @ vecs, M @ vecs
-    R = np.linalg.norm(KV - MV * vals, axis=0)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        residuals = R / np.linalg.norm(KV, axis=0)
-    norm1 = lambda A: float(np.abs(A).sum(axis=0).max())  # noqa: E731
-    backward = R / ((norm1(K) + np.abs(vals) * norm1(M)) * np.linalg.norm(vecs, axis=0))
-    ortho = float(np.abs(vecs.T @ MV - np.eye(k)).max())
-    if backward.max() > backward_tol:
-        raise NumericalError(f"eigen backward error {backward.max():.3g} exceeds {backward_tol:g} "
-                             f"(mode {int(backward.argmax()) + 1}, reduced dense solver)")
-    if ortho > 1e-6:
-        raise NumericalError(f"eigenvectors lost M-orthogonality: max |V^T M V - I| = {ortho:.3g}")
-    kinds = tuple(MECHANISM if v < zero else ELASTIC for v in vals)
-    return ModalResult(eigenvalues=vals, frequencies=np.sqrt(np.clip(vals, 0.0, None)) / (2 * np.pi),
-                       shapes=vecs, kinds=kinds, residuals=residuals, backward_errors=backward,
-                       orthogonality_error=ortho, solver="dense", n_dofs=n)

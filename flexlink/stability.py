@@ -26,7 +26,7 @@ from .model import JointSpec, LinkSpec, Section, Topology, build_model
 from .plausibility import SHEAR_WARN, SLENDER_LIMIT, model_warnings, pose_warnings, timoshenko_drop
 from .rigid import RIGID_RATIO, element_stiffness_scale, rigidified
 from .scene import Scene, load_scene
-from .solve import DENSE_REFUSE, ELASTIC, MECHANISM, solve_modes
+from .solve import DENSE_REFUSE, MECHANISM, solve_modes
 
 log = logging.getLogger(__name__)
 

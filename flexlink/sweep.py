@@ -22,7 +22,7 @@ import numpy as np
 from .analysis import lambda_scale
 from .assembly import assemble, link_entries, point_mass_entries, spring_entries
 from .assembly import reduction as rigid_reduction
-from .craig_bampton import CUTOFF, CraigBamptonPlan, dense_modes, lowest_fixed_interface
+from .craig_bampton import CUTOFF, CraigBamptonPlan, lowest_fixed_interface
 from .link import link_entries as local_entries
 from .model import FrameModel, Topology, build_model, layout
 from .solve import DENSE_LIMIT, DENSE_REFUSE, ELASTIC, solve_modes
@@ -225,7 +225,7 @@ def _craig_bampton_sweep(topology: Topology, poses, n_modes: int, freqs: np.ndar
             plan = CraigBamptonPlan(model, fixed, CUTOFF**2 * lowest)
         while True:
             K, M = plan.matrices(model)
-            solve = functools.partial(dense_modes, K, M, lambda_ref=lambda_ref)
+            solve = functools.partial(solve_modes, K, M, lambda_ref=lambda_ref, method="dense")
             result, mask = _solve_lowest(solve, n_modes, expected)
             n_mechanism = len(mask) - int(mask.sum())
             lam = np.sort(plan.corrected(model, result.eigenvalues[mask], result.shapes[:, mask]))

@@ -9,7 +9,7 @@ import pytest
 
 from flexlink.analysis import analyze, lambda_scale
 from flexlink.assembly import assemble, reduction
-from flexlink.model import JointSpec, build_model
+from flexlink.model import build_model
 from flexlink.scene import load_scene
 from flexlink.solve import solve_modes
 
