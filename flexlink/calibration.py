@@ -188,8 +188,20 @@ def _solve_from(problem: Problem, reference: np.ndarray, x0: np.ndarray):
     return result.x, float(result.cost), result.jac, int(result.nfev)
 
 
+class _PredictionErrors:
+    """Errors of ``predicted`` against ``reference`` [Hz], shared by fits and cross-validation."""
+
+    @property
+    def errors_pct(self) -> np.ndarray:
+        return 100.0 * (self.predicted / self.reference - 1.0)
+
+    @property
+    def mean_abs_error_pct(self) -> float:
+        return float(np.nanmean(np.abs(self.errors_pct)))
+
+
 @dataclasses.dataclass(frozen=True)
-class FitResult:
+class FitResult(_PredictionErrors):
     """Best of several starts. values [SI], rel_se = standard error of ln p (None if m <= p),
     correlation of the ln p estimates, predicted [Hz] and errors [%] per case and mode."""
 
@@ -203,14 +215,6 @@ class FitResult:
     predicted: np.ndarray
     reference: np.ndarray
     evaluations: int
-
-    @property
-    def errors_pct(self) -> np.ndarray:
-        return 100.0 * (self.predicted / self.reference - 1.0)
-
-    @property
-    def mean_abs_error_pct(self) -> float:
-        return float(np.nanmean(np.abs(self.errors_pct)))
 
     def as_dict(self) -> dict:
         """JSON-ready (NaN and inf become None)."""
@@ -295,21 +299,13 @@ def fit_many(problems: list[Problem], starts: int = 8, seed: int = 0, n_jobs: in
 
 
 @dataclasses.dataclass(frozen=True)
-class CrossValidation:
+class CrossValidation(_PredictionErrors):
     """Leave one case out: fold k is fitted on the other cases and predicts case k."""
 
     folds: tuple[FitResult, ...]
     held_out: tuple[str, ...]
     predicted: np.ndarray  # (cases, n_modes) [Hz], each row from the fold that left it out
     reference: np.ndarray
-
-    @property
-    def errors_pct(self) -> np.ndarray:
-        return 100.0 * (self.predicted / self.reference - 1.0)
-
-    @property
-    def mean_abs_error_pct(self) -> float:
-        return float(np.nanmean(np.abs(self.errors_pct)))
 
 
 def leave_one_out_problems(problem: Problem) -> list[Problem]:

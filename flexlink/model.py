@@ -105,7 +105,7 @@ class JointSpec:
     ground: bool
     Kt: float
     Kr: float
-    mass: float = 0.0  # lumped joint mass [kg] (pin, bearing), added to every link end's node share
+    mass: float = 0.0  # lumped joint mass [kg] (pin, bearing), on the first attached link end's node
     welded: bool = False  # ground joint only: its links are welded together (see module docstring)
 
     def __post_init__(self):
