@@ -32,10 +32,10 @@ import scipy.linalg as la  # noqa: E402
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from flexlink.assembly import reduction  # noqa: E402
-from flexlink.model import build_model  # noqa: E402
-from flexlink.scene import load_scene  # noqa: E402
-from flexlink.sweep import _DensePlan, modal_sweep  # noqa: E402
+from flexlink.fe.assembly import reduction  # noqa: E402
+from flexlink.fe.model import build_model  # noqa: E402
+from flexlink.scene.load import load_scene  # noqa: E402
+from flexlink.analysis.sweep import _DensePlan, modal_sweep  # noqa: E402
 
 CASES = [ROOT / "cases" / f"case{i}.toml" for i in (1, 2, 3, 4)]
 N_MODES = 6
@@ -187,7 +187,7 @@ def converged_cycle(repeats: int, every: int = 10) -> None:
     """The 4 cycle maps at the mesh ``convergence.mesh_for_tolerance`` picks (6 modes,
     relative tolerance DEFAULT_TOL), through the Craig-Bampton sweep; the full model is solved
     at every ``every``-th pose to measure the deviation (all 1440 would take a minute)."""
-    from flexlink.convergence import DEFAULT_TOL, mesh_for_tolerance
+    from flexlink.studies.convergence import DEFAULT_TOL, mesh_for_tolerance
 
     scenes = [load_scene(p) for p in CASES]
     rules = [mesh_for_tolerance(scene, N_MODES) for scene in scenes]
@@ -229,12 +229,12 @@ def scaling_point(spans: int) -> dict:
     stability suite's row of graded pinned spans (``stability.graded_spans``): well conditioned
     at any size, with a closed-form lowest frequency, unlike one link cut ever finer (which
     flexlink refuses past double precision)."""
-    from flexlink.analysis import lambda_scale
-    from flexlink.assembly import assemble, reduction
-    from flexlink.energy import twice_strain_energy
-    from flexlink.model import build_model
-    from flexlink.solve import solve_modes
-    from flexlink.stability import LONG_SPANS, graded_spans
+    from flexlink.analysis.modal import lambda_scale
+    from flexlink.fe.assembly import assemble, reduction
+    from flexlink.fe.energy import twice_strain_energy
+    from flexlink.fe.model import build_model
+    from flexlink.analysis.solve import solve_modes
+    from flexlink.studies.stability import LONG_SPANS, graded_spans
 
     section = next(iter(load_scene(CASES[1]).sections.values()))
 
@@ -262,7 +262,7 @@ def scaling_point(spans: int) -> dict:
 
 
 def scaling() -> None:
-    from flexlink.stability import SPAN_ELEMENTS
+    from flexlink.studies.stability import SPAN_ELEMENTS
 
     sizes = [1e3, 3e3, 1e4, 3e4, 1e5]
     print("3. sparse path: a row of graded pinned spans (stability.graded_spans, "
@@ -335,7 +335,7 @@ def _burn(n: int) -> int:
 def parallel(repeats: int) -> None:
     from joblib import Parallel, delayed
 
-    from flexlink.sweep import parallel_modal_sweep
+    from flexlink.analysis.sweep import parallel_modal_sweep
 
     jobs = os.cpu_count() or 1
     print(f"5. parallel: the 4 cycle maps of section 2 with parallel_modal_sweep ({jobs} joblib "

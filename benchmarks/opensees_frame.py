@@ -13,7 +13,7 @@ import math
 
 import numpy as np
 
-from flexlink.model import GROUND, FrameModel
+from flexlink.fe.model import GROUND, FrameModel
 
 _TRANSF = 1
 

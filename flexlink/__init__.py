@@ -9,19 +9,19 @@ The public names below are imported on first use, so ``import flexlink`` (and ``
 
 import importlib
 
-from .errors import FlexlinkError, InputError, KinematicsError, NumericalError, OutputError
+from flexlink.errors import FlexlinkError, InputError, KinematicsError, NumericalError, OutputError
 
 _EXPORTS = {
-    "FourBar": "kinematics", "Pose": "kinematics",
-    "load_constituent": "materials", "rule_of_mixtures": "materials",
-    "woven_composite": "materials",
-    "FrameModel": "model", "JointSpec": "model", "LinkSpec": "model", "Section": "model",
-    "Topology": "model", "build_model": "model",
-    "assemble": "assembly", "reduction": "assembly",
-    "ModalResult": "solve", "solve_modes": "solve",
-    "Scene": "scene", "load_scene": "scene",
-    "CaseResult": "analysis", "analyze": "analysis",
-    "modal_sweep": "sweep",
+    "FourBar": "kinematics.fourbar", "Pose": "kinematics.fourbar",
+    "load_constituent": "materials.mixtures", "rule_of_mixtures": "materials.mixtures",
+    "woven_composite": "materials.mixtures",
+    "FrameModel": "fe.model", "JointSpec": "fe.model", "LinkSpec": "fe.model",
+    "Section": "fe.model", "Topology": "fe.model", "build_model": "fe.model",
+    "assemble": "fe.assembly", "reduction": "fe.assembly",
+    "ModalResult": "analysis.solve", "solve_modes": "analysis.solve",
+    "Scene": "scene.load", "load_scene": "scene.load",
+    "CaseResult": "analysis.modal", "analyze": "analysis.modal",
+    "modal_sweep": "analysis.sweep",
 }
 
 __all__ = ["FlexlinkError", "InputError", "KinematicsError", "NumericalError", "OutputError",

@@ -17,8 +17,8 @@ import sys
 
 import click
 
-from . import commands as _commands_pkg
-from .errors import FlexlinkError
+from flexlink import commands as _commands_pkg
+from flexlink.errors import FlexlinkError
 
 
 def _json_default(value):

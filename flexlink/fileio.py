@@ -8,7 +8,7 @@ import tempfile
 from collections.abc import Callable
 from pathlib import Path
 
-from .errors import OutputError
+from flexlink.errors import OutputError
 
 
 def prepare_out_dir(out: str | Path) -> Path:

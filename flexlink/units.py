@@ -10,7 +10,7 @@ from __future__ import annotations
 import math
 import re
 
-from .errors import InputError
+from flexlink.errors import InputError
 
 # dimension -> {unit spelling: factor to SI}
 UNITS: dict[str, dict[str, float]] = {

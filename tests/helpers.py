@@ -4,10 +4,10 @@ import math
 
 import numpy as np
 
-from flexlink.analysis import lambda_scale
-from flexlink.assembly import assemble, reduction
-from flexlink.model import JointSpec, LinkSpec, Section, Topology, build_model
-from flexlink.solve import solve_modes
+from flexlink.analysis.modal import lambda_scale
+from flexlink.fe.assembly import assemble, reduction
+from flexlink.fe.model import JointSpec, LinkSpec, Section, Topology, build_model
+from flexlink.analysis.solve import solve_modes
 
 INF = math.inf
 # A slender steel-like strip: L/h = 100, so axial modes lie far above the first bending modes.

@@ -7,7 +7,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from flexlink.calibration import (FreeParameter, Problem, cross_validation, fit_many,
+from flexlink.studies.calibration import (FreeParameter, Problem, cross_validation, fit_many,
                                   leave_one_out_problems, log_residuals, parse_free, predict)
 from flexlink.errors import InputError
 

@@ -10,11 +10,11 @@ import pytest
 from click.testing import CliRunner
 
 from flexlink import analyze, load_scene
-from flexlink import convergence as cv
-from flexlink.assembly import assemble
+from flexlink.studies import convergence as cv
+from flexlink.fe.assembly import assemble
 from flexlink.cli import main
-from flexlink.energy import lumped_mass, twice_strain_energy
-from flexlink.model import build_model
+from flexlink.fe.energy import lumped_mass, twice_strain_energy
+from flexlink.fe.model import build_model
 
 ROOT = Path(__file__).resolve().parent.parent
 CASE1 = ROOT / "cases" / "case1.toml"

@@ -15,15 +15,15 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from flexlink.assembly import assemble, reduction
-from flexlink.craig_bampton import CraigBamptonPlan, reduce_link
-from flexlink.solve import solve_modes
-from flexlink.cycle import kinematic_cycle
-from flexlink.link import link_matrices
-from flexlink.model import build_model, layout
-from flexlink.scene import load_scene
-from flexlink.scene_general import as_general
-from flexlink.sweep import modal_sweep
+from flexlink.fe.assembly import assemble, reduction
+from flexlink.fe.craig_bampton import CraigBamptonPlan, reduce_link
+from flexlink.analysis.solve import solve_modes
+from flexlink.studies.cycle import kinematic_cycle
+from flexlink.fe.link import link_matrices
+from flexlink.fe.model import build_model, layout
+from flexlink.scene.load import load_scene
+from flexlink.scene.general import as_general
+from flexlink.analysis.sweep import modal_sweep
 
 ROOT = Path(__file__).resolve().parent.parent
 CASES = [ROOT / "cases" / f"case{i}.toml" for i in (1, 2, 3, 4)]

@@ -7,15 +7,15 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from flexlink.analysis import analyze, lambda_scale
-from flexlink.assembly import assemble, reduction
-from flexlink.cycle import ModalMap, crossings, kinematic_cycle, modal_map, resonances, runs
-from flexlink.model import JointSpec, LinkSpec, Section, Topology, build_model
-from flexlink.motion import body_summary, limit_positions
-from flexlink.prb import prb_frequency
-from flexlink.scene import load_scene
-from flexlink.scene_general import as_general
-from flexlink.solve import solve_modes
+from flexlink.analysis.modal import analyze, lambda_scale
+from flexlink.fe.assembly import assemble, reduction
+from flexlink.studies.cycle import ModalMap, crossings, kinematic_cycle, modal_map, resonances, runs
+from flexlink.fe.model import JointSpec, LinkSpec, Section, Topology, build_model
+from flexlink.kinematics.motion import body_summary, limit_positions
+from flexlink.studies.prb import prb_frequency
+from flexlink.scene.load import load_scene
+from flexlink.scene.general import as_general
+from flexlink.analysis.solve import solve_modes
 
 ROOT = Path(__file__).resolve().parent.parent
 SCENES = ROOT / "scenes"

@@ -6,8 +6,8 @@ import math
 import numpy as np
 import pytest
 
-from flexlink.assembly import assemble, rotation
-from flexlink.link import link_matrices
+from flexlink.fe.assembly import assemble, rotation
+from flexlink.fe.link import link_matrices
 
 from helpers import single_beam
 

@@ -12,14 +12,14 @@ import numpy as np
 import pytest
 from click.testing import CliRunner
 
-from flexlink.analysis import analyze
+from flexlink.analysis.modal import analyze
 from flexlink.cli import main
 from flexlink.errors import OutputError
-from flexlink.export_vtk import mode_set, modes_mesh, write_animation, write_vtu
+from flexlink.output.export_vtk import mode_set, modes_mesh, write_animation, write_vtu
 from flexlink.fileio import write_atomic_with
-from flexlink.modeshape import sample_shapes
-from flexlink.report import case_summary
-from flexlink.scene import load_scene
+from flexlink.fe.modeshape import sample_shapes
+from flexlink.output.report import case_summary
+from flexlink.scene.load import load_scene
 
 from helpers import single_beam
 
@@ -156,7 +156,7 @@ def coloured_fraction(pixels):
 
 
 def test_mode_picture_and_sheet_are_drawn(case3, modes):
-    from flexlink.pictures import mode_picture, overview_sheet
+    from flexlink.output.pictures import mode_picture, overview_sheet
 
     joints, ground = case3.pose.joints, {"O2", "O4"}
     size, pixels = png_pixels(mode_picture("case 3: mode 1", modes, 0, joints, ground, FRACTION,
@@ -172,7 +172,7 @@ def test_mode_picture_and_sheet_are_drawn(case3, modes):
 
 
 def test_failed_rendering_check_is_a_clear_error(modes, case3, monkeypatch):
-    import flexlink.pictures as pictures
+    import flexlink.output.pictures as pictures
 
     pictures._check_rendering.cache_clear()
     monkeypatch.setattr(pictures, "_PROBE", "import sys; sys.exit(3)")
@@ -184,7 +184,7 @@ def test_failed_rendering_check_is_a_clear_error(modes, case3, monkeypatch):
 
 
 def test_frequency_plot(case3):
-    from flexlink.plots import frequency_plot
+    from flexlink.output.plots import frequency_plot
 
     size, pixels = png_pixels(frequency_plot(case_summary(case3, 3), size=(6, 4), dpi=50))
     assert size == (300, 200)
@@ -214,12 +214,12 @@ def test_export_command_writes_and_lists_everything(tmp_path):
 
 
 def test_unwritable_out_fails_before_any_solve(tmp_path, monkeypatch):
-    import flexlink.analysis
+    import flexlink.analysis.modal
 
     def no_solve(*args, **kwargs):
         raise AssertionError("solved before checking the output folder")
 
-    monkeypatch.setattr(flexlink.analysis, "analyze", no_solve)
+    monkeypatch.setattr(flexlink.analysis.modal, "analyze", no_solve)
     blocker = tmp_path / "file"
     blocker.write_text("x")
     result = CliRunner().invoke(main, ["export", str(CASE3), "--out", str(blocker / "o")])

@@ -12,12 +12,12 @@ import numpy as np
 import pytest
 import scipy.sparse as sp
 
-from flexlink.analysis import analyze
-from flexlink.assembly import _rotated, assemble, reduction, rotation
-from flexlink.link import link_matrices
-from flexlink.model import GROUND, build_model
-from flexlink.scene import load_scene
-from flexlink.sweep import _DensePlan, modal_sweep, parallel_modal_sweep
+from flexlink.analysis.modal import analyze
+from flexlink.fe.assembly import _rotated, assemble, reduction, rotation
+from flexlink.fe.link import link_matrices
+from flexlink.fe.model import GROUND, build_model
+from flexlink.scene.load import load_scene
+from flexlink.analysis.sweep import _DensePlan, modal_sweep, parallel_modal_sweep
 
 CASES = Path(__file__).resolve().parent.parent / "cases"
 ROUND_OFF = 1e-14
@@ -122,7 +122,7 @@ def test_parallel_sweep_equals_serial():
 
 
 def test_sweep_takes_the_sparse_path_above_the_dense_limit(monkeypatch):
-    import flexlink.sweep as sweep
+    import flexlink.analysis.sweep as sweep
 
     def no_plan(*args):
         raise AssertionError("a dense plan was built for a model above the dense limit")

@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 
 from flexlink.errors import InputError, KinematicsError
-from flexlink.kinematics import FourBar
-from flexlink.linkage import Body, Linkage, crank_angles, four_bar_linkage
+from flexlink.kinematics.fourbar import FourBar
+from flexlink.kinematics.linkage import Body, Linkage, crank_angles, four_bar_linkage
 
 FOUR_BARS = {  # (ratios R2, R3, R4) with L1 = 0.3 m: Table II case 1 and case 2
     "case1": (0.267, 0.800, 0.667),
@@ -109,7 +109,7 @@ def test_two_loop_velocity_coefficients_match_finite_differences():
     # differences of the solved angles and K (h = 1e-5: truncation ~ 1e-10)
     from pathlib import Path
 
-    from flexlink.scene import load_scene
+    from flexlink.scene.load import load_scene
 
     scene = load_scene(Path(__file__).resolve().parent.parent / "scenes" / "wiper.toml")
     cycle = scene.linkage.cycle(crank_angles(36), scene.guess)

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from flexlink.errors import KinematicsError
-from flexlink.kinematics import FourBar
+from flexlink.kinematics.fourbar import FourBar
 
 TABLE2 = {1: (0.267, 0.800, 0.667), 2: (0.417, 1.000, 0.792), 3: (0.141, 0.900, 0.457),
           4: (0.209, 0.914, 0.457)}

@@ -7,11 +7,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from flexlink.analysis import analyze, lambda_scale
-from flexlink.assembly import assemble, reduction
-from flexlink.model import build_model
-from flexlink.scene import load_scene
-from flexlink.solve import solve_modes
+from flexlink.analysis.modal import analyze, lambda_scale
+from flexlink.fe.assembly import assemble, reduction
+from flexlink.fe.model import build_model
+from flexlink.scene.load import load_scene
+from flexlink.analysis.solve import solve_modes
 
 CASES = Path(__file__).resolve().parent.parent / "cases"
 

@@ -4,7 +4,7 @@ import math
 
 import pytest
 
-from flexlink.materials import load_constituent, rule_of_mixtures, woven_beam_modulus, woven_composite
+from flexlink.materials.mixtures import load_constituent, rule_of_mixtures, woven_beam_modulus, woven_composite
 
 
 @pytest.fixture(scope="module")

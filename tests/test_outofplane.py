@@ -8,11 +8,11 @@ import numpy as np
 import pytest
 
 from flexlink.errors import InputError
-from flexlink.families import elastic_modes
-from flexlink.model import JointSpec, LinkSpec, Section, Topology
-from flexlink.outofplane import (StripProperties, chain_matrices, element_matrices,
+from flexlink.analysis.families import elastic_modes
+from flexlink.fe.model import JointSpec, LinkSpec, Section, Topology
+from flexlink.analysis.outofplane import (StripProperties, chain_matrices, element_matrices,
                                  out_of_plane_modes, rotation)
-from flexlink.scene import load_scene
+from flexlink.scene.load import load_scene
 
 CASES = Path(__file__).resolve().parent.parent / "cases"
 INF = math.inf

@@ -6,7 +6,7 @@ from pathlib import Path
 import pytest
 
 from flexlink.errors import InputError
-from flexlink.scene import load_scene, scene_files
+from flexlink.scene.load import load_scene, scene_files
 
 CASES = Path(__file__).resolve().parent.parent / "cases"
 

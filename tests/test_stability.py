@@ -10,7 +10,7 @@ import pytest
 from click.testing import CliRunner
 
 from flexlink import load_scene
-from flexlink import stability as st
+from flexlink.studies import stability as st
 from flexlink.cli import main
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -37,12 +37,12 @@ def test_a_failing_check_is_reported(scene, monkeypatch):
 
 
 def test_penalty_switch_is_logged_and_exact(scene, caplog):
-    from flexlink.rigid import rigidified, rigid_threshold
-    from flexlink.model import build_model
+    from flexlink.fe.rigid import rigidified, rigid_threshold
+    from flexlink.fe.model import build_model
     topo = scene.topology(8)
     model = build_model(dataclasses.replace(topo, joints=tuple(
         dataclasses.replace(j, Kt=1e30) for j in topo.joints)), scene.rigid_pose().joints)
-    with caplog.at_level("WARNING", logger="flexlink.rigid"):
+    with caplog.at_level("WARNING", logger="flexlink.fe.rigid"):
         stiff = rigidified(model)
     assert "treated as rigid" in caplog.text
     translational = model.springs.dof_a % 3 != 2

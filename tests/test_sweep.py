@@ -5,9 +5,9 @@ from pathlib import Path
 
 import numpy as np
 
-from flexlink.analysis import analyze
-from flexlink.scene import load_scene
-from flexlink.sweep import modal_sweep
+from flexlink.analysis.modal import analyze
+from flexlink.scene.load import load_scene
+from flexlink.analysis.sweep import modal_sweep
 
 CASES = Path(__file__).resolve().parent.parent / "cases"
 

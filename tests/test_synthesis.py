@@ -4,8 +4,8 @@ import math
 
 import pytest
 
-from flexlink.linkage import crank_angles, four_bar_linkage
-from flexlink.synthesis import brodell_soni, extended_rocker, minimax
+from flexlink.kinematics.linkage import crank_angles, four_bar_linkage
+from flexlink.kinematics.synthesis import brodell_soni, extended_rocker, minimax
 
 deg = math.radians
 

@@ -5,7 +5,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from flexlink.uncertainty import draw_samples, evaluate, monte_carlo, scene_inputs, sensitivities
+from flexlink.studies.uncertainty import draw_samples, evaluate, monte_carlo, scene_inputs, sensitivities
 
 CASES = Path(__file__).resolve().parent.parent / "cases"
 PATHS = (str(CASES / "case2.toml"),)

@@ -8,7 +8,7 @@ import sys
 
 import click
 
-from ..cli import dumps, json_option, out_option
+from flexlink.cli import dumps, json_option, out_option
 
 
 @click.command("calibrate")
@@ -42,13 +42,13 @@ def command(scenes, free_specs, families, starts, seed, samples, vf_sd, thicknes
     """Calibrate each model family against the scenes' Ex column (and, separately, the paper's
     FE), cross-validate leaving one case out, fit each case alone and its mode ratios, and
     propagate Table I scatter by Monte Carlo; writes calibrate.json, report.md and PNG plots."""
-    from ..calibration import parse_free
-    from ..calibration_report import PLOTS, best_family, report_markdown
-    from ..comparison import StudySettings, run_study
-    from ..families import scene_family
-    from ..fileio import prepare_out_dir, write_atomic
-    from ..scene import load_scene, scene_files
-    from ..units import parse_quantity
+    from flexlink.studies.calibration import parse_free
+    from flexlink.output.calibration_report import PLOTS, best_family, report_markdown
+    from flexlink.studies.comparison import StudySettings, run_study
+    from flexlink.analysis.families import scene_family
+    from flexlink.fileio import prepare_out_dir, write_atomic
+    from flexlink.scene.load import load_scene, scene_files
+    from flexlink.units import parse_quantity
 
     out = prepare_out_dir(out_dir)
     files = [str(f) for f in scene_files(scenes)]

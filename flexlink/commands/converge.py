@@ -6,7 +6,7 @@ import sys
 
 import click
 
-from ..cli import dumps, json_option, out_option
+from flexlink.cli import dumps, json_option, out_option
 
 
 @click.command("converge")
@@ -29,9 +29,9 @@ def command(scene_path, n_modes, max_elements, repeats, tol, as_json, out_dir):
     converge.json, converge.csv and converge.png (error against time)."""
     from tqdm import tqdm
 
-    from .. import convergence as cv
-    from ..fileio import prepare_out_dir, write_atomic
-    from ..scene import load_scene
+    from flexlink.studies import convergence as cv
+    from flexlink.fileio import prepare_out_dir, write_atomic
+    from flexlink.scene.load import load_scene
 
     tol = cv.DEFAULT_TOL if tol is None else tol
     out = prepare_out_dir(out_dir)
@@ -99,7 +99,7 @@ def command(scene_path, n_modes, max_elements, repeats, tol, as_json, out_dir):
 
 
 def _dense_note():
-    from ..solve import DENSE_LIMIT
+    from flexlink.analysis.solve import DENSE_LIMIT
 
     return f"{DENSE_LIMIT} DOFs"
 

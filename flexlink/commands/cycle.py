@@ -7,7 +7,7 @@ from pathlib import Path
 
 import click
 
-from ..cli import dumps, json_option, out_option
+from flexlink.cli import dumps, json_option, out_option
 
 
 @click.command("cycle")
@@ -31,11 +31,11 @@ def command(scene_path, n_modes, poses, elements, speed, margin, harmonics, as_j
     """Natural frequencies of the first modes at every crank angle of SCENE (CSV and PNG in
     --out), the poses where the transmission angle is 90 deg, and the crank harmonics that
     come within --margin of a natural frequency anywhere in the cycle."""
-    from ..cycle import csv_text, modal_map, plot_map, resonances, runs
-    from ..fileio import prepare_out_dir, write_atomic
-    from ..scene import load_scene
-    from ..scene_general import as_general
-    from ..units import parse_quantity
+    from flexlink.studies.cycle import csv_text, modal_map, plot_map, resonances, runs
+    from flexlink.fileio import prepare_out_dir, write_atomic
+    from flexlink.scene.load import load_scene
+    from flexlink.scene.general import as_general
+    from flexlink.units import parse_quantity
     from ._progress import progress_bar
 
     out = prepare_out_dir(out_dir)

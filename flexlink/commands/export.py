@@ -7,7 +7,7 @@ import sys
 
 import click
 
-from ..cli import dumps, json_option, out_option
+from flexlink.cli import dumps, json_option, out_option
 
 
 @click.command("export")
@@ -37,12 +37,12 @@ def command(scenes, n_modes, elements, method, subdivide, phases, amplitude, pic
     OUT/<scene file name>/, and a list of everything in OUT/export.json."""
     from tqdm import tqdm
 
-    from ..analysis import analyze
-    from ..errors import InputError
-    from ..export import ExportSettings, export_case
-    from ..fileio import prepare_out_dir, write_atomic
-    from ..report import case_summary
-    from ..scene import load_scene, scene_files
+    from flexlink.analysis.modal import analyze
+    from flexlink.errors import InputError
+    from flexlink.output.export import ExportSettings, export_case
+    from flexlink.fileio import prepare_out_dir, write_atomic
+    from flexlink.output.report import case_summary
+    from flexlink.scene.load import load_scene, scene_files
 
     settings = ExportSettings(n_modes=n_modes, subdivisions=subdivide, phases=phases,
                               amplitude=amplitude, pictures=pictures, plot=True)

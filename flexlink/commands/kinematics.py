@@ -7,12 +7,12 @@ from pathlib import Path
 
 import click
 
-from ..cli import dumps, json_option, out_option
+from flexlink.cli import dumps, json_option, out_option
 
 
 def _analyse(scene, poses, omega, progress):
-    from ..cycle import kinematic_cycle, transmission_angles
-    from ..motion import body_summary, extremes, limit_positions
+    from flexlink.studies.cycle import kinematic_cycle, transmission_angles
+    from flexlink.kinematics.motion import body_summary, extremes, limit_positions
 
     cycle = kinematic_cycle(scene, poses, progress)
     linkage = scene.linkage
@@ -113,11 +113,11 @@ def command(scene_path, poses, speed, as_json, out_dir):
     """Angular positions, velocity coefficients K = dtheta/dq and their derivatives
     L = dK/dq of every body of SCENE over one crank revolution: extremes and where they occur,
     limit positions, torque ratio 1/K; for a scene with [[family]] tables, every member too."""
-    from ..fileio import prepare_out_dir, write_atomic
-    from ..motion import csv_text
-    from ..scene import load_scene
-    from ..scene_general import as_general
-    from ..units import parse_quantity
+    from flexlink.fileio import prepare_out_dir, write_atomic
+    from flexlink.kinematics.motion import csv_text
+    from flexlink.scene.load import load_scene
+    from flexlink.scene.general import as_general
+    from flexlink.units import parse_quantity
     from ._progress import progress_bar
 
     out = prepare_out_dir(out_dir)

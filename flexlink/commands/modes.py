@@ -6,7 +6,7 @@ import logging
 
 import click
 
-from ..cli import dumps, json_option, out_option
+from flexlink.cli import dumps, json_option, out_option
 
 
 @click.command("modes")
@@ -27,16 +27,16 @@ from ..cli import dumps, json_option, out_option
 def command(scenes, n_modes, elements, method, tol, as_json, out_dir):
     """Natural frequencies of each SCENE (a scene file or a folder of them) at its pose,
     compared with the scene's reference columns (measured Ex, published FE)."""
-    from ..analysis import analyze
-    from ..convergence import DEFAULT_TOL
-    from ..families import elastic_modes, scene_family
-    from ..fileio import prepare_out_dir, write_atomic
-    from ..report import case_summary, csv_text, format_case, overall_mean_abs
-    from ..scene import load_scene, scene_files
+    from flexlink.analysis.modal import analyze
+    from flexlink.studies.convergence import DEFAULT_TOL
+    from flexlink.analysis.families import elastic_modes, scene_family
+    from flexlink.fileio import prepare_out_dir, write_atomic
+    from flexlink.output.report import case_summary, csv_text, format_case, overall_mean_abs
+    from flexlink.scene.load import load_scene, scene_files
 
     # analysis warnings come back in result.warnings and are printed with their case below;
     # logging them as well would show each one twice
-    logging.getLogger("flexlink.analysis").setLevel(logging.ERROR)
+    logging.getLogger("flexlink.analysis.modal").setLevel(logging.ERROR)
     out = prepare_out_dir(out_dir)
     files = scene_files(scenes)
     summaries = []
@@ -69,7 +69,7 @@ def command(scenes, n_modes, elements, method, tol, as_json, out_dir):
 def _mesh(scene, n_modes, elements, tol):
     """(elements per link, how it was chosen) for one scene: command line, scene, or the
     tolerance rule of ``convergence.mesh_for_tolerance``."""
-    from ..convergence import ORDER, mesh_for_tolerance
+    from flexlink.studies.convergence import ORDER, mesh_for_tolerance
 
     if elements is not None:
         return elements, {"rule": "command line (-e)", "elements_per_link": elements}

@@ -8,7 +8,7 @@ from pathlib import Path
 
 import click
 
-from ..cli import dumps, json_option, out_option
+from flexlink.cli import dumps, json_option, out_option
 
 
 @click.command("prb")
@@ -23,14 +23,14 @@ def command(scene_path, n_modes, elements, as_json, out_dir):
     """Modes of SCENE (a scene with a [prb] table) at its start pose, where the compliant strip
     is unstressed, with the strip as a flexible beam (FE), and the first frequency of the
     pseudo-rigid-body model (rigid link + torsional spring K = gamma K_Theta E I / l)."""
-    from ..analysis import lambda_scale
-    from ..assembly import assemble, reduction
-    from ..fileio import prepare_out_dir, write_atomic
-    from ..model import build_model
-    from ..prb import prb_frequency
-    from ..scene import load_scene
-    from ..scene_general import as_general
-    from ..solve import ELASTIC, solve_modes
+    from flexlink.analysis.modal import lambda_scale
+    from flexlink.fe.assembly import assemble, reduction
+    from flexlink.fileio import prepare_out_dir, write_atomic
+    from flexlink.fe.model import build_model
+    from flexlink.studies.prb import prb_frequency
+    from flexlink.scene.load import load_scene
+    from flexlink.scene.general import as_general
+    from flexlink.analysis.solve import ELASTIC, solve_modes
 
     out = prepare_out_dir(out_dir)
     scene = as_general(load_scene(scene_path))

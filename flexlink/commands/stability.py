@@ -6,7 +6,7 @@ import sys
 
 import click
 
-from ..cli import dumps, json_option, out_option
+from flexlink.cli import dumps, json_option, out_option
 
 
 @click.command("stability")
@@ -22,9 +22,9 @@ def command(scene_path, slow, as_json, out_dir):
     stability.json. Exit code 1 if any check fails."""
     from tqdm import tqdm
 
-    from ..fileio import prepare_out_dir, write_atomic
-    from ..scene import load_scene
-    from ..stability import run_checks
+    from flexlink.fileio import prepare_out_dir, write_atomic
+    from flexlink.scene.load import load_scene
+    from flexlink.studies.stability import run_checks
 
     out = prepare_out_dir(out_dir)
     scene = load_scene(scene_path)

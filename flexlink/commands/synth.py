@@ -6,7 +6,7 @@ import math
 
 import click
 
-from ..cli import dumps, json_option
+from flexlink.cli import dumps, json_option
 
 
 def _report(fb, method, inputs, as_json):
@@ -27,12 +27,12 @@ def _report(fb, method, inputs, as_json):
 
 
 def _angle(text, name):
-    from ..units import parse_quantity
+    from flexlink.units import parse_quantity
     return parse_quantity(text, "angle", source="command line", field=name)
 
 
 def _length(text, name):
-    from ..units import parse_quantity
+    from flexlink.units import parse_quantity
     return parse_quantity(text, "length", source="command line", field=name)
 
 
@@ -49,7 +49,7 @@ def command():
 def minimax_command(theta4i, delta, ground, as_json):
     """From the rocker angle THETA4I at mu_min and the band mu = 90 +- DELTA (e.g. '100 deg'
     '20 deg'): mu_min + mu_max = 180 deg."""
-    from ..synthesis import minimax
+    from flexlink.kinematics.synthesis import minimax
 
     fb = minimax(_angle(theta4i, "THETA4I"), _angle(delta, "DELTA"), _length(ground, "--ground"))
     _report(fb, "minimax", {"theta4i": theta4i, "delta": delta, "ground": ground}, as_json)
@@ -63,7 +63,7 @@ def minimax_command(theta4i, delta, ground, as_json):
 def brodell_soni_command(gamma_min, swing, ground, as_json):
     """Unit time ratio, minimum transmission angle GAMMA_MIN, rocker swing SWING (e.g.
     '60 deg' '30 deg')."""
-    from ..synthesis import brodell_soni
+    from flexlink.kinematics.synthesis import brodell_soni
 
     fb = brodell_soni(_angle(gamma_min, "GAMMA_MIN"), _angle(swing, "SWING"),
                       _length(ground, "--ground"))

@@ -1,0 +1,257 @@
+"""Natural frequencies over many poses of one linkage: the inner loop of cycle maps,
+calibration and Monte Carlo.
+
+The topology (links, sections, joints, mesh) is fixed; only joint positions change from pose to
+pose, so each link's local matrices are built once (cached in ``link.py``) and every pose only
+rotates and assembles them before the eigen solve. Which global entry each rotated link entry
+lands in, and the springs, masses and rigid-joint reduction, depend on the topology alone; for
+models the dense solver takes, ``_DensePlan`` works them out once and each pose scatters its
+rotated entries straight into the reduced dense K and M (one ``np.bincount``), so the pose costs
+little more than the eigen solve itself.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import functools
+import math
+from collections.abc import Iterable, Mapping
+
+import numpy as np
+
+from flexlink.analysis.modal import lambda_scale
+from flexlink.fe.assembly import assemble, link_entries, point_mass_entries, spring_entries
+from flexlink.fe.assembly import reduction as rigid_reduction
+from flexlink.fe.craig_bampton import CUTOFF, CraigBamptonPlan, lowest_fixed_interface
+from flexlink.fe.link import link_entries as local_entries
+from flexlink.fe.model import FrameModel, Topology, build_model, layout
+from flexlink.analysis.solve import DENSE_LIMIT, DENSE_REFUSE, ELASTIC, solve_modes
+
+EXTRA_MODES = 4  # room for mechanism modes when more turn up than at the previous pose
+
+
+@dataclasses.dataclass(frozen=True)
+class SweepResult:
+    """frequencies[i, j]: j-th elastic natural frequency [Hz] at pose i (NaN if fewer found);
+    mechanism_counts[i]: rigid-body/mechanism modes found at pose i."""
+
+    frequencies: np.ndarray
+    mechanism_counts: np.ndarray
+
+
+# A node's rotation R = [[c, s, 0], [-s, c, 0], [0, 0, 1]] (assembly.rotation), each entry as
+# (sign, factor) with factor 0: c, 1: s, 2: 1, 3: 0; a rotated entry's coefficient R[p, i] R[q, j]
+# is then +- one of the products c c, c s, s s, c, s, 1 (or 0), indexed by _PRODUCT.
+_R_SIGN = np.array([[1, 1, 1], [-1, 1, 1], [1, 1, 1]])
+_R_FACTOR = np.array([[0, 1, 3], [1, 0, 3], [3, 3, 2]])
+_PRODUCT = np.array([[0, 1, 3, -1],   # c c, c s, c 1, c 0
+                     [1, 2, 4, -1],   # s c, s s, s 1, s 0
+                     [3, 4, 5, -1],   # 1 c, 1 s, 1 1, 1 0
+                     [-1, -1, -1, -1]])
+
+
+class _DensePlan:
+    """Where every link entry, spring and point mass goes in the reduced dense K and M of one
+    topology, worked out once (u = T q with T from ``assembly.reduction``: a 0/1 matrix, one 1
+    per kept DOF, so T^T K T only renumbers and drops entries).
+
+    A link entry (3a + p, 3b + q) of value v adds v R[p, i] R[q, j] to (3a + i, 3b + j), and
+    R[p, i] R[q, j] is +- one of six products of the link's cos and sin. The plan keeps, for each
+    nonzero share, its source entry, its sign and product and its slot in the reduced matrix, so
+    a pose costs a small table of products, one gather, one multiply and one ``np.bincount``
+    for K and M together."""
+
+    def __init__(self, model: FrameModel, T):
+        n_full = model.n_dofs
+        if T is None:
+            column, self.n = np.arange(n_full), n_full
+        else:
+            T = T.tocsr()
+            if not (np.all(T.data == 1.0) and np.all(np.diff(T.indptr) <= 1)):
+                raise AssertionError("reduction must map each DOF to at most one reduced DOF")
+            column = np.full(n_full, -1)
+            column[np.diff(T.indptr) == 1] = T.indices
+            self.n = T.shape[1]
+        self.column = column
+        self.spare = self.n * self.n
+        self.n_links = len(model.links)
+
+        rows, cols, _, _, _ = link_entries(model)
+        link_of = np.repeat(np.arange(self.n_links),
+                            [len(self._local(link)[0]) for link in model.links])
+        p, q = rows % 3, cols % 3
+        i, j = np.arange(3)[:, None], np.arange(3)[None, :]
+        product = _PRODUCT[_R_FACTOR[p][:, :, None], _R_FACTOR[q][:, None, :]]  # (e, 3, 3)
+        sign = _R_SIGN[p][:, :, None] * _R_SIGN[q][:, None, :]
+        slot = self.slots((rows - p)[:, None, None] + i, (cols - q)[:, None, None] + j)
+        keep = (product >= 0) & (slot != self.spare)
+        self.source = np.broadcast_to(np.arange(len(rows))[:, None, None], keep.shape)[keep]
+        # products of link l with sign +-1 sit at 12 l + 6 (sign < 0) + product in one table
+        self.factor = (12 * link_of[:, None, None] + 6 * (sign < 0) + product)[keep]
+        self.slot = slot[keep]
+        self.size = self.spare + 1
+        self.both_slots = np.concatenate([self.slot, self.slot + self.size])
+        self._sources = {}  # link lengths -> (2, shares) local values
+        self.constant = []
+        for rows, cols, vals in (spring_entries(model), point_mass_entries(model)):
+            self.constant.append(self.scatter(self.slots(rows, cols), vals))
+
+    @staticmethod
+    def _local(link):
+        s = link.section
+        return local_entries(link.length, link.elements, s.EA, s.EI, s.mass_per_length)
+
+    def slots(self, rows, cols) -> np.ndarray:
+        r, c = self.column[rows], self.column[cols]
+        return np.where((r >= 0) & (c >= 0), r * self.n + c, self.spare)
+
+    def scatter(self, slots, values) -> np.ndarray:
+        summed = np.bincount(slots, weights=values, minlength=self.spare + 1)
+        return summed[:self.spare].reshape(self.n, self.n)
+
+    def _source_values(self, model: FrameModel) -> np.ndarray:
+        """(2, shares): each share's local K and M value. They depend on the link lengths only,
+        which a rigid linkage repeats from pose to pose (up to a few last-bit variants)."""
+        key = tuple(link.length for link in model.links)
+        if key not in self._sources:
+            if len(self._sources) >= 64:
+                self._sources.clear()
+            entries = [self._local(link) for link in model.links]
+            self._sources[key] = np.stack([np.concatenate([e[2] for e in entries]),
+                                           np.concatenate([e[3] for e in entries])])[:, self.source]
+        return self._sources[key]
+
+    def matrices(self, model: FrameModel) -> tuple[np.ndarray, np.ndarray]:
+        """Reduced dense (K, M) of ``model`` (same topology as the plan's): T^T K T, T^T M T."""
+        if len(model.links) != self.n_links:
+            raise AssertionError("every pose of a sweep must have the plan's topology")
+        table = []
+        for link in model.links:
+            c, s = math.cos(link.angle), math.sin(link.angle)
+            products = [c * c, c * s, s * s, c, s, 1.0]
+            table += products + [-p for p in products]
+        shares = self._source_values(model) * np.array(table)[self.factor]
+        # K and M in one bincount: M's slots follow K's
+        summed = np.bincount(self.both_slots, weights=shares.ravel(), minlength=2 * self.size)
+        K = summed[:self.spare].reshape(self.n, self.n) + self.constant[0]
+        M = summed[self.size:self.size + self.spare].reshape(self.n, self.n) + self.constant[1]
+        return K, M
+
+
+def _solve_lowest(solve, n_modes: int, expected_mechanisms: int):
+    """``solve(k)`` -> ModalResult of the lowest k modes. Solves for n_modes plus the mechanism
+    modes expected (these sit lowest); if more turn up, solves once more with room for them
+    (at least EXTRA_MODES). Returns (the ModalResult, bool mask of its elastic modes)."""
+    k = n_modes + expected_mechanisms
+    for _ in range(2):
+        result = solve(k)
+        elastic = np.array([kind == ELASTIC for kind in result.kinds])
+        n_mechanism = len(elastic) - int(elastic.sum())
+        if elastic.sum() >= n_modes or len(elastic) < k:  # enough, or every mode of the model
+            break
+        k = n_modes + max(n_mechanism + 1, EXTRA_MODES)
+    return result, elastic
+
+
+def _lowest_elastic(solve, n_modes: int, expected_mechanisms: int):
+    """(elastic frequencies [Hz], at most n_modes; mechanism count), see ``_solve_lowest``."""
+    result, elastic = _solve_lowest(solve, n_modes, expected_mechanisms)
+    return result.frequencies[elastic][:n_modes], len(elastic) - int(elastic.sum())
+
+
+REDUCTIONS = (None, "craig-bampton")
+
+
+def modal_sweep(topology: Topology, poses: Iterable[Mapping[str, tuple[float, float]]],
+                n_modes: int, method: str = "auto", progress=None,
+                reduction: str | None = None) -> SweepResult:
+    """Lowest ``n_modes`` elastic frequencies [Hz] at each pose (joint name -> (x, y) [m]).
+
+    ``progress``: optional callable wrapping the pose iterable (e.g. a tqdm factory).
+    ``reduction``: None solves the full model; "craig-bampton" solves each link reduced to its
+    end nodes and fixed-interface modes (``craig_bampton.py``; dense solve, ``method`` unused)."""
+    if reduction not in REDUCTIONS:
+        raise ValueError(f"unknown reduction {reduction!r}: one of {REDUCTIONS}")
+    poses = list(poses)
+    iterator = progress(poses) if progress else poses
+    freqs = np.full((len(poses), n_modes), np.nan)
+    mechanism = np.zeros(len(poses), dtype=int)
+    if reduction == "craig-bampton":
+        _craig_bampton_sweep(topology, iterator, n_modes, freqs, mechanism)
+        return SweepResult(frequencies=freqs, mechanism_counts=mechanism)
+    plan = None
+    expected = 0  # mechanism modes found at the previous pose: usually the same at the next
+    fixed = layout(topology)
+    for i, points in enumerate(iterator):
+        model = build_model(topology, points, fixed)
+        lambda_ref = lambda_scale(model)
+        if i == 0:
+            T = rigid_reduction(model)  # depends on the topology only
+            n = model.n_dofs if T is None else T.shape[1]
+            if method == "auto":
+                method = "dense" if n <= DENSE_LIMIT else "sparse"
+            if method == "dense" and n <= DENSE_REFUSE:  # else solve_modes refuses it
+                plan = _DensePlan(model, T)
+        if plan is not None:
+            K, M = plan.matrices(model)
+            solve = functools.partial(solve_modes, K, M, lambda_ref=lambda_ref, method="dense")
+        else:
+            K, M = assemble(model)
+            solve = functools.partial(solve_modes, K, M, T=T, lambda_ref=lambda_ref, method=method)
+        elastic, expected = _lowest_elastic(solve, n_modes, expected)
+        freqs[i, :len(elastic)] = elastic
+        mechanism[i] = expected
+    return SweepResult(frequencies=freqs, mechanism_counts=mechanism)
+
+
+def _craig_bampton_sweep(topology: Topology, poses, n_modes: int, freqs: np.ndarray,
+                         mechanism: np.ndarray) -> None:
+    """``modal_sweep`` through ``CraigBamptonPlan``, filling ``freqs`` and ``mechanism``.
+
+    The basis keeps every fixed-interface mode up to CUTOFF times the highest requested
+    frequency: the first pose starts from CUTOFF times the lowest fixed-interface frequency of
+    any link, and whenever a pose's highest requested frequency outgrows the basis (or fewer
+    elastic modes than requested are found), the plan is rebuilt with room to spare (a factor
+    1.2 in frequency, so a slowly growing spectrum does not rebuild at every pose) and the pose
+    is solved again."""
+    fixed = layout(topology)
+    plan, expected = None, 0
+    for i, points in enumerate(poses):
+        model = build_model(topology, points, fixed)
+        lambda_ref = lambda_scale(model)
+        if plan is None:
+            lowest = min(lowest_fixed_interface(l.length, l.elements, l.section.EA, l.section.EI,
+                                                l.section.mass_per_length) for l in model.links)
+            plan = CraigBamptonPlan(model, fixed, CUTOFF**2 * lowest)
+        while True:
+            K, M = plan.matrices(model)
+            solve = functools.partial(solve_modes, K, M, lambda_ref=lambda_ref, method="dense")
+            result, mask = _solve_lowest(solve, n_modes, expected)
+            n_mechanism = len(mask) - int(mask.sum())
+            lam = np.sort(plan.corrected(model, result.eigenvalues[mask], result.shapes[:, mask]))
+            elastic = np.sqrt(np.clip(lam[:n_modes], 0.0, None)) / (2 * math.pi)
+            need = (CUTOFF * 2 * math.pi * elastic[-1])**2 if len(elastic) == n_modes else math.inf
+            if need <= plan.lambda_cut or math.isinf(plan.lambda_cut):
+                break
+            plan = CraigBamptonPlan(model, fixed, 1.2**2 * need)
+        expected = n_mechanism
+        freqs[i, :len(elastic)] = elastic
+        mechanism[i] = n_mechanism
+
+
+def parallel_modal_sweep(topology: Topology, poses: Iterable[Mapping[str, tuple[float, float]]],
+                         n_modes: int, method: str = "auto", n_jobs: int = -1,
+                         reduction: str | None = None) -> SweepResult:
+    """``modal_sweep`` with the poses split into one contiguous chunk per worker process
+    (joblib, loky backend; ``n_jobs`` = -1: one per core). Same result as the serial sweep;
+    worth it from a few hundred poses on, below that starting the workers costs more."""
+    from joblib import Parallel, delayed, effective_n_jobs
+
+    poses = list(poses)
+    chunks = [c for c in np.array_split(np.arange(len(poses)), effective_n_jobs(n_jobs)) if len(c)]
+    parts = Parallel(n_jobs=n_jobs)(
+        delayed(modal_sweep)(topology, [poses[i] for i in chunk], n_modes, method,
+                             reduction=reduction)
+        for chunk in chunks)
+    return SweepResult(frequencies=np.concatenate([p.frequencies for p in parts]),
+                       mechanism_counts=np.concatenate([p.mechanism_counts for p in parts]))

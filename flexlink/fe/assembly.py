@@ -1,0 +1,153 @@
+"""Global sparse stiffness K and mass M of a FrameModel, and the exact reduction of rigid joints.
+
+K, M: size 3 N (model.DOF_NAMES per node). Links are rotated from their local frame with
+T^T k T, where T = blockdiag(R) and R maps global (ux, uy, rz) to local (u, v, rz):
+    R = [[ c, s, 0],
+         [-s, c, 0],
+         [ 0, 0, 1]],  c = cos(angle), s = sin(angle).
+Springs are two-node elements k [[1, -1], [-1, 1]] on a pair of DOFs (or k on one DOF, to
+ground). Infinite springs are not added to K: ``reduction`` turns them into exact constraints.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import scipy.sparse as sp
+
+from flexlink.fe.link import link_entries as local_entries
+from flexlink.fe.model import GROUND, FrameModel
+
+
+def rotation(angle: float) -> np.ndarray:
+    """3x3 R with local = R @ global for one node, ``angle`` [rad] of the link axis."""
+    c, s = math.cos(angle), math.sin(angle)
+    return np.array([[c, s, 0.0], [-s, c, 0.0], [0.0, 0.0, 1.0]])
+
+
+def rotated_entries(rows, cols, values, cos, sin):
+    """Entries of T^T A T from entries of A, T = blockdiag(R) with a rotation per entry.
+
+    rows, cols (e,): DOF indices (3 per node); values (v, e): v matrices sharing those entries;
+    cos, sin (e,): the rotation of each entry's link. Each entry (3a + p, 3b + q) spreads over
+    its 3 x 3 node block: A'[3a + i, 3b + j] += R[p, i] A[3a + p, 3b + q] R[q, j].
+    Returns (rows (9e,), cols (9e,), values (v, 9e)); repeated (row, col) pairs are to be summed.
+    """
+    rows, cols = np.asarray(rows), np.asarray(cols)
+    zero, one = np.zeros_like(cos), np.ones_like(cos)
+    R = np.stack([np.stack([cos, sin, zero], -1), np.stack([-sin, cos, zero], -1),
+                  np.stack([zero, zero, one], -1)], 1)  # (e, 3, 3)
+    e = np.arange(len(rows))
+    a, b = R[e, rows % 3], R[e, cols % 3]  # (e, 3): row p of R, row q of R
+    spread = np.asarray(values)[:, :, None, None] * (a[:, :, None] * b[:, None, :])
+    block = np.arange(3)
+    out_rows = (rows - rows % 3)[:, None, None] + block[None, :, None]
+    out_cols = (cols - cols % 3)[:, None, None] + block[None, None, :]
+    shape = (len(rows), 3, 3)
+    return (np.broadcast_to(out_rows, shape).ravel(), np.broadcast_to(out_cols, shape).ravel(),
+            spread.reshape(spread.shape[0], -1))
+
+
+def _rotated(matrix, angle: float, nodes: int):
+    coo = sp.coo_matrix(matrix)
+    c, s = np.full(coo.nnz, math.cos(angle)), np.full(coo.nnz, math.sin(angle))
+    rows, cols, values = rotated_entries(coo.row, coo.col, coo.data[None], c, s)
+    n = 3 * nodes
+    return sp.coo_matrix((values[0], (rows, cols)), shape=(n, n)).tocsr()
+
+
+def link_entries(model: FrameModel):
+    """All links' local entries at their global node offsets, not yet rotated:
+    (rows, cols, values (2, e) = K and M, cos, sin (e,) of each entry's link)."""
+    parts = []
+    next_node = 0
+    for link in model.links:
+        if link.first_node != next_node:  # build_model numbers links contiguously
+            raise AssertionError("links must own consecutive node ranges")
+        s = link.section
+        rows, cols, k, m = local_entries(link.length, link.elements, s.EA, s.EI,
+                                         s.mass_per_length)
+        offset = 3 * link.first_node
+        parts.append((rows + offset, cols + offset, k, m,
+                      np.full(len(rows), math.cos(link.angle)),
+                      np.full(len(rows), math.sin(link.angle))))
+        next_node += link.elements + 1
+    rows, cols, k, m, c, s = (np.concatenate(column) for column in zip(*parts))
+    return rows, cols, np.stack([k, m]), c, s
+
+
+def spring_entries(model: FrameModel):
+    """(rows, cols, values) of the model's finite springs; rigid ones are left to
+    ``reduction``."""
+    return springs_stiffness_entries(model.springs)
+
+
+def springs_stiffness_entries(springs):
+    """(rows, cols, values) of two-node springs k [[1, -1], [-1, 1]] (or k to ground) for the
+    finite entries of a ``model.Springs``."""
+    finite = np.isfinite(springs.stiffness)
+    a, b, k = springs.dof_a[finite], springs.dof_b[finite], springs.stiffness[finite]
+    to_node = b != GROUND
+    rows = np.concatenate([a, b[to_node], a[to_node], b[to_node]])
+    cols = np.concatenate([a, b[to_node], b[to_node], a[to_node]])
+    vals = np.concatenate([k, k[to_node], -k[to_node], -k[to_node]])
+    return rows, cols, vals
+
+
+def point_mass_entries(model: FrameModel):
+    """(rows, cols, values) of the lumped joint masses (translational DOFs only)."""
+    nodes = np.array([p[0] for p in model.point_masses], dtype=np.int64)
+    mass = np.array([p[1] for p in model.point_masses], dtype=float)
+    idx = np.concatenate([3 * nodes, 3 * nodes + 1])
+    return idx, idx, np.concatenate([mass, mass])
+
+
+def assemble(model: FrameModel) -> tuple[sp.csr_matrix, sp.csr_matrix]:
+    """(K [N/m, N, N m per rad], M [kg, kg m, kg m^2]) for the whole model, CSR, not reduced."""
+    n = model.n_dofs
+    rows, cols, values = rotated_entries(*link_entries(model))
+    k_rows, k_cols, k_vals = spring_entries(model)
+    m_rows, m_cols, m_vals = point_mass_entries(model)
+    K = sp.coo_matrix((np.concatenate([values[0], k_vals]),
+                       (np.concatenate([rows, k_rows]), np.concatenate([cols, k_cols]))),
+                      shape=(n, n)).tocsr()
+    M = sp.coo_matrix((np.concatenate([values[1], m_vals]),
+                       (np.concatenate([rows, m_rows]), np.concatenate([cols, m_cols]))),
+                      shape=(n, n)).tocsr()
+    return K, M
+
+
+def reduction(model: FrameModel) -> sp.csr_matrix | None:
+    """T (n_full x n_reduced) with u = T q that enforces the rigid (infinite) springs exactly:
+    tied DOFs share one unknown, grounded DOFs have none. None when nothing is rigid."""
+    springs = model.springs
+    rigid = ~np.isfinite(springs.stiffness)
+    if not rigid.any():
+        return None
+    n = model.n_dofs
+    parent = np.arange(n + 1)  # index n stands for the ground
+
+    def find(i):
+        root = i
+        while parent[root] != root:
+            root = parent[root]
+        while parent[i] != root:
+            parent[i], i = root, parent[i]
+        return root
+
+    for a, b in zip(springs.dof_a[rigid], springs.dof_b[rigid]):
+        ra, rb = find(a), find(n if b == GROUND else b)
+        if ra != rb:  # the ground (index n) stays a root, so grounded groups show as root n
+            if rb == n:
+                parent[ra] = n
+            else:
+                parent[rb] = ra
+    roots = np.array([find(i) for i in range(n)])
+    free_roots = np.unique(roots[roots != n])
+    column = np.full(n + 1, -1)
+    column[free_roots] = np.arange(len(free_roots))
+    keep = roots != n
+    rows = np.nonzero(keep)[0]
+    return sp.csr_matrix((np.ones(len(rows)), (rows, column[roots[keep]])),
+                         shape=(n, len(free_roots)))

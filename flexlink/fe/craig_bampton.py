@@ -1,0 +1,357 @@
+"""Craig-Bampton (fixed-interface component mode synthesis) reduction of the links, for sweeps.
+
+A link's local K and M do not depend on the pose, so each link is reduced once, in its own
+frame, to the 6 DOFs of its two end nodes (boundary) plus its lowest fixed-interface modes
+(interior modes with both ends clamped). With u_I the interior DOFs,
+    u_I = Psi u_B + Phi q,   Psi = -K_II^-1 K_IB (static constraint modes),
+and the reduced link matrices are T^T K T, T^T M T with T = [[I, 0], [Psi, Phi]]. Keeping every
+interior mode gives the full model back exactly; the truncation is the only approximation.
+
+Per pose only the boundary DOFs rotate (the modal coordinates are scalars in the link frame),
+so a pose costs 2 small matrix products per link, one scatter and a dense eigen solve of
+(boundary DOFs + kept modes) unknowns. Springs, joint masses and rigid constraints act on link
+end nodes only; they are taken from the full model's layout through a "boundary model"
+(``FrameModel`` with one element per link, whose nodes are the end nodes), so
+``assembly.spring_entries``, ``point_mass_entries`` and ``reduction`` are reused unchanged.
+
+Axial (u) and bending (v, rz) DOFs of a straight link are uncoupled in its frame, so each family
+is reduced on its own; that keeps every kept mode purely axial or purely bending, and lets a
+link of another length L reuse the reduction made at L0 exactly: with r = L / L0 the chain
+scales as K_axial / r, M_axial r, K_bending r^-3 D K D, M_bending r D M D (D = r on rotation
+DOFs, as ``link.link_entries`` scales a unit element), and the reduced matrices follow with the
+same diagonal scaling (D on the boundary rotations only; the modal coordinates absorb the rest).
+
+Mode choice (``CUTOFF``): a link keeps every fixed-interface mode whose frequency is at most
+CUTOFF times the highest requested system frequency. ``sweep._craig_bampton_sweep`` checks this
+after each solve and enlarges the basis (and solves again) when a pose's frequencies have grown
+past what the basis was chosen for.
+
+Truncation correction: plain truncation converges slowly here (about 3e-5 relative on the sixth
+mode of Table II case 2 with a cut-off of 16 times its frequency), because the axial
+fixed-interface modes grow only like k^2. The truncated modes couple to the kept DOFs through
+the mass matrix only, so their effect is put back per eigenvalue (``CraigBamptonPlan.corrected``)
+from a short series of 6 x 6 residual-flexibility matrices per link, computed once; with it the
+same basis is within 1e-9 to 1e-7 of the full model (tests/test_craig_bampton.py).
+
+Mode shapes: ``CraigBamptonPlan.shapes`` expands reduced eigenvectors to the full mesh (boundary
+DOFs plus each link's basis); the truncation correction refines eigenvalues only, so those
+shapes carry the plain truncation's error. ``modal_sweep`` returns frequencies only.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import functools
+import logging
+import math
+
+import numpy as np
+import scipy.linalg as la
+
+from flexlink.fe.assembly import point_mass_entries, reduction, spring_entries
+from flexlink.fe.link import link_matrices
+from flexlink.fe.model import GROUND, FrameModel, LinkMesh, Springs, _Layout
+
+log = logging.getLogger(__name__)
+
+CUTOFF = 14.0  # fixed-interface modes kept up to this times the highest requested frequency
+SERIES = 4  # terms of the truncated modes' series in lambda / lambda_k (``flexibility_series``)
+
+
+@dataclasses.dataclass(frozen=True)
+class _Family:
+    """One DOF family (axial or bending) of a link, reduced with every interior mode kept.
+
+    boundary: local DOF indices of the family's end-node DOFs; K, M: reduced matrices over
+    (boundary, all interior modes in ascending eigenvalue), so keeping the lowest m modes is a
+    leading block; eigenvalues [rad^2/s^2] of the fixed-interface modes; basis: T (local family
+    DOFs x reduced DOFs) to recover full shapes."""
+
+    dofs: np.ndarray
+    boundary: np.ndarray
+    K: np.ndarray
+    M: np.ndarray
+    eigenvalues: np.ndarray
+    basis: np.ndarray
+
+
+@functools.lru_cache(maxsize=64)
+def _families(length: float, elements: int, EA: float, EI: float, rhoA: float):
+    """(axial, bending) _Family of a link of ``length`` [m] (cached: a sweep repeats its links)."""
+    K, M = (A.toarray() for A in link_matrices(length, elements, EA, EI, rhoA))
+    n = K.shape[0]
+    local = np.arange(n)
+    end = np.isin(local // 3, (0, elements))
+    out = []
+    for members in (local % 3 == 0, local % 3 != 0):
+        dofs = local[members]
+        b, i = dofs[end[dofs]], dofs[~end[dofs]]
+        Kff, Mff = K[np.ix_(dofs, dofs)], M[np.ix_(dofs, dofs)]
+        nb = len(b)
+        where_b = np.flatnonzero(end[dofs])
+        where_i = np.flatnonzero(~end[dofs])
+        T = np.zeros((len(dofs), nb + len(i)))
+        T[where_b, np.arange(nb)] = 1.0
+        if len(i):
+            Kii, Kib, Mii = K[np.ix_(i, i)], K[np.ix_(i, b)], M[np.ix_(i, i)]
+            T[where_i, :nb] = -la.solve(Kii, Kib, assume_a="pos")
+            lam, phi = la.eigh(Kii, Mii)
+            T[where_i, nb:] = phi
+        else:
+            lam = np.zeros(0)
+        Kr, Mr = T.T @ Kff @ T, T.T @ Mff @ T
+        out.append(_Family(dofs=dofs, boundary=b, K=(Kr + Kr.T) / 2, M=(Mr + Mr.T) / 2,
+                           eigenvalues=lam, basis=T))
+    return tuple(out)
+
+
+@dataclasses.dataclass(frozen=True)
+class ReducedLink:
+    """One link reduced to its 6 boundary DOFs (start u, v, rz, end u, v, rz, local frame)
+    followed by ``n_modes`` fixed-interface modal coordinates, at reference ``length`` [m].
+
+    K, M: reduced matrices; axial, rotation: which reduced DOFs scale how with the length (see
+    the module docstring); basis (3 (elements + 1), 6 + n_modes): local displacements of the
+    whole chain from the reduced coordinates at the reference length."""
+
+    length: float
+    K: np.ndarray
+    M: np.ndarray
+    axial: np.ndarray  # bool per reduced DOF: axial family
+    rotation: np.ndarray  # bool per reduced DOF: boundary rotation
+    basis: np.ndarray
+    flexibility: np.ndarray  # (2 families, SERIES, 6, 6): see ``flexibility_series``
+
+    @property
+    def n_modes(self) -> int:
+        return self.K.shape[0] - 6
+
+    def matrices(self, length: float) -> tuple[np.ndarray, np.ndarray]:
+        """(K, M) of the same link at ``length`` [m], exact rescaling of the reference ones."""
+        r = length / self.length
+        if r == 1.0:
+            return self.K, self.M
+        a = np.where(self.axial, r**-0.5, r**-1.5) * np.where(self.rotation, r, 1.0)
+        b = math.sqrt(r) * np.where(self.rotation, r, 1.0)
+        return a[:, None] * self.K * a, b[:, None] * self.M * b
+
+    def flexibility_series(self, length: float) -> np.ndarray:
+        """(SERIES, 6, 6) F_j = sum over truncated modes of c c^T m^j / k^(j + 1) at ``length``
+        [m] (c: a truncated mode's mass coupling with the boundary DOFs, k, m: its modal
+        stiffness and mass; local frame). Eliminating the truncated modes adds
+        -lambda^2 sum_k c c^T / (k - lambda m) = -lambda^2 sum_j lambda^j F_j to the reduced
+        dynamic stiffness; every truncated mode has k / m > lambda_cut >= CUTOFF^2 lambda, so
+        the terms left out are below CUTOFF^(-2 SERIES) of the first."""
+        r = length / self.length
+        beta = r * np.where(self.rotation[:6], r, 1.0)  # coupling scale (module docstring)
+        power = np.arange(SERIES)[:, None, None]
+        axial = self.flexibility[0] * r**power / (1 / r) ** (power + 1)
+        bending = self.flexibility[1] * r**power / r ** (-3 * (power + 1))
+        return np.outer(beta, beta) * (axial + bending)
+
+
+def reduce_link(length: float, elements: int, EA: float, EI: float, rhoA: float,
+                lambda_cut: float) -> ReducedLink:
+    """Craig-Bampton reduction keeping the fixed-interface modes with eigenvalue <= lambda_cut
+    [rad^2/s^2] (both families)."""
+    axial, bending = _families(float(length), int(elements), EA, EI, rhoA)
+    parts = []  # (family, kept modes)
+    for fam in (axial, bending):
+        parts.append((fam, int(np.searchsorted(fam.eigenvalues, lambda_cut, side="right"))))
+    # reduced DOF order: the 6 boundary DOFs in local node order, then axial, then bending modes
+    n_local = 3 * (int(elements) + 1)
+    boundary_local = np.array([0, 1, 2, n_local - 3, n_local - 2, n_local - 1])
+    n = 6 + sum(m for _, m in parts)
+    K, M = np.zeros((n, n)), np.zeros((n, n))
+    basis = np.zeros((n_local, n))
+    axial_mask = np.zeros(n, dtype=bool)
+    next_mode = 6
+    for index, (fam, m) in enumerate(parts):
+        nb = len(fam.boundary)
+        slots = np.concatenate([np.searchsorted(boundary_local, fam.boundary),
+                                next_mode + np.arange(m)])
+        keep = np.arange(nb + m)
+        K[np.ix_(slots, slots)] = fam.K[np.ix_(keep, keep)]
+        M[np.ix_(slots, slots)] = fam.M[np.ix_(keep, keep)]
+        basis[np.ix_(fam.dofs, slots)] = fam.basis[:, keep]
+        axial_mask[slots] = index == 0
+        next_mode += m
+    rotation = np.zeros(n, dtype=bool)
+    rotation[[2, 5]] = True
+    flexibility = np.zeros((2, SERIES, 6, 6))
+    for index, (fam, m) in enumerate(parts):
+        nb = len(fam.boundary)
+        coupling = np.zeros((6, len(fam.eigenvalues) - m))  # modal masses are 1 (eigh)
+        coupling[np.searchsorted(boundary_local, fam.boundary)] = fam.M[:nb, nb + m:]
+        for j in range(SERIES):
+            flexibility[index, j] = (coupling / fam.eigenvalues[m:] ** (j + 1)) @ coupling.T
+    for A in (K, M, basis, axial_mask, rotation, flexibility):
+        A.flags.writeable = False
+    return ReducedLink(length=float(length), K=K, M=M, axial=axial_mask, rotation=rotation,
+                       basis=basis, flexibility=flexibility)
+
+
+def lowest_fixed_interface(length: float, elements: int, EA: float, EI: float,
+                           rhoA: float) -> float:
+    """Lowest fixed-interface eigenvalue [rad^2/s^2] of a link (inf for a one-element link)."""
+    lams = [f.eigenvalues[0] for f in _families(float(length), int(elements), EA, EI, rhoA)
+            if len(f.eigenvalues)]
+    return min(lams) if lams else math.inf
+
+
+def boundary_model(lay: _Layout, model: FrameModel) -> FrameModel:
+    """The full model's end nodes only (node 2 l: start of link l, 2 l + 1: its end), with the
+    layout's springs and joint masses renumbered onto them. Every spring and joint mass of the
+    full model sits on an end node, so nothing is lost (checked)."""
+    node_map = {}
+    for index, link in enumerate(model.links):
+        node_map[link.first_node] = 2 * index
+        node_map[link.first_node + link.elements] = 2 * index + 1
+
+    def dof(d):
+        if d == GROUND:
+            return GROUND
+        node, k = divmod(int(d), 3)
+        if node not in node_map:
+            raise AssertionError("a spring acts on an inner node of a link")
+        return 3 * node_map[node] + k
+
+    s = lay.springs
+    springs = Springs(np.array([dof(d) for d in s.dof_a], dtype=np.int64),
+                      np.array([dof(d) for d in s.dof_b], dtype=np.int64),
+                      np.asarray(s.stiffness, dtype=float), s.labels)
+    links = tuple(LinkMesh(l.name, 2 * i, 1, l.length, l.angle, l.section)
+                  for i, l in enumerate(model.links))
+    nodes = np.concatenate([model.nodes[[l.first_node, l.first_node + l.elements]]
+                            for l in model.links])
+    return FrameModel(nodes=nodes, links=links, springs=springs,
+                      point_masses=tuple((node_map[n], m) for n, m in lay.point_masses),
+                      joint_nodes={j: tuple(node_map[n] for n in v)
+                                   for j, v in lay.joint_nodes.items()})
+
+
+class CraigBamptonPlan:
+    """The reduced dense K and M of every pose of one topology (boundary DOFs after the exact
+    rigid-joint reduction, then each link's modal coordinates), for a given cut-off
+    ``lambda_cut`` [rad^2/s^2]. Built from one model of the topology."""
+
+    def __init__(self, model: FrameModel, lay: _Layout, lambda_cut: float):
+        self.lambda_cut = lambda_cut
+        self.links = []
+        for link in model.links:
+            s = link.section
+            self.links.append(reduce_link(link.length, link.elements, s.EA, s.EI,
+                                          s.mass_per_length, lambda_cut))
+        bmodel = boundary_model(lay, model)
+        T = reduction(bmodel)
+        n_b = bmodel.n_dofs
+        if T is None:
+            column, n_br = np.arange(n_b), n_b
+        else:
+            T = T.tocsr()
+            column = np.full(n_b, -1)
+            column[np.diff(T.indptr) == 1] = T.indices
+            n_br = T.shape[1]
+        self.n_boundary = n_br
+        self.n = n_br + sum(l.n_modes for l in self.links)
+        self.spare = self.n * self.n
+        # each link's reduced DOFs -> column of the plan's matrix (-1: grounded)
+        offset, columns = n_br, []
+        for index, rl in enumerate(self.links):
+            boundary = column[6 * index + np.arange(6)]
+            columns.append(np.concatenate([boundary, offset + np.arange(rl.n_modes)]))
+            offset += rl.n_modes
+        self.slots = []
+        for cols in columns:
+            r, c = cols[:, None], cols[None, :]
+            self.slots.append(np.where((r >= 0) & (c >= 0), r * self.n + c, self.spare).ravel())
+        self.all_slots = np.concatenate(self.slots)
+        self.columns = columns
+        self.boundary = bmodel
+        self.boundary_column = column
+        self._series = {}  # link lengths -> (links, SERIES, 6, 6) flexibility series
+        self.boundary_columns = np.array([cols[:6] for cols in columns])
+        self.constant = []
+        for rows, cols, vals in (spring_entries(bmodel), point_mass_entries(bmodel)):
+            r, c = column[rows], column[cols]
+            slots = np.where((r >= 0) & (c >= 0), r * self.n + c, self.spare)
+            self.constant.append(np.bincount(slots, weights=vals, minlength=self.spare + 1)
+                                 [:self.spare].reshape(self.n, self.n))
+
+    def matrices(self, model: FrameModel) -> tuple[np.ndarray, np.ndarray]:
+        """Reduced dense (K, M) of ``model`` (the plan's topology at any pose)."""
+        k_parts, m_parts = [], []
+        for rl, link in zip(self.links, model.links):
+            K, M = rl.matrices(link.length)
+            c, s = math.cos(link.angle), math.sin(link.angle)
+            Q = np.eye(K.shape[0])  # local = Q global on the boundary DOFs; modes unchanged
+            Q[[0, 3], [0, 3]] = Q[[1, 4], [1, 4]] = c
+            Q[[0, 3], [1, 4]], Q[[1, 4], [0, 3]] = s, -s
+            k_parts.append((Q.T @ K @ Q).ravel())
+            m_parts.append((Q.T @ M @ Q).ravel())
+        size = self.spare + 1
+        K = np.bincount(self.all_slots, weights=np.concatenate(k_parts), minlength=size)
+        M = np.bincount(self.all_slots, weights=np.concatenate(m_parts), minlength=size)
+        K = K[:self.spare].reshape(self.n, self.n) + self.constant[0]
+        M = M[:self.spare].reshape(self.n, self.n) + self.constant[1]
+        return K, M
+
+    def corrected(self, model: FrameModel, eigenvalues: np.ndarray, vectors: np.ndarray,
+                  iterations: int = 3) -> np.ndarray:
+        """Eigenvalues [rad^2/s^2] with the truncated modes put back to leading order.
+
+        Eliminating the truncated coordinates exactly leaves the nonlinear eigenproblem
+        (K - lambda M - lambda^2 sum_k c_k c_k^T / (k_k - lambda m_k)) x = 0 on the kept ones
+        (c_k: a truncated mode's mass coupling with the boundary DOFs; it has no stiffness
+        coupling). For each reduced eigenvector x (x^T M x = 1, x^T K x = lambda_r) the
+        Rayleigh functional solves lambda_r - lambda - lambda^2 sum_k (c_k^T x)^2 /
+        (k_k - lambda m_k) = 0 (Newton from lambda_r); being stationary, its error is of second
+        order in the error of x, where plain truncation has first order."""
+        vectors = np.asarray(vectors)
+        padded = np.vstack([vectors, np.zeros((1, vectors.shape[1]))])
+        lengths = tuple(link.length for link in model.links)
+        if lengths not in self._series:
+            if len(self._series) >= 64:
+                self._series.clear()
+            self._series[lengths] = np.stack([rl.flexibility_series(length)
+                                              for rl, length in zip(self.links, lengths)])
+        series = self._series[lengths]  # (links, SERIES, 6, 6)
+        angle = np.array([link.angle for link in model.links])[:, None, None]
+        c, s = np.cos(angle), np.sin(angle)
+        u = padded[self.boundary_columns]  # (links, 6, modes), global frame
+        local = np.empty_like(u)  # boundary DOFs in each link's frame
+        local[:, [0, 3]] = c * u[:, [0, 3]] + s * u[:, [1, 4]]
+        local[:, [1, 4]] = -s * u[:, [0, 3]] + c * u[:, [1, 4]]
+        local[:, [2, 5]] = u[:, [2, 5]]
+        terms = np.einsum("lim,ljim->jm", local, series @ local[:, None])  # u^T F_j u
+        lam = np.array(eigenvalues, dtype=float)
+        start = lam.copy()
+        power = np.arange(SERIES)[:, None]
+        for _ in range(iterations):
+            S = (lam**power * terms).sum(axis=0)
+            dS = (power[1:] * lam ** power[:-1] * terms[1:]).sum(axis=0)
+            f = start - lam - lam**2 * S
+            lam = lam + f / (1 + 2 * lam * S + lam**2 * dS)
+        return lam
+
+    def shapes(self, model: FrameModel, vectors: np.ndarray) -> np.ndarray:
+        """Full-model displacement shapes (model.n_dofs, k) from reduced eigenvectors
+        (self.n, k): boundary DOFs from the plan's columns, each link's chain from its
+        Craig-Bampton basis (rotated back to the global frame)."""
+        vectors = np.asarray(vectors)
+        padded = np.vstack([vectors, np.zeros((1, vectors.shape[1]))])  # -1: grounded -> 0
+        out = np.zeros((model.n_dofs, vectors.shape[1]))
+        for rl, link, cols in zip(self.links, model.links, self.columns):
+            c, s = math.cos(link.angle), math.sin(link.angle)
+            R = np.array([[c, s, 0.0], [-s, c, 0.0], [0.0, 0.0, 1.0]])
+            q = padded[cols].copy()
+            q[:6] = np.kron(np.eye(2), R) @ q[:6]  # boundary DOFs to the link frame
+            r = link.length / rl.length
+            scale = np.where(rl.rotation, r, 1.0)  # basis at length L: see the module docstring
+            inner = np.where(np.arange(rl.basis.shape[0]) % 3 == 2, 1 / r, 1.0)
+            local = inner[:, None] * (rl.basis @ (scale[:, None] * q))
+            nodes = link.nodes
+            for k in range(3):
+                out[3 * nodes + k] = sum(R[j, k] * local[j::3] for j in range(3))
+        return out
+

@@ -1,0 +1,301 @@
+"""The finite-element model of a linkage at one pose: nodes, beam links, springs, masses.
+
+Plain data only; no matrices here beyond each link's local ones (see ``link.py``).
+
+Global DOFs: node i owns 3i (ux [m]), 3i+1 (uy [m]), 3i+2 (rz [rad]). Every link has its own
+chain of nodes, so two links meeting at a joint have two coincident nodes; the joint joins
+them through explicit spring elements:
+  - a pin (or bearing) between two links: a translational spring Kt [N/m] in x and in y and a
+    torsional spring Kr [N m/rad] between the two end nodes;
+  - a ground bearing: the same springs between the link's node and the ground; a ``welded``
+    ground joint (links fixed to each other, turning together in one bearing, e.g. a
+    triangular rocker built from two beams) has the bearing springs on its first link's node
+    only and ties the other links' nodes to that node rigidly;
+  - a drive: a torsional spring between the driven link's node and the ground, in parallel with
+    its bearing's Kr.
+A stiffness of ``inf`` ("rigid" in a scene file) is an exact constraint, not a penalty: the
+two DOFs are merged (or the DOF is fixed, for ground) by ``assembly.reduction``.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import functools
+import math
+
+import numpy as np
+
+from flexlink.errors import InputError
+from flexlink.fe.link import link_matrices
+
+DOF_NAMES = ("ux", "uy", "rz")
+GROUND = -1
+
+
+@dataclasses.dataclass(frozen=True)
+class Section:
+    """Cross-section and material of a link, SI units.
+
+    E [Pa], G [Pa], density [kg/m^3], area [m^2], second_moment [m^4] for in-plane bending,
+    depth [m] = in-plane depth of the section (for slenderness checks).
+    """
+
+    E: float
+    G: float
+    density: float
+    area: float
+    second_moment: float
+    depth: float
+    name: str = ""
+
+    def __post_init__(self):
+        for field in ("E", "G", "density", "area", "second_moment", "depth"):
+            value = getattr(self, field)
+            if not (math.isfinite(value) and value > 0):
+                raise InputError(f"must be positive and finite, got {value!r}",
+                                 source=self.name or None, field=field)
+
+    @classmethod
+    def rectangle(cls, E, G, density, width, thickness, name=""):
+        """Flat bar lying in the mechanism plane: ``width`` [m] is the in-plane depth,
+        ``thickness`` [m] is out of plane; in-plane bending uses I = thickness width^3 / 12."""
+        return cls(E=E, G=G, density=density, area=width * thickness,
+                   second_moment=thickness * width**3 / 12.0, depth=width, name=name)
+
+    @classmethod
+    def tube(cls, E, G, density, outer_radius, inner_radius, name=""):
+        """Round tube [m]: A = pi (ro^2 - ri^2), I = pi (ro^4 - ri^4) / 4, depth 2 ro."""
+        if not 0 <= inner_radius < outer_radius:
+            raise InputError(f"need 0 <= inner radius < outer radius, got {inner_radius!r}, "
+                             f"{outer_radius!r}", source=name or None, field="tube")
+        ro2, ri2 = outer_radius**2, inner_radius**2
+        return cls(E=E, G=G, density=density, area=math.pi * (ro2 - ri2),
+                   second_moment=math.pi * (ro2**2 - ri2**2) / 4.0, depth=2 * outer_radius,
+                   name=name)
+
+    @property
+    def EA(self) -> float:
+        return self.E * self.area
+
+    @property
+    def EI(self) -> float:
+        return self.E * self.second_moment
+
+    @property
+    def mass_per_length(self) -> float:
+        return self.density * self.area
+
+
+@dataclasses.dataclass(frozen=True)
+class LinkSpec:
+    """A link of the linkage: a straight beam from joint ``start`` to joint ``end``."""
+
+    name: str
+    start: str
+    end: str
+    section: Section
+    elements: int
+
+
+@dataclasses.dataclass(frozen=True)
+class JointSpec:
+    """A joint: ``ground`` joints are bearings to the frame. Kt [N/m], Kr [N m/rad]; inf = rigid."""
+
+    name: str
+    ground: bool
+    Kt: float
+    Kr: float
+    mass: float = 0.0  # lumped joint mass [kg] (pin, bearing), on the first attached link end's node
+    welded: bool = False  # ground joint only: its links are welded together (see module docstring)
+
+    def __post_init__(self):
+        for field in ("Kt", "Kr", "mass"):
+            value = getattr(self, field)
+            if not (value >= 0) or math.isnan(value):
+                raise InputError(f"must be >= 0, got {value!r}", source=f"joint {self.name}",
+                                 field=field, expected="N/m, N*m/rad or kg, >= 0")
+        if self.welded and not self.ground:
+            raise InputError("only a ground joint can be welded (a moving weld is Kt = Kr = rigid)",
+                             source=f"joint {self.name}", field="welded")
+
+
+@dataclasses.dataclass(frozen=True)
+class DriveSpec:
+    """The drive holds ``link``'s rotation at ground joint ``joint`` with ``stiffness`` [N m/rad]."""
+
+    link: str
+    joint: str
+    stiffness: float
+
+
+@dataclasses.dataclass(frozen=True)
+class Topology:
+    """Which links meet at which joints, with their properties; independent of the pose."""
+
+    links: tuple[LinkSpec, ...]
+    joints: tuple[JointSpec, ...]
+    drive: DriveSpec | None = None
+
+
+@dataclasses.dataclass(frozen=True)
+class LinkMesh:
+    """A meshed link at a pose: nodes first_node ... first_node + elements, start to end."""
+
+    name: str
+    first_node: int
+    elements: int
+    length: float
+    angle: float  # [rad], direction start -> end from the global x axis
+    section: Section
+
+    @property
+    def nodes(self) -> np.ndarray:
+        return np.arange(self.first_node, self.first_node + self.elements + 1)
+
+    def local_matrices(self):
+        """(K, M) in the link frame; cached in ``link.py``, so cheap across poses."""
+        s = self.section
+        return link_matrices(self.length, self.elements, s.EA, s.EI, s.mass_per_length)
+
+
+@dataclasses.dataclass(frozen=True)
+class Springs:
+    """Spring elements between global DOFs ``dof_a`` and ``dof_b`` (GROUND = -1): arrays."""
+
+    dof_a: np.ndarray
+    dof_b: np.ndarray
+    stiffness: np.ndarray
+    labels: tuple[str, ...]
+
+
+@dataclasses.dataclass(frozen=True)
+class FrameModel:
+    """Everything assembly needs at one pose."""
+
+    nodes: np.ndarray  # (N, 2) [m]
+    links: tuple[LinkMesh, ...]
+    springs: Springs
+    point_masses: tuple[tuple[int, float], ...]  # (node, mass [kg]) translational
+    joint_nodes: dict[str, tuple[int, ...]]
+
+    @property
+    def n_dofs(self) -> int:
+        return 3 * len(self.nodes)
+
+
+@dataclasses.dataclass(frozen=True)
+class _Layout:
+    """The pose-independent part of a model: node numbering, joint nodes, springs, masses."""
+
+    first_nodes: tuple[int, ...]
+    n_nodes: int
+    springs: Springs
+    point_masses: tuple[tuple[int, float], ...]
+    joint_nodes: dict[str, tuple[int, ...]]
+
+
+def _layout(topology: Topology) -> _Layout:
+    joint_nodes = {j.name: [] for j in topology.joints}
+    first_nodes, next_node = [], 0
+    for spec in topology.links:
+        for joint in (spec.start, spec.end):
+            if joint not in joint_nodes:
+                raise InputError(f"link {spec.name!r} names joint {joint!r}, which is not defined",
+                                 field=f"links.{spec.name}", expected=f"one of {list(joint_nodes)}")
+        first_nodes.append(next_node)
+        joint_nodes[spec.start].append(next_node)
+        joint_nodes[spec.end].append(next_node + spec.elements)
+        next_node += spec.elements + 1
+
+    dof_a, dof_b, k, labels = [], [], [], []
+
+    def spring(a_node, b_node, dof, stiffness, label):
+        if stiffness == 0.0:
+            return
+        dof_a.append(3 * a_node + dof)
+        dof_b.append(GROUND if b_node == GROUND else 3 * b_node + dof)
+        k.append(stiffness)
+        labels.append(label)
+
+    point_masses = []
+    for joint in topology.joints:
+        attached = joint_nodes[joint.name]
+        if not attached:
+            raise InputError(f"joint {joint.name!r} has no link attached", field=f"joints.{joint.name}")
+        partners = [GROUND] * len(attached) if joint.ground else [attached[0]] * len(attached)
+        if joint.welded:
+            for node in attached[1:]:
+                for dof, name in ((0, "x"), (1, "y"), (2, "r")):
+                    spring(node, attached[0], dof, math.inf, f"{joint.name} weld {name}")
+            attached, partners = attached[:1], partners[:1]
+        for node, other in zip(attached, partners):
+            if node == other:
+                continue
+            for dof, name in ((0, "x"), (1, "y")):
+                spring(node, other, dof, joint.Kt, f"{joint.name} Kt {name}")
+            spring(node, other, 2, joint.Kr, f"{joint.name} Kr")
+        if joint.mass > 0:
+            point_masses.append((attached[0], joint.mass))
+    if topology.drive is not None:
+        drive = topology.drive
+        link_index = next((i for i, s in enumerate(topology.links) if s.name == drive.link), None)
+        if link_index is None:
+            raise InputError(f"drive names link {drive.link!r}, which is not defined", field="drive.link")
+        spec = topology.links[link_index]
+        if drive.joint not in (spec.start, spec.end):
+            raise InputError(f"drive joint {drive.joint!r} is not an end of link {drive.link!r}",
+                             field="drive.joint")
+        node = first_nodes[link_index] + (0 if drive.joint == spec.start else spec.elements)
+        spring(node, GROUND, 2, drive.stiffness, f"drive {drive.link}@{drive.joint}")
+
+    arrays = (np.asarray(dof_a, dtype=np.int64), np.asarray(dof_b, dtype=np.int64),
+              np.asarray(k, dtype=float))
+    for array in arrays:
+        array.flags.writeable = False  # shared by every model of this topology
+    return _Layout(first_nodes=tuple(first_nodes), n_nodes=next_node,
+                   springs=Springs(*arrays, tuple(labels)), point_masses=tuple(point_masses),
+                   joint_nodes={name: tuple(v) for name, v in joint_nodes.items()})
+
+
+_cached_layout = functools.lru_cache(maxsize=32)(_layout)
+
+
+@functools.lru_cache(maxsize=64)
+def _fractions(elements: int) -> np.ndarray:
+    t = np.linspace(0.0, 1.0, elements + 1)[:, None]
+    t.flags.writeable = False
+    return t
+
+
+def layout(topology: Topology) -> _Layout:
+    """The pose-independent part of ``topology``'s models, cached per topology."""
+    try:
+        return _cached_layout(topology)
+    except TypeError:  # a topology built from lists is not hashable: nothing to cache
+        return _layout(topology)
+
+
+def build_model(topology: Topology, points: dict[str, tuple[float, float]],
+                known_layout: _Layout | None = None) -> FrameModel:
+    """Mesh every link between its joints' positions ``points`` [m] and join them with springs.
+
+    Node numbering, springs and masses depend on the topology alone and are worked out once per
+    topology (cached; a caller looping over poses may pass ``layout(topology)`` as ``known_layout``
+    to skip even the cache look-up, which hashes the whole topology)."""
+    lay = known_layout or layout(topology)
+    nodes, links = [], []
+    for spec, first in zip(topology.links, lay.first_nodes):
+        for joint in (spec.start, spec.end):
+            if joint not in points:
+                raise InputError(f"no position for joint {joint!r}", field="pose")
+        (x0, y0), (x1, y1) = points[spec.start], points[spec.end]
+        dx, dy = float(x1) - float(x0), float(y1) - float(y0)
+        length = math.hypot(dx, dy)
+        if length <= 0:
+            raise InputError(f"link {spec.name!r} has zero length at this pose",
+                             field=f"links.{spec.name}")
+        nodes.append(np.array([x0, y0], dtype=float) + _fractions(spec.elements) * (dx, dy))
+        links.append(LinkMesh(spec.name, first, spec.elements, length, math.atan2(dy, dx),
+                              spec.section))
+    return FrameModel(nodes=np.concatenate(nodes), links=tuple(links), springs=lay.springs,
+                      point_masses=lay.point_masses, joint_nodes=dict(lay.joint_nodes))

@@ -1,0 +1,153 @@
+"""Constituent materials and the rule of mixtures for a woven 0/90 composite laminate.
+
+All values SI: moduli in Pa, density in kg/m^3.
+
+Fabric formula (chosen, and why). A woven 0/90 carbon fabric ply holds equal amounts of fibre
+in the two directions. Each ply is modelled as a balanced cross-ply of two unidirectional
+layers whose properties come from the rule of mixtures:
+
+    E1   = Vf Ef + (1 - Vf) Em                 (Voigt, along the fibres)
+    E2   = 1 / (Vf/Ef + (1 - Vf)/Em)           (Reuss, across the fibres)
+    G12  = 1 / (Vf/Gf + (1 - Vf)/Gm)           (Reuss)
+    nu12 = Vf nuf + (1 - Vf) num
+    rho  = Vf rhof + (1 - Vf) rhom
+
+Classical lamination theory for the balanced 0/90 ply gives in-plane stiffnesses
+A11 = A22 = (Q11 + Q22)/2 and A12 = Q12 per unit thickness, with Q11 = E1/(1 - nu12 nu21),
+Q22 = E2/(1 - nu12 nu21), Q12 = nu12 Q22. A narrow strip (a link) is free to contract
+sideways, so its beam modulus is the reciprocal of the axial compliance:
+
+    E_beam = A11 - A12^2 / A22
+
+Because all five plies are the same balanced fabric, the laminate is homogeneous through the
+thickness at ply scale and the flexural modulus equals this in-plane value. With Table I means
+and Vf = 0.5: E1 = 101.7 GPa, E2 = 4.74 GPa and E_beam = 53.4 GPa (about (E1 + E2)/2; the
+Poisson term changes it by 0.1 %). Waviness (crimp) of the weave would lower it; the paper
+gives no crimp data, so none is applied.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import tomllib
+from pathlib import Path
+
+from flexlink.errors import InputError
+from flexlink.units import parse_quantity
+
+MATERIALS_DIR = Path(__file__).resolve().parents[2] / "materials"
+
+_FIELDS = {"E": "modulus", "G": "modulus", "density": "density"}
+
+
+@dataclasses.dataclass(frozen=True)
+class Constituent:
+    """An isotropic constituent. E, G [Pa], density [kg/m^3], poisson [-].
+
+    ``spread`` holds the +- value printed for each field (same units), 0 where none is given.
+    """
+
+    name: str
+    E: float
+    G: float
+    density: float
+    poisson: float
+    spread: dict[str, float] = dataclasses.field(default_factory=dict)
+
+    def __post_init__(self):
+        for field in ("E", "G", "density"):
+            if not getattr(self, field) > 0:
+                raise InputError(f"{field} must be positive, got {getattr(self, field)!r}",
+                                 source=self.name, field=field)
+        if not -1.0 < self.poisson < 0.5:
+            raise InputError(f"poisson ratio {self.poisson} outside (-1, 0.5)",
+                             source=self.name, field="poisson")
+
+
+@dataclasses.dataclass(frozen=True)
+class Lamina:
+    """Unidirectional ply properties from the rule of mixtures (SI)."""
+
+    E1: float
+    E2: float
+    G12: float
+    nu12: float
+    density: float
+
+    @property
+    def nu21(self) -> float:
+        return self.nu12 * self.E2 / self.E1
+
+
+def load_constituent(name_or_path: str | Path) -> Constituent:
+    """Read ``materials/<name>.toml`` (or a given path) into a Constituent."""
+    path = Path(name_or_path)
+    if path.suffix != ".toml":
+        path = MATERIALS_DIR / f"{name_or_path}.toml"
+    if not path.is_file():
+        known = sorted(p.stem for p in MATERIALS_DIR.glob("*.toml"))
+        raise InputError(f"no material file {path}", field="material",
+                         expected=f"one of {known} or a path to a .toml file")
+    src = str(path)
+    with path.open("rb") as fh:
+        data = tomllib.load(fh)
+    values, spread = {}, {}
+    for field, dim in _FIELDS.items():
+        entry = data.get(field)
+        if not isinstance(entry, dict) or "mean" not in entry:
+            raise InputError("missing", source=src, field=f"{field}.mean",
+                             expected=f"{field} = {{ mean = '...', spread = '...' }} in {dim} units")
+        values[field] = parse_quantity(entry["mean"], dim, source=src, field=f"{field}.mean")
+        spread[field] = (parse_quantity(entry["spread"], dim, source=src, field=f"{field}.spread")
+                         if "spread" in entry else 0.0)
+    nu = data.get("poisson", {}).get("mean") if isinstance(data.get("poisson"), dict) else None
+    if not isinstance(nu, (int, float)):
+        raise InputError("missing or not a number", source=src, field="poisson.mean",
+                         expected="a dimensionless number in (-1, 0.5)")
+    return Constituent(name=data.get("name", path.stem), E=values["E"], G=values["G"],
+                       density=values["density"], poisson=float(nu), spread=spread)
+
+
+def rule_of_mixtures(fiber: Constituent, matrix: Constituent, fiber_fraction: float) -> Lamina:
+    """Unidirectional ply from fibre and matrix at fibre volume fraction ``fiber_fraction``."""
+    vf = fiber_fraction
+    if not 0.0 < vf < 1.0:
+        raise InputError(f"fiber volume fraction {vf} outside (0, 1)", field="fiber_volume_fraction")
+    vm = 1.0 - vf
+    return Lamina(
+        E1=vf * fiber.E + vm * matrix.E,
+        E2=1.0 / (vf / fiber.E + vm / matrix.E),
+        G12=1.0 / (vf / fiber.G + vm / matrix.G),
+        nu12=vf * fiber.poisson + vm * matrix.poisson,
+        density=vf * fiber.density + vm * matrix.density,
+    )
+
+
+def woven_beam_modulus(ply: Lamina) -> float:
+    """Axial (= flexural) modulus [Pa] of a narrow strip of balanced woven 0/90 plies."""
+    denom = 1.0 - ply.nu12 * ply.nu21
+    q11, q22 = ply.E1 / denom, ply.E2 / denom
+    q12 = ply.nu12 * q22
+    a11 = 0.5 * (q11 + q22)  # = A22 for the balanced ply
+    return a11 - q12**2 / a11
+
+
+@dataclasses.dataclass(frozen=True)
+class BeamMaterial:
+    """What a beam element needs: modulus E [Pa], shear modulus G [Pa], density [kg/m^3]."""
+
+    name: str
+    E: float
+    G: float
+    density: float
+
+
+def woven_composite(fiber: Constituent, matrix: Constituent, fiber_fraction: float) -> BeamMaterial:
+    """Beam material of a woven 0/90 laminate (see the module docstring for the formula)."""
+    ply = rule_of_mixtures(fiber, matrix, fiber_fraction)
+    return BeamMaterial(name=f"woven {fiber.name}/{matrix.name} Vf={fiber_fraction:g}",
+                        E=woven_beam_modulus(ply), G=ply.G12, density=ply.density)
+
+
+def isotropic(material: Constituent) -> BeamMaterial:
+    return BeamMaterial(name=material.name, E=material.E, G=material.G, density=material.density)

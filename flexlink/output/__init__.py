@@ -1,0 +1,1 @@
+"""Outputs: tables and CSV (``report``), VTK files, pictures and plots, the calibration report."""

@@ -1,0 +1,87 @@
+"""Everything a person looks at for one analysed case, written into one folder:
+
+    <stem>.vtu                    all modes as point data on the undeformed linkage (ParaView)
+    <stem>_mode<n>.pvd            animation of mode n over one period, frames in <stem>_mode<n>/
+    <stem>_mode<n>.png            picture of mode n (pyvista, off screen)
+    <stem>_modes.png              overview sheet of all modes
+    <stem>_frequencies.png        computed vs reference frequencies (matplotlib)
+
+``<stem>`` is the scene file's name without ``.toml``. Every file is written atomically.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from pathlib import Path
+
+from flexlink.analysis.modal import CaseResult
+from flexlink.errors import InputError, OutputError
+from flexlink.output.export_vtk import mode_set, modes_mesh, write_animation, write_vtu
+from flexlink.fileio import write_atomic
+
+
+@dataclasses.dataclass(frozen=True)
+class ExportSettings:
+    """n_modes: elastic modes exported; subdivisions: segments per element; phases: animation
+    frames per period; amplitude: largest drawn displacement as a fraction of the mechanism
+    size (the diagonal of the joints' bounding box); pictures/plot: draw PNGs."""
+
+    n_modes: int = 4
+    subdivisions: int = 4
+    phases: int = 24
+    amplitude: float = 0.1
+    pictures: bool = True
+    plot: bool = True
+
+    def __post_init__(self):
+        checks = (("n_modes", 1, 200), ("subdivisions", 1, 64), ("phases", 2, 1000))
+        for field, low, high in checks:
+            value = getattr(self, field)
+            if not (isinstance(value, int) and low <= value <= high):
+                raise InputError(f"got {value!r}", field=field, expected=f"a whole number in [{low}, {high}]")
+        if not 0 < self.amplitude <= 1:
+            raise InputError(f"got {self.amplitude!r}", field="amplitude",
+                             expected="a fraction of the mechanism size in (0, 1]")
+
+
+def case_stem(result: CaseResult) -> str:
+    return Path(result.scene.path).stem
+
+
+def export_case(result: CaseResult, summary: dict, out: Path, settings: ExportSettings) -> dict:
+    """Write the files of one case into ``out/<stem>/``; ``summary`` is its
+    ``report.case_summary``. Returns {"folder": ..., kind: [paths]} with kinds vtu, pvd, frames,
+    pictures, plot (paths as strings)."""
+    stem = case_stem(result)
+    folder = out / stem
+    try:
+        folder.mkdir(exist_ok=True)
+    except OSError as exc:
+        raise OutputError(f"cannot create {folder}: {exc.strerror or exc}") from None
+    modes = mode_set(result, settings.n_modes, settings.subdivisions)
+    files: dict[str, list[Path]] = {"vtu": [], "pvd": [], "frames": [], "pictures": [], "plot": []}
+    files["vtu"].append(write_vtu(folder / f"{stem}.vtu",
+                                  modes_mesh(result, modes, settings.amplitude)))
+    for i in range(len(modes.numbers)):
+        *frames, pvd = write_animation(folder, stem, modes, i, settings.phases, settings.amplitude)
+        files["frames"] += frames
+        files["pvd"].append(pvd)
+    if settings.pictures:
+        from flexlink.output.pictures import mode_picture, overview_sheet
+
+        ground = {j.name for j in result.scene.joints if j.ground}
+        joints = result.pose.joints
+        name = result.scene.name
+        for i, (n, f) in enumerate(zip(modes.numbers, modes.frequencies)):
+            png = mode_picture(f"{name}: mode {n}, {f:.1f} Hz", modes, i, joints, ground,
+                               settings.amplitude)
+            files["pictures"].append(write_atomic(folder / f"{stem}_mode{n}.png", png))
+        files["pictures"].append(write_atomic(
+            folder / f"{stem}_modes.png",
+            overview_sheet(name, modes, joints, ground, settings.amplitude)))
+    if settings.plot:
+        from flexlink.output.plots import frequency_plot
+
+        files["plot"].append(write_atomic(folder / f"{stem}_frequencies.png",
+                                          frequency_plot(summary)))
+    return {"folder": str(folder), **{k: [str(p) for p in v] for k, v in files.items()}}

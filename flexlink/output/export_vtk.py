@@ -1,0 +1,182 @@
+"""Mode shapes as VTK files for ParaView: one ``.vtu`` per scene and pose, and per mode a ``.pvd``
+animation over one period. Written with meshio; every file goes through ``write_atomic``.
+
+Cells: one cell per frame element, a VTK Lagrange curve through the element's sampled points
+(``modeshape.py``). meshio cannot write VTK's plain poly-line cell, and the Lagrange curve is the
+better cell here anyway: with 3 or more subdivisions its polynomial contains the element's exact
+shape (a cubic in the bending direction, linear along the axis), so a viewer that draws it as a
+curve draws the computed shape itself. VTK orders a Lagrange curve's points: both ends, then the
+interior points in order.
+
+Arrays of the ``.vtu`` (2D model padded with z = 0, as VTK wants 3D points):
+- point data ``mode<n>_<f>Hz_displacement`` (3 components [m/sqrt(kg)], z = 0) and
+  ``mode<n>_<f>Hz_rotation`` [rad/sqrt(kg)]: the mass-normalised shapes exactly as solved, for the
+  elastic modes numbered as in the ``modes`` table;
+- cell data ``link_id`` (index of the link), ``element_id`` (global element number);
+- field data ``frequencies_Hz``, ``mode_numbers``, ``warp_scale`` (per mode, the factor for
+  ParaView's Warp By Vector that gives the animation's amplitude), ``theta2_deg``, ``mu_deg``,
+  and ``link_<name>`` = [link_id] for every link (meshio writes numeric arrays only, so the
+  link names travel as array names).
+Animation frames hold the deformed positions themselves (ParaView plays them as they are) with
+the scaled ``displacement`` and ``rotation`` as point data; the ``.pvd`` time is in seconds.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from pathlib import Path
+from xml.sax.saxutils import quoteattr
+
+import meshio
+import numpy as np
+
+from flexlink.analysis.modal import CaseResult
+from flexlink.errors import OutputError
+from flexlink.fileio import write_atomic, write_atomic_with
+from flexlink.fe.modeshape import SampledShapes, sample_shapes
+
+CELL_TYPE = "VTK_LAGRANGE_CURVE"
+
+
+@dataclasses.dataclass(frozen=True)
+class ModeSet:
+    """The elastic modes to export: numbers (1-based, as in the ``modes`` table), frequencies
+    [Hz], and their samples along the elements."""
+
+    numbers: tuple[int, ...]
+    frequencies: np.ndarray
+    sampled: SampledShapes
+    size: float  # mechanism size [m]: diagonal of the joints' bounding box, ground included
+
+    def scale(self, i: int, fraction: float) -> float:
+        """Factor that makes mode i's largest displacement ``fraction`` of the mechanism size."""
+        peak = np.linalg.norm(self.sampled.displacement[:, :, i], axis=1).max()
+        return fraction * self.size / peak if peak > 0 else 0.0
+
+    def label(self, i: int) -> str:
+        return f"mode{self.numbers[i]}_{self.frequencies[i]:.5g}Hz"
+
+
+def mode_set(result: CaseResult, n_modes: int, subdivisions: int = 4) -> ModeSet:
+    """The first ``n_modes`` elastic modes of ``result``, sampled ``subdivisions`` times per
+    element."""
+    modes = result.modes
+    chosen = modes.elastic[:n_modes]
+    joints = np.array(list(result.pose.joints.values()), dtype=float)
+    size = float(np.linalg.norm(joints.max(axis=0) - joints.min(axis=0)))
+    return ModeSet(numbers=tuple(range(1, len(chosen) + 1)),
+                   frequencies=modes.frequencies[chosen],
+                   sampled=sample_shapes(result.model, modes.shapes[:, chosen], subdivisions),
+                   size=size)
+
+
+def _pad(xy: np.ndarray) -> np.ndarray:
+    return np.column_stack([xy, np.zeros(len(xy))])
+
+
+def _lagrange_order(cells: np.ndarray) -> np.ndarray:
+    # along-the-element order -> VTK's: first, last, then the interior points
+    return np.column_stack([cells[:, 0], cells[:, -1], cells[:, 1:-1]])
+
+
+def _link_fields(sampled: SampledShapes) -> dict:
+    return {f"link_{name}": np.array([i]) for i, name in enumerate(sampled.link_names)}
+
+
+def modes_mesh(result: CaseResult, modes: ModeSet, fraction: float) -> meshio.Mesh:
+    """Undeformed linkage with every mode's shape as point data (see module docstring)."""
+    s = modes.sampled
+    point_data = {}
+    for i in range(len(modes.numbers)):
+        point_data[f"{modes.label(i)}_displacement"] = _pad(s.displacement[:, :, i])
+        point_data[f"{modes.label(i)}_rotation"] = s.rotation[:, i].copy()
+    field_data = {
+        "frequencies_Hz": np.asarray(modes.frequencies, dtype=float),
+        "mode_numbers": np.asarray(modes.numbers, dtype=np.int64),
+        "warp_scale": np.array([modes.scale(i, fraction) for i in range(len(modes.numbers))]),
+        "theta2_deg": np.array([math.degrees(result.pose.theta2)]),
+        "mu_deg": np.array([math.degrees(result.pose.mu)]),
+        **_link_fields(s),
+    }
+    return meshio.Mesh(_pad(s.points), [(CELL_TYPE, _lagrange_order(s.cells))],
+                       point_data=point_data,
+                       cell_data={"link_id": [s.cell_link.astype(np.int64)],
+                                  "element_id": [s.cell_element.astype(np.int64)]},
+                       field_data=field_data)
+
+
+def frame_mesh(modes: ModeSet, i: int, factor: float) -> meshio.Mesh:
+    """Mode i deformed by ``factor`` times its shape: one animation frame."""
+    s = modes.sampled
+    displacement = factor * s.displacement[:, :, i]
+    return meshio.Mesh(_pad(s.points + displacement), [(CELL_TYPE, _lagrange_order(s.cells))],
+                       point_data={"displacement": _pad(displacement),
+                                   "rotation": factor * s.rotation[:, i]},
+                       cell_data={"link_id": [s.cell_link.astype(np.int64)],
+                                  "element_id": [s.cell_element.astype(np.int64)]},
+                       field_data={"frequency_Hz": np.array([modes.frequencies[i]]),
+                                   "mode_number": np.array([modes.numbers[i]]),
+                                   **_link_fields(s)})
+
+
+def _field_data_xml(field_data: dict) -> str:
+    arrays = []
+    for name, values in field_data.items():
+        values = np.asarray(values).ravel()
+        if values.dtype.kind == "f":
+            kind, text = "Float64", " ".join(repr(float(v)) for v in values)
+        else:
+            kind, text = "Int64", " ".join(str(int(v)) for v in values)
+        arrays.append(f'<DataArray type="{kind}" Name={quoteattr(name)} NumberOfTuples="{len(values)}"'
+                      f' format="ascii">{text}</DataArray>')
+    return "<FieldData>\n" + "\n".join(arrays) + "\n</FieldData>\n"
+
+
+def _write_vtu_now(path: Path, mesh: meshio.Mesh) -> None:
+    meshio.write(path, mesh, file_format="vtu")
+    if not mesh.field_data:
+        return
+    # meshio 5.3 reads a .vtu's FieldData but does not write it: add the block where VTK's XML
+    # format puts it, first inside <UnstructuredGrid>.
+    text = path.read_text(encoding="utf-8")
+    tag = "<UnstructuredGrid>"
+    if text.count(tag) != 1:
+        raise OutputError(f"unexpected meshio output in {path}: cannot add field data")
+    path.write_text(text.replace(tag, tag + "\n" + _field_data_xml(mesh.field_data)), encoding="utf-8")
+
+
+def write_vtu(path: str | Path, mesh: meshio.Mesh) -> Path:
+    """Write ``mesh`` as a binary, zlib-compressed .vtu (with its field data), atomically."""
+    return write_atomic_with(path, lambda tmp: _write_vtu_now(tmp, mesh))
+
+
+def pvd_text(entries: list[tuple[float, str]]) -> str:
+    """A ParaView collection: (time [s], file relative to the .pvd) per frame."""
+    rows = "".join(f'    <DataSet timestep="{t:.9g}" group="" part="0" file={quoteattr(f)}/>\n'
+                   for t, f in entries)
+    return ('<?xml version="1.0"?>\n'
+            '<VTKFile type="Collection" version="0.1" byte_order="LittleEndian">\n'
+            f"  <Collection>\n{rows}  </Collection>\n</VTKFile>\n")
+
+
+def write_animation(folder: Path, stem: str, modes: ModeSet, i: int, phases: int,
+                    fraction: float) -> list[Path]:
+    """Frames of mode i at ``phases`` equally spaced phases over one period (cosine, so frame 0
+    is the largest deflection), in ``folder/<stem>_mode<n>/``, then ``<stem>_mode<n>.pvd``
+    (written last, so it never names a missing frame). Returns the files written."""
+    name = f"{stem}_mode{modes.numbers[i]}"
+    frames = folder / name
+    try:
+        frames.mkdir(exist_ok=True)
+    except OSError as exc:
+        raise OutputError(f"cannot create {frames}: {exc.strerror or exc}") from None
+    period = 1.0 / modes.frequencies[i] if modes.frequencies[i] > 0 else 1.0
+    scale = modes.scale(i, fraction)
+    written, entries = [], []
+    for k in range(phases):
+        file = frames / f"phase{k:02d}.vtu"
+        written.append(write_vtu(file, frame_mesh(modes, i, scale * math.cos(2 * math.pi * k / phases))))
+        entries.append((k * period / phases, f"{name}/{file.name}"))
+    written.append(write_atomic(folder / f"{name}.pvd", pvd_text(entries)))
+    return written

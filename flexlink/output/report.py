@@ -1,0 +1,134 @@
+"""Comparison of computed frequencies with reference columns (measured Ex, published FE), as
+plain rows, a human-readable table, JSON-ready dicts and CSV text. Pairing is by mode order of
+the elastic modes only; rigid-body/mechanism modes are listed apart, never paired."""
+
+from __future__ import annotations
+
+import csv
+import io
+import math
+
+import numpy as np
+
+from flexlink.analysis.modal import CaseResult
+
+
+def percent_error(computed: float, reference: float) -> float:
+    return 100.0 * (computed - reference) / reference
+
+
+def comparison_rows(result: CaseResult, n_modes: int, computed=None, kinds=None) -> list[dict]:
+    """One dict per elastic mode: mode, computed [Hz], and for each reference column its value
+    [Hz] and % error (computed vs reference)."""
+    if computed is None:
+        computed = result.elastic_frequencies(n_modes)
+    columns = result.scene.reference.columns if result.scene.reference else {}
+    rows = []
+    for i, f in enumerate(computed):
+        row = {"mode": i + 1, "computed_Hz": float(f)}
+        if kinds is not None:
+            row["kind"] = kinds[i]
+        for name, values in columns.items():
+            if i < len(values):
+                row[f"{name}_Hz"] = values[i]
+                row[f"error_vs_{name}_pct"] = percent_error(float(f), values[i])
+        rows.append(row)
+    return rows
+
+
+def mean_abs_errors(rows: list[dict]) -> dict[str, float]:
+    """Mean absolute % error per reference column over the rows."""
+    out = {}
+    for key in {k for r in rows for k in r if k.startswith("error_vs_")}:
+        values = [abs(r[key]) for r in rows if key in r]
+        out[key.removeprefix("error_vs_").removesuffix("_pct")] = float(np.mean(values))
+    return out
+
+
+def case_summary(result: CaseResult, n_modes: int, family: str = "planar", computed=None,
+                 kinds=None) -> dict:
+    """JSON-ready summary of one case. ``computed``/``kinds``: the frequencies [Hz] and mode
+    kinds of a model family other than the planar one of ``result`` (see ``families.py``)."""
+    scene, pose, modes = result.scene, result.pose, result.modes
+    rows = comparison_rows(result, n_modes, computed, kinds)
+    mechanism = [float(f) for f, k in zip(modes.frequencies, modes.kinds) if k != "elastic"]
+    return {
+        "scene": scene.name,
+        "file": scene.path,
+        "family": family,
+        "linkage": {"ground_m": scene.linkage.ground, "crank_m": scene.linkage.crank,
+                    "coupler_m": scene.linkage.coupler, "rocker_m": scene.linkage.rocker,
+                    "grashof": scene.linkage.grashof_class()},
+        "pose": {"theta2_deg": math.degrees(pose.theta2), "mu_deg": math.degrees(pose.mu),
+                 "branch": pose.branch,
+                 "joints_m": {k: list(v) for k, v in pose.joints.items()}},
+        "elements_per_link": result.elements_per_link,
+        "dofs": modes.n_dofs,
+        "solver": modes.solver,
+        "modes": rows,
+        "mechanism_modes_Hz": mechanism,
+        "mean_abs_error_pct": mean_abs_errors(rows),
+        "max_residual": float(np.nanmax(modes.residuals[modes.elastic])),
+        "max_backward_error": float(modes.backward_errors.max()),
+        "orthogonality_error": modes.orthogonality_error,
+        "seconds": result.seconds,
+        "assumptions": [{"field": a.field, "value": a.value, "note": a.note}
+                        for a in scene.assumptions],
+        "reference_source": scene.reference.source if scene.reference else None,
+    }
+
+
+def overall_mean_abs(summaries: list[dict]) -> dict[str, float]:
+    pooled: dict[str, list[float]] = {}
+    for s in summaries:
+        for row in s["modes"]:
+            for key, value in row.items():
+                if key.startswith("error_vs_"):
+                    pooled.setdefault(key[9:-4], []).append(abs(value))
+    return {k: float(np.mean(v)) for k, v in pooled.items()}
+
+
+def format_case(summary: dict) -> str:
+    rows = summary["modes"]
+    refs = [k[:-3] for k in (rows[0] if rows else {}) if k.endswith("_Hz") and k != "computed_Hz"]
+    head = f"{summary['scene']}  ({summary['file']})"
+    pose = summary["pose"]
+    lines = [head, "-" * len(head),
+             f"pose: theta2 = {pose['theta2_deg']:.3f} deg, mu = {pose['mu_deg']:.3f} deg, "
+             f"{pose['branch']} branch; {summary.get('family', 'planar')} model; "
+             f"{summary['elements_per_link']} elements/link, "
+             f"{summary['dofs']} DOFs, {summary['solver']} solver, "
+             f"max residual {summary['max_residual']:.1e}"]
+    header = f"{'mode':>4} {'computed Hz':>12}" + "".join(f" {r + ' Hz':>9} {'err %':>8}" for r in refs)
+    if rows and "kind" in rows[0]:
+        header += "  kind"
+    lines.append(header)
+    for row in rows:
+        line = f"{row['mode']:>4} {row['computed_Hz']:>12.2f}"
+        for r in refs:
+            if f"{r}_Hz" in row:
+                line += f" {row[f'{r}_Hz']:>9.1f} {row[f'error_vs_{r}_pct']:>+8.1f}"
+        if "kind" in row:
+            line += f"  {row['kind']}"
+        lines.append(line)
+    if summary["mean_abs_error_pct"]:
+        lines.append("mean |error|: " + ", ".join(
+            f"vs {k} {v:.1f} %" for k, v in sorted(summary["mean_abs_error_pct"].items())))
+    if summary["mechanism_modes_Hz"]:
+        lines.append("rigid-body/mechanism modes (not paired): " + ", ".join(
+            f"{f:.3g} Hz" for f in summary["mechanism_modes_Hz"]))
+    return "\n".join(lines)
+
+
+def csv_text(summaries: list[dict]) -> str:
+    keys = ["scene", "mode", "computed_Hz"]
+    for s in summaries:
+        for row in s["modes"]:
+            keys += [k for k in row if k not in keys]
+    buf = io.StringIO()
+    writer = csv.DictWriter(buf, fieldnames=keys, lineterminator="\n")
+    writer.writeheader()
+    for s in summaries:
+        for row in s["modes"]:
+            writer.writerow({"scene": s["scene"], **row})
+    return buf.getvalue()

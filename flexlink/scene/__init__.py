@@ -1,0 +1,2 @@
+"""Scene files: the declared schema, loading (with base files and overrides) and the one
+scene contract every command uses."""

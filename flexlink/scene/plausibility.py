@@ -1,0 +1,132 @@
+"""Plausibility of inputs: catch unit slips that explicit units cannot (a "300 m" link typed
+for "300 mm", "53 Pa" for "53 GPa"), and warn where the model leaves its range (stubby or
+shear-soft links for Euler-Bernoulli beams, poses near a dead centre, linkages whose crank cannot turn).
+
+Ranges are deliberately wide: a value outside them is almost surely a unit mistake. A scene
+that really means it sets ``[checks] plausibility = "warn"``.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import logging
+import math
+
+from flexlink.errors import InputError
+
+log = logging.getLogger(__name__)
+
+# quantity -> (low, high, SI unit, what the range covers)
+RANGES = {
+    "length": (1e-4, 100.0, "m", "a link of a machine, 0.1 mm to 100 m"),
+    "section": (1e-6, 10.0, "m", "a section size, 1 um to 10 m"),
+    "E": (1e5, 2e12, "Pa", "soft elastomers (0.1 MPa) to diamond (1.2 TPa)"),
+    "density": (1.0, 3e4, "kg/m^3", "foams (10 kg/m^3) to osmium (22600 kg/m^3)"),
+}
+# prefixes tried for a "did you mean" hint: (factor from the slip to SI, spelling)
+HINTS = {"m": ((1e-3, "mm"), (1e-2, "cm"), (1e3, "km")), "Pa": ((1e9, "GPa"), (1e6, "MPa")),
+         "kg/m^3": ((1e3, "g/cm^3"), (1e-3, "g/m^3"))}
+SLENDER_LIMIT = 10.0  # L/h below this: shear and rotary inertia matter (Euler-Bernoulli off)
+SHEAR_WARN = 0.05  # ... or where they lower the first bending frequency by more than this
+TOGGLE_WARN_DEG = 10.0  # mu within this of 0 or 180 deg: near a dead centre
+
+
+@dataclasses.dataclass(frozen=True)
+class Finding:
+    source: str
+    field: str
+    message: str
+
+
+def _range_finding(kind, value, source, field) -> Finding | None:
+    low, high, unit, covers = RANGES[kind]
+    if low <= value <= high:
+        return None
+    hint = ""
+    for factor, spelling in HINTS.get(unit, ()):
+        if low <= value * factor <= high:
+            hint = f"; did you mean {value:g} {spelling}?"
+            break
+    return Finding(source, field, f"{value:g} {unit} is outside the plausible range "
+                   f"[{low:g}, {high:g}] {unit} ({covers}){hint}")
+
+
+def scene_findings(scene) -> list[Finding]:
+    """Implausible lengths, section sizes, moduli and densities of a scene."""
+    r = scene.reader()
+    found = []
+    for name, value in zip(("ground", "crank", "coupler", "rocker"), scene.linkage.lengths):
+        field = f"linkage.{name}" if r.has(f"linkage.{name}") else "linkage.ground"
+        found.append(_range_finding("length", value, r.src(field), field))
+    for link, s in scene.sections.items():
+        thickness = s.area / s.depth
+        for kind, key, value in (("section", "width", s.depth), ("section", "thickness", thickness),
+                                 ("E", "E", s.E), ("density", "density", s.density)):
+            if kind == "section":
+                own = f"links.{link}.section.{key}"
+                field = own if r.has(own) else f"section.{key}"
+            else:
+                prefix = f"links.{link}.material" if r.has(f"links.{link}.material") else "material"
+                field = f"{prefix}.{key}" if r.has(f"{prefix}.{key}") else prefix
+            found.append(_range_finding(kind, value, r.src(field), field))
+    unique = {}
+    for f in found:
+        if f is not None:
+            unique.setdefault((f.source, f.field, f.message), f)
+    return list(unique.values())
+
+
+def check_scene(scene) -> None:
+    """Raise InputError on the first implausible value, or log them all when the scene says
+    ``[checks] plausibility = "warn"``."""
+    findings = scene_findings(scene)
+    if not findings:
+        return
+    mode = scene.reader().raw("checks.plausibility", "error")
+    if mode == "warn":
+        for f in findings:
+            log.warning("%s: %s: %s", f.source, f.field, f.message)
+        return
+    first = findings[0]
+    raise InputError(first.message + (f" (and {len(findings) - 1} more)" if len(findings) > 1 else ""),
+                     source=first.source, field=first.field,
+                     expected="a value in the range, or [checks] plausibility = \"warn\"")
+
+
+def timoshenko_drop(section, length: float) -> float:
+    """Relative drop of a pinned-pinned beam's first bending frequency from shear and rotary
+    inertia (Timoshenko, shear factor 5/6) against Euler-Bernoulli: 1 - 1/sqrt(1 + a (1 + E/(k G)))
+    with a = (pi r / L)^2, r = h / sqrt(12)."""
+    a = (math.pi * section.depth / math.sqrt(12) / length) ** 2
+    return 1.0 - 1.0 / math.sqrt(1.0 + a * (1.0 + section.E / (5.0 / 6.0 * section.G)))
+
+
+def model_warnings(model) -> list[str]:
+    """Links outside Euler-Bernoulli theory: stubby (L/h < SLENDER_LIMIT), or so soft in shear
+    (E/G large, as in fabric composites) that Timoshenko theory lowers the first bending
+    frequency by more than SHEAR_WARN."""
+    out = []
+    for link in model.links:
+        s = link.section
+        ratio, drop = link.length / s.depth, timoshenko_drop(s, link.length)
+        if ratio < SLENDER_LIMIT or drop > SHEAR_WARN:
+            out.append(f"link {link.name}: slenderness L/h = {ratio:.3g} with E/G = {s.E / s.G:.3g} "
+                       "is outside Euler-Bernoulli theory (no shear strain, no rotary inertia): "
+                       "Timoshenko theory puts its first bending frequency as a pinned-pinned "
+                       f"beam about {100 * drop:.0f} % lower")
+    return out
+
+
+def pose_warnings(linkage, pose) -> list[str]:
+    """Poses near a dead centre (mu near 0 or 180 deg) and linkages whose crank cannot turn."""
+    out = []
+    grashof = linkage.grashof_class()
+    if grashof not in ("crank-rocker", "double-crank"):
+        out.append(f"the linkage is {grashof}: its input link cannot turn fully; the pose is one "
+                   "of a limited range")
+    mu = math.degrees(pose.mu)
+    distance = min(mu, 180.0 - mu)
+    if distance < TOGGLE_WARN_DEG:
+        out.append(f"transmission angle {mu:.3f} deg is {distance:.3g} deg from a dead centre "
+                   f"(0 or 180 deg): the pose and the joint loads are very sensitive there")
+    return out

@@ -1,0 +1,126 @@
+"""The whole honest comparison of one model family with a reference table, as one JSON-ready
+document: assumed inputs, calibration against Ex and against the paper's FE, leave-one-case-out
+cross-validation, per-case fits, the mode-ratio (proportionality) test, Monte Carlo intervals
+and first-order sensitivities. ``calibration_report`` turns a list of these into Markdown."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+
+from flexlink.studies.calibration import (DEFAULT_FREE, FreeParameter, Problem, case_label, cross_validation,
+                          fit_many, json_ready, leave_one_out_problems, measured, parse_free,
+                          predict, ratios, single_case_problems)
+from flexlink.studies.uncertainty import monte_carlo, scene_inputs, sensitivities
+
+# inputs with no effect on a family are left out of its default free set (they could not be
+# identified: zero Jacobian column)
+NOT_IN_FAMILY = {"planar": {"Ktilt"}, "out-of-plane": {"Kr", "drive"}, "3d": set()}
+DEFAULT_TILT = "Ktilt=1e-2 N*m/rad:1e5 N*m/rad"
+
+
+def default_free(family: str) -> tuple[FreeParameter, ...]:
+    specs = [parse_free(s) for s in (*DEFAULT_FREE, DEFAULT_TILT)]
+    return tuple(p for p in specs if p.name not in NOT_IN_FAMILY[family])
+
+
+@dataclasses.dataclass(frozen=True)
+class StudySettings:
+    starts: int = 8
+    seed: int = 0
+    samples: int = 200
+    vf_sd: float = 0.05
+    thickness_sd: float = 0.15e-3  # [m]
+    elements: int | None = 8
+    n_jobs: int = -1
+    progress: bool = False
+
+
+def _mean_abs(errors) -> float:
+    return float(np.nanmean(np.abs(errors)))
+
+
+def _pct(predicted, reference):
+    return 100.0 * (np.asarray(predicted) / np.asarray(reference) - 1.0)
+
+
+def _uncertainty(paths, overrides, s: StudySettings, reference):
+    inputs = scene_inputs(paths[0], overrides, s.vf_sd, s.thickness_sd)
+    mc = monte_carlo(paths, overrides, inputs, s.samples, s.seed, elements=s.elements,
+                     n_jobs=s.n_jobs, progress=s.progress)
+    sens = sensitivities(paths, overrides, inputs, elements=s.elements, n_jobs=s.n_jobs,
+                         progress=s.progress)
+    inside = mc.contains(reference)
+    return {
+        "samples": s.samples, "seed": s.seed, "failed_samples": int(np.isnan(mc.samples).any(axis=(1, 2)).sum()),
+        "inputs": {"nominal": inputs.nominal, "sd": inputs.sd},
+        "mean_Hz": mc.mean, "low95_Hz": mc.low, "high95_Hz": mc.high,
+        "Ex_inside": inside, "Ex_inside_count": int(inside.sum()), "count": int(inside.size),
+        "first_order_sd_ln_f": sens.sd_ln_f,
+        "first_order_low95_Hz": mc.mean * np.exp(-1.96 * sens.sd_ln_f),
+        "first_order_high95_Hz": mc.mean * np.exp(1.96 * sens.sd_ln_f),
+        "sensitivities": {n: sens.values[n] for n in sens.names},
+        "ranked": [{"input": n, "max_abs": v} for n, v in sens.ranked()],
+    }
+
+
+def run_study(paths, family: str, free: tuple[FreeParameter, ...] | None,
+              settings: StudySettings) -> dict:
+    """Everything the report needs for one family (see the module docstring)."""
+    s = settings
+    paths = tuple(str(p) for p in paths)
+    free = free or default_free(family)
+    base = Problem(scenes=paths, parameters=free, reference="Ex", elements=s.elements,
+                   fixed=(("model.family", family),))
+    fe = dataclasses.replace(base, reference="FE")
+    problems = ([base, fe] + leave_one_out_problems(base) + single_case_problems(base, "frequencies")
+                + single_case_problems(base, "ratios"))
+    fits = fit_many(problems, s.starts, s.seed, s.n_jobs, s.progress)
+    n = len(paths)
+    ex_fit, fe_fit = fits[0], fits[1]
+    cv = cross_validation(base, fits[2:2 + n])
+    per_case, ratio_fits = fits[2 + n:2 + 2 * n], fits[2 + 2 * n:]
+
+    ex, fe_ref = measured(base), measured(fe)
+    nominal = predict(base)
+    ratio_best = np.array([f.predicted[0] / f.predicted[0, 0] for f in ratio_fits])
+    calibrated = base.overrides(ex_fit.values)
+    return json_ready({
+        "family": family,
+        "cases": [case_label(p) for p in paths], "files": list(paths),
+        "settings": dataclasses.asdict(s),
+        "free": [{"name": p.name, "unit": p.unit, "low": p.low, "high": p.high,
+                  "nominal": p.nominal(base.scene(paths[0]))} for p in free],
+        "Ex_Hz": ex, "paper_FE_Hz": fe_ref,
+        "nominal_Hz": nominal, "nominal_errors_pct": _pct(nominal, ex),
+        "errors_mean_abs_pct": {
+            "assumed_inputs_vs_Ex": _mean_abs(_pct(nominal, ex)),
+            "calibrated_to_Ex_in_sample": ex_fit.mean_abs_error_pct,
+            "cross_validated_vs_Ex": cv.mean_abs_error_pct,
+            "calibrated_to_FE_vs_FE": fe_fit.mean_abs_error_pct,
+            "calibrated_to_FE_vs_Ex": _mean_abs(_pct(fe_fit.predicted, ex)),
+            "paper_FE_vs_Ex": _mean_abs(_pct(fe_ref, ex)),
+            "per_case_fit_in_sample": _mean_abs([f.errors_pct for f in per_case]),
+        },
+        "fit_Ex": ex_fit.as_dict(), "fit_FE": fe_fit.as_dict(),
+        "cross_validation": {
+            "held_out": [case_label(p) for p in paths],
+            "predicted_Hz": cv.predicted, "errors_pct": cv.errors_pct,
+            "fold_fitted_mean_abs_pct": [f.mean_abs_error_pct for f in cv.folds],
+            "fold_predicted_mean_abs_pct": [_mean_abs(e) for e in cv.errors_pct],
+            "fold_values": [f.values for f in cv.folds],
+        },
+        "per_case_fits": [{"case": case_label(p), "values": f.values,
+                           "predicted_Hz": f.predicted[0], "errors_pct": f.errors_pct[0],
+                           "mean_abs_pct": f.mean_abs_error_pct}
+                          for p, f in zip(paths, per_case)],
+        "ratios": {
+            "measured": ratios(ex), "nominal_model": ratios(nominal), "best_model": ratio_best,
+            "best_errors_pct": _pct(ratio_best[:, 1:], ratios(ex)[:, 1:]),
+            "best_values": [f.values for f in ratio_fits],
+            "case_to_case_measured": ex / ex[:1],
+        },
+        "uncertainty_nominal": _uncertainty(paths, dict(base.fixed), s, ex),
+        "uncertainty_calibrated": _uncertainty(paths, calibrated, s, ex),
+    })

@@ -1,0 +1,231 @@
+"""Mesh convergence: frequencies, error and run time over mesh levels and solver/mass choices.
+
+Discretisation error is measured against a Richardson extrapolation of the finest three levels
+h, h/2, h/4 of one choice. The leading error term is of order p = ORDER = 2: the axial P1
+element (with consistent mass) has eigenvalue error O(h^2), and every mode of a pinned frame
+stretches its links a little; Hermite bending alone converges at O(h^4) (tests/
+test_convergence.py shows both). So each pair is extrapolated at order 2,
+    r = f_h/2 + (f_h/2 - f_h) / (2^2 - 1),
+and the two results once more at order 4 (the next term), which removes the h^4 bending error
+too. The observed order log2(|f_h - f_h/2| / |f_h/2 - f_h/4|) is computed and compared with p.
+Model error (against measurement) is kept apart: refining the mesh does not reduce it.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import io
+import math
+import statistics
+
+import numpy as np
+
+from flexlink.analysis.modal import analyze
+from flexlink.errors import NumericalError
+from flexlink.fileio import write_atomic
+from flexlink.scene.load import Scene
+from flexlink.analysis.solve import DENSE_LIMIT
+
+ORDER = 2  # see module docstring; the second extrapolation step uses ORDER + 2
+REPEAT_BUDGET_S = 5.0  # a level stops repeating once its runs took this long (slow dense levels)
+ORDER_SLACK = 0.5  # observed order within ORDER +- this counts as asymptotic
+DEFAULT_TOL = 1e-6  # relative frequency tolerance of the default mesh rule
+
+
+@dataclasses.dataclass(frozen=True)
+class Choice:
+    """A way to solve: eigen ``method``, ``mass`` matrix, and energy refinement (see solve.py)."""
+
+    method: str
+    mass: str
+    refine: bool = True
+
+    @property
+    def label(self) -> str:
+        return f"{self.method}/{self.mass}" + ("" if self.refine else " (unrefined)")
+
+
+CHOICES = (Choice("sparse", "consistent"), Choice("dense", "consistent"),
+           Choice("sparse", "lumped"), Choice("dense", "lumped"),
+           Choice("sparse", "consistent", refine=False))
+
+
+@dataclasses.dataclass(frozen=True)
+class Level:
+    """One mesh level of one choice: median times [s] and the lowest elastic frequencies [Hz]."""
+
+    choice: Choice
+    elements: int
+    dofs: int
+    assembly_s: float
+    solve_s: float
+    frequencies: np.ndarray
+    runs: int = 1
+
+    @property
+    def total_s(self) -> float:
+        return self.assembly_s + self.solve_s
+
+
+@dataclasses.dataclass(frozen=True)
+class Extrapolation:
+    """Richardson reference [Hz] from the finest levels ``elements`` (h, h/2, h/4) of one choice,
+    with the order used and the observed order per mode."""
+
+    reference: np.ndarray
+    order: int
+    observed: np.ndarray
+    elements: tuple[int, ...]
+    uncertainty: np.ndarray  # relative change of the reference by the second (order-4) step
+
+    @property
+    def asymptotic(self) -> bool:
+        return bool(np.all(np.abs(self.observed - self.order) <= ORDER_SLACK))
+
+
+def mesh_levels(max_elements: int = 512) -> tuple[int, ...]:
+    """1, 2, 4, ... up to ``max_elements`` elements per link."""
+    return tuple(2**k for k in range(int(math.log2(max_elements)) + 1))
+
+
+def run_level(scene: Scene, choice: Choice, elements: int, n_modes: int, repeats: int) -> Level:
+    """One level of one choice, solved up to ``repeats`` times (see ``run_levels``)."""
+    return run_levels(scene, [(choice, elements)], n_modes, repeats)[0]
+
+
+def run_levels(scene: Scene, work, n_modes: int, repeats: int, progress=None,
+               refused: list | None = None) -> list[Level]:
+    """Every (choice, elements) of ``work``, solved ``repeats`` times, round-robin: each round
+    runs every level once, so a change in machine load during the study hits every choice
+    alike. A level whose runs took REPEAT_BUDGET_S in all is not repeated further. Median
+    assembly and solve wall times [s].
+
+    A level the solver refuses (NumericalError, e.g. a mesh past double precision for that
+    choice) is left out of the result; with ``refused`` given, (choice, elements, message) is
+    appended there, otherwise the error propagates."""
+    work = list(work)
+    runs: list[list] = [[] for _ in work]
+    failed: dict[int, str] = {}
+    rounds = range(repeats)
+    for _ in (progress(rounds) if progress else rounds):
+        for i, ((choice, elements), done) in enumerate(zip(work, runs)):
+            if i in failed or (done and sum(sum(r.seconds.values()) for r in done)
+                               >= REPEAT_BUDGET_S):
+                continue
+            try:
+                done.append(analyze(scene, n_modes, elements, choice.method, choice.mass,
+                                    choice.refine))
+            except NumericalError as exc:
+                if refused is None:
+                    raise
+                failed[i] = str(exc)
+                refused.append((choice, elements, str(exc)))
+    return [Level(choice=c, elements=e, dofs=done[-1].modes.n_dofs,
+                  assembly_s=statistics.median(r.seconds["assembly"] for r in done),
+                  solve_s=statistics.median(r.seconds["solve"] for r in done),
+                  frequencies=done[-1].elastic_frequencies(n_modes), runs=len(done))
+            for i, ((c, e), done) in enumerate(zip(work, runs)) if i not in failed]
+
+
+def runs_dense(elements: int, scene: Scene) -> bool:
+    """Dense choices stop at DENSE_LIMIT DOFs (far past where sparse is faster)."""
+    return 3 * (elements + 1) * len(scene.sections) <= DENSE_LIMIT
+
+
+def observed_order(coarse: np.ndarray, middle: np.ndarray, fine: np.ndarray) -> np.ndarray:
+    """log2 of successive difference ratios, per mode (NaN where a difference is zero)."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.log2(np.abs(middle - coarse) / np.abs(fine - middle))
+
+
+def richardson(levels: list[Level], order: int = ORDER) -> Extrapolation:
+    """Extrapolate the finest three of ``levels`` (one choice, ascending elements, each twice the
+    last): each pair at ``order``, then the two results at ``order + 2``."""
+    if len(levels) < 3:
+        raise ValueError("Richardson extrapolation with an order check needs three levels")
+    c, m, f = levels[-3:]
+    if not (m.elements == 2 * c.elements and f.elements == 2 * m.elements):
+        raise ValueError("Richardson levels must halve h: elements n, 2n, 4n")
+
+    def step(coarse, fine, p):
+        return fine + (fine - coarse) / (2**p - 1)
+
+    first = step(m.frequencies, f.frequencies, order)
+    reference = step(step(c.frequencies, m.frequencies, order), first, order + 2)
+    return Extrapolation(reference=reference, order=order,
+                         observed=observed_order(c.frequencies, m.frequencies, f.frequencies),
+                         elements=(c.elements, m.elements, f.elements),
+                         uncertainty=np.abs(reference - first) / reference)
+
+
+def relative_errors(levels: list[Level], reference: np.ndarray) -> np.ndarray:
+    """(len(levels), n) |f - f_ref| / f_ref."""
+    return np.array([np.abs(l.frequencies - reference) / reference for l in levels])
+
+
+def cheapest(levels: list[Level], reference: np.ndarray, tol: float) -> Level | None:
+    """The level (of any choice) with the smallest median time whose every frequency is within
+    ``tol`` (relative) of ``reference``; None if none is."""
+    ok = [l for l, e in zip(levels, relative_errors(levels, reference)) if e.max() <= tol]
+    return min(ok, key=lambda l: l.total_s) if ok else None
+
+
+@dataclasses.dataclass(frozen=True)
+class MeshRule:
+    """The default mesh: the coarsest level 2^k whose Richardson error estimate
+    |f_h - f_h/2| / (2^p - 1) / f is at most ``tol`` for every reported mode."""
+
+    elements: int
+    tol: float
+    estimate: float
+    history: tuple[tuple[int, float], ...]  # (elements, estimate) per refinement step
+
+
+def mesh_for_tolerance(scene: Scene, n_modes: int, tol: float = DEFAULT_TOL,
+                       method: str = "sparse", start: int = 4, max_elements: int = 4096) -> MeshRule:
+    """Refine by doubling from ``start`` until the estimated relative error <= ``tol``.
+
+    The energy-refined frequencies do not depend on the eigen solver to 1e-12, so the fast
+    sparse one serves for the estimate whatever solver the final answer uses."""
+    previous = analyze(scene, n_modes, start, method).elastic_frequencies(n_modes)
+    elements, history = start, []
+    while elements < max_elements:
+        elements *= 2
+        current = analyze(scene, n_modes, elements, method).elastic_frequencies(n_modes)
+        n = min(len(previous), len(current))
+        estimate = float((np.abs(current[:n] - previous[:n]) / (2**ORDER - 1) / current[:n]).max())
+        history.append((elements, estimate))
+        if estimate <= tol:
+            return MeshRule(elements, tol, estimate, tuple(history))
+        previous = current
+    raise NumericalError(f"no mesh up to {max_elements} elements per link meets the relative "
+                         f"frequency tolerance {tol:g} (last estimate {history[-1][1]:.2g})")
+
+
+def plot_error_time(levels: list[Level], reference: np.ndarray, path, title: str = "") -> None:
+    """Log-log PNG of max relative discretisation error against median solve time, one line
+    per choice."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    errors = relative_errors(levels, reference).max(axis=1)
+    fig, ax = plt.subplots(figsize=(7, 5))
+    for choice in dict.fromkeys(l.choice for l in levels):
+        pick = [i for i, l in enumerate(levels) if l.choice == choice]
+        t = [levels[i].total_s for i in pick]
+        e = np.maximum(errors[pick], 1e-16)  # an exact match would vanish from a log axis
+        ax.loglog(t, e, "o-", label=choice.label)
+        for i in pick[::2]:
+            ax.annotate(str(levels[i].elements), (levels[i].total_s, max(errors[i], 1e-16)),
+                        fontsize=7, textcoords="offset points", xytext=(3, 3))
+    ax.set_xlabel("median wall time per solve, assembly + eigen solve [s]")
+    ax.set_ylabel("max relative frequency error vs Richardson reference")
+    ax.set_title(title or "error against run time (labels: elements per link)")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend()
+    fig.tight_layout()
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=120)
+    plt.close(fig)
+    write_atomic(path, buf.getvalue())

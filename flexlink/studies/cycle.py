@@ -1,0 +1,154 @@
+"""The whole crank cycle of a scene: rigid poses over one revolution of the input, the natural
+frequencies at every pose (the modal map), and a resonance check against crank harmonics.
+
+The beam model's topology is fixed, so ``sweep.modal_sweep`` builds the link matrices once and
+only rotates and assembles them per pose.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+
+from flexlink.kinematics.linkage import Cycle, crank_angles, crossings
+from flexlink.scene.general import GeneralScene
+from flexlink.analysis.sweep import modal_sweep
+
+
+def kinematic_cycle(scene: GeneralScene, n_poses: int = 360, progress=None) -> Cycle:
+    """Rigid poses at ``n_poses`` input angles over one revolution from ``scene.start``."""
+    return scene.linkage.cycle(crank_angles(n_poses, scene.start), scene.guess, progress)
+
+
+def transmission_angles(scene: GeneralScene, cycle: Cycle) -> dict[str, np.ndarray]:
+    """mu [rad] over the cycle for each body pair of ``scene.transmission``: the angle between
+    the two bodies' lines at the joint they share (0 or 180 deg at a dead centre)."""
+    out = {}
+    for a, b in scene.transmission:
+        body_a, body_b = scene.linkage.body(a), scene.linkage.body(b)
+        shared = next(j for j in body_a.joints if j in body_b.joints)
+        far_a = next(j for j in body_a.joints if j != shared)
+        far_b = next(j for j in body_b.joints if j != shared)
+        mu = []
+        for s in cycle.states:
+            u = np.subtract(s.points[far_a], s.points[shared])
+            v = np.subtract(s.points[far_b], s.points[shared])
+            mu.append(math.atan2(abs(u[0] * v[1] - u[1] * v[0]), u @ v))
+        out[f"{a}/{b}"] = np.array(mu)
+    return out
+
+
+@dataclasses.dataclass(frozen=True)
+class ModalMap:
+    """frequencies[i, j]: j-th elastic natural frequency [Hz] at input angle q[i] [rad];
+    mu90: input angles [rad] where a transmission angle is 90 deg, by body pair."""
+
+    scene: str
+    q: np.ndarray
+    frequencies: np.ndarray
+    mechanism_counts: np.ndarray
+    mu90: dict[str, np.ndarray]
+
+
+def modal_map(scene: GeneralScene, n_poses: int = 360, n_modes: int = 3,
+              elements_per_link: int | None = None, progress=None,
+              reduction: str | None = "craig-bampton") -> ModalMap:
+    """The first ``n_modes`` elastic frequencies at ``n_poses`` input angles over the cycle.
+
+    ``reduction``: as in ``sweep.modal_sweep``; by default the Craig-Bampton links
+    (tests/test_craig_bampton.py: within 1e-6 of the full model), None for the full model."""
+    cycle = kinematic_cycle(scene, n_poses)
+    sweep = modal_sweep(scene.topology(elements_per_link), [s.points for s in cycle.states],
+                        n_modes, progress=progress, reduction=reduction)
+    mu90 = {k: crossings(cycle.q, mu, math.pi / 2)
+            for k, mu in transmission_angles(scene, cycle).items()}
+    return ModalMap(scene=scene.name, q=cycle.q, frequencies=sweep.frequencies,
+                    mechanism_counts=sweep.mechanism_counts, mu90=mu90)
+
+
+@dataclasses.dataclass(frozen=True)
+class Resonance:
+    """Harmonic ``harmonic`` of the crank frequency, ``frequency`` [Hz], lies within the margin
+    of mode ``mode`` (1-based) at the input angles ``angles`` [rad]; ``closest`` is the smallest
+    relative gap |f_mode - f_harmonic| / f_mode over the cycle."""
+
+    harmonic: int
+    frequency: float
+    mode: int
+    angles: np.ndarray
+    closest: float
+
+
+def resonances(result: ModalMap, crank_speed: float, margin: float = 0.05,
+               harmonics: int = 10) -> list[Resonance]:
+    """Harmonics n = 1 ... ``harmonics`` of the crank frequency (``crank_speed`` [rad/s]) that
+    come within ``margin`` (relative) of an elastic frequency anywhere in the cycle. Besides
+    the sampled poses, a mode curve that crosses the harmonic between two poses counts there."""
+    f_crank = crank_speed / (2 * math.pi)
+    found = []
+    for n in range(1, harmonics + 1):
+        f_n = n * f_crank
+        for j in range(result.frequencies.shape[1]):
+            f = result.frequencies[:, j]
+            gap = np.abs(f - f_n) / f
+            near = result.q[gap <= margin]
+            crossed = crossings(result.q, f, f_n)
+            angles = np.unique(np.concatenate([near, crossed]))
+            if angles.size:
+                closest = 0.0 if crossed.size else float(np.nanmin(gap))
+                found.append(Resonance(n, f_n, j + 1, angles, closest))
+    return found
+
+
+def runs(angles: np.ndarray, step: float) -> list[tuple[float, float]]:
+    """Sorted input angles [rad] grouped into (first, last) runs whose neighbours are at most
+    1.5 ``step`` apart, so a resonance reads as crank-angle ranges."""
+    out = []
+    for a in np.sort(angles):
+        if out and a - out[-1][1] <= 1.5 * step:
+            out[-1][1] = a
+        else:
+            out.append([a, a])
+    return [(float(a), float(b)) for a, b in out]
+
+
+def csv_text(result: ModalMap) -> str:
+    """One row per pose: input angle [deg], then f1 ... fN [Hz]."""
+    n = result.frequencies.shape[1]
+    lines = ["crank_angle_deg," + ",".join(f"f{j + 1}_Hz" for j in range(n))]
+    for q, row in zip(result.q, result.frequencies):
+        lines.append(f"{math.degrees(q):.6g}," + ",".join(f"{v:.8g}" for v in row))
+    return "\n".join(lines) + "\n"
+
+
+def plot_map(result: ModalMap, path, crank_speed: float | None = None,
+             hits: list[Resonance] = ()) -> None:
+    """PNG of frequency against input angle, one line per mode; vertical lines mark the poses
+    where mu = 90 deg; crank harmonics that resonate are drawn as horizontal dashes."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(8, 4.8))
+    deg = np.degrees(result.q)
+    for j in range(result.frequencies.shape[1]):
+        ax.plot(deg, result.frequencies[:, j], label=f"mode {j + 1}")
+    for k, (pair, angles) in enumerate(result.mu90.items()):
+        for i, a in enumerate(angles):
+            ax.axvline(math.degrees(a), color="0.4", ls=":" if k else "--", lw=1,
+                       label=f"mu = 90 deg ({pair})" if i == 0 else None)
+    for f in sorted({h.frequency for h in hits}):
+        ax.axhline(f, color="red", ls="-.", lw=0.8)
+    ax.set_xlabel("crank angle [deg]")
+    ax.set_ylabel("natural frequency [Hz]")
+    ax.set_xlim(deg[0], deg[0] + 360)
+    ax.set_title(result.scene + (f" (crank {crank_speed * 60 / (2 * math.pi):g} rev/min)"
+                                 if crank_speed else ""))
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)

@@ -1,0 +1,484 @@
+"""Numerical stability on stiff and extreme cases: each check states what it expects, what it
+got, and whether it passed. All start from one scene (a four-bar), changed one input at a time.
+
+Fast checks run in the test suite (tests/test_stability.py); the slow one (1e5 DOFs) runs from
+``flexlink stability --slow`` and scripts/stability-slow.sh.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import logging
+import math
+import subprocess
+import sys
+import time
+
+import numpy as np
+import scipy.sparse as sp
+
+from flexlink.analysis.modal import lambda_scale
+from flexlink.fe.assembly import assemble, reduction
+from flexlink.fe.energy import lumped_mass, twice_strain_energy
+from flexlink.errors import FlexlinkError, InputError, KinematicsError, NumericalError
+from flexlink.kinematics.fourbar import FourBar
+from flexlink.fe.model import JointSpec, LinkSpec, Section, Topology, build_model
+from flexlink.scene.plausibility import SHEAR_WARN, SLENDER_LIMIT, model_warnings, pose_warnings, timoshenko_drop
+from flexlink.fe.rigid import RIGID_RATIO, element_stiffness_scale, rigidified
+from flexlink.scene.load import Scene, load_scene
+from flexlink.analysis.solve import DENSE_REFUSE, MECHANISM, solve_modes
+
+log = logging.getLogger(__name__)
+
+ELEMENTS = 16  # per link: fast, and every check is about the solver, not the mesh
+
+
+@dataclasses.dataclass(frozen=True)
+class Check:
+    id: str
+    name: str
+    expected: str
+    got: str
+    passed: bool
+    details: dict = dataclasses.field(default_factory=dict)
+
+
+def _solve(model, n, method="dense", M=None, refine=True):
+    K, M0 = assemble(model)
+    energy = (lambda U: twice_strain_energy(model, U)) if refine else None
+    return solve_modes(K, M0 if M is None else M, n, T=reduction(model),
+                       lambda_ref=lambda_scale(model), method=method, energy=energy)
+
+
+def _with_joints(topology: Topology, **changes) -> Topology:
+    return dataclasses.replace(topology, joints=tuple(dataclasses.replace(j, **changes)
+                                                      for j in topology.joints))
+
+
+def _rel(a, b) -> float:
+    a, b = np.asarray(a, float), np.asarray(b, float)
+    return float(np.max(np.abs(a - b) / np.abs(b)))
+
+
+# -- 1 --------------------------------------------------------------------------------------
+def bearing_sweep(scene: Scene) -> Check:
+    """Kt = Kr of every joint from 0 to 1e30: eigenvalues rise monotonically to the exact
+    rigid-joint limit; none negative or NaN; backward error small throughout."""
+    pose, topo = scene.rigid_pose(), scene.topology(ELEMENTS)
+    n = 12  # k = 0 frees 8 rigid-body DOFs (crank: 2, coupler and rocker: 3 each)
+    exact = _solve(build_model(_with_joints(topo, Kt=math.inf, Kr=math.inf), pose.joints), n)
+    values = [0.0] + [10.0**p for p in range(0, 31, 2)]
+    lams, backward, finite_springs, rows = [], [], [], []
+    with _captured("flexlink.fe.rigid") as logged:
+        for k in values:
+            model = rigidified(build_model(_with_joints(topo, Kt=k, Kr=k), pose.joints))
+            finite_springs.append(int(np.isfinite(model.springs.stiffness).sum()))
+            r = _solve(model, n)
+            lams.append(r.eigenvalues)
+            backward.append(float(r.backward_errors.max()))
+            rows.append({"k": k, "zero_modes": r.kinds.count(MECHANISM),
+                         "f_Hz": r.frequencies[:6].tolist(), "penalty_springs": finite_springs[-1]})
+    lams = np.array(lams)
+    scale = max(exact.eigenvalues.max(), 1.0)
+    monotone = bool(np.all(np.diff(lams, axis=0) >= -1e-9 * scale))
+    finite = bool(np.all(np.isfinite(lams)) and lams.min() >= -1e-9 * scale)
+    last = max(i for i, m in enumerate(finite_springs) if m > 0)  # highest k with any penalty
+    first_all = next(i for i in range(1, len(values)) if finite_springs[i] == 0)  # k = 0: none
+    agree = _rel(np.sqrt(lams[last][-8:]), np.sqrt(exact.eigenvalues[-8:]))
+    limit = _rel(np.sqrt(lams[-1]), np.sqrt(exact.eigenvalues))
+    trans, rot = element_stiffness_scale(build_model(topo, pose.joints))
+    passed = (monotone and finite and max(backward) < 1e-10 and agree < 1e-6 and limit < 1e-12
+              and rows[0]["zero_modes"] == 8 and bool(logged))
+    return Check("1", "bearing stiffness 0 .. 1e30 (Kt N/m = Kr N m/rad)",
+                 "8 zero modes at k = 0; eigenvalues monotone in k; none NaN/negative; backward "
+                 "error < 1e-10; highest penalty value within 1e-6 of the exact rigid path; "
+                 f"rigid, with a logged warning, from {RIGID_RATIO:g} x the stiffest element "
+                 f"(Kt {RIGID_RATIO * trans:.1e} N/m, Kr {RIGID_RATIO * rot:.1e} N m/rad)",
+                 f"{rows[0]['zero_modes']} zero modes at k = 0; monotone {monotone}; finite and "
+                 f">= 0 {finite}; max backward error {max(backward):.1e}; at k = "
+                 f"{values[last]:.0e} (Kt still a penalty) vs exact {agree:.1e}; all rigid from "
+                 f"k = {values[first_all]:.0e}, equal to exact within {limit:.1e}; "
+                 f"{len(logged)} warnings logged",
+                 passed, {"sweep": rows, "exact_Hz": exact.frequencies.tolist()})
+
+
+class _captured:
+    """Collect the log records of one logger (and keep them off stderr) inside a block."""
+
+    def __init__(self, name):
+        self.logger, self.records = logging.getLogger(name), []
+
+    def __enter__(self):
+        self.handler = logging.Handler()
+        self.handler.emit = self.records.append
+        self.logger.addHandler(self.handler)
+        self.propagate, self.logger.propagate = self.logger.propagate, False
+        return self.records
+
+    def __exit__(self, *exc):
+        self.logger.removeHandler(self.handler)
+        self.logger.propagate = self.propagate
+
+
+# -- 2 and 7c -------------------------------------------------------------------------------
+def _free_crank(scene: Scene, Kt=None):
+    topo = _with_joints(scene.topology(ELEMENTS), Kr=0.0)
+    if Kt is not None:
+        topo = _with_joints(topo, Kt=Kt)
+    return dataclasses.replace(topo, drive=None), scene.rigid_pose()
+
+
+def free_crank(scene: Scene) -> Check:
+    """Free crank, all torsional springs zero: exactly one mechanism mode, labelled; the elastic
+    modes are those of the same linkage with a vanishing drive spring."""
+    topo, pose = _free_crank(scene)
+    model = build_model(topo, pose.joints)
+    r = _solve(model, 8)
+    weak = dataclasses.replace(topo, drive=dataclasses.replace(
+        scene.drive, stiffness=1e-9 * element_stiffness_scale(model)[1]))
+    w = _solve(build_model(weak, pose.joints), 8)
+    n_mech = r.kinds.count(MECHANISM)
+    el, el_weak = r.frequencies[r.elastic], w.frequencies[w.elastic]
+    k = min(len(el), len(el_weak) - 1)
+    # the weak spring lifts the mechanism mode off zero: it becomes w's first "elastic" mode
+    diff = _rel(el[:k], el_weak[1:k + 1]) if w.kinds.count(MECHANISM) == 0 else _rel(el[:k], el_weak[:k])
+    V = r.shapes
+    _, M = assemble(model)
+    cross = float(np.abs(V[:, r.elastic].T @ (M @ V[:, [r.kinds.index(MECHANISM)]])).max()) \
+        if n_mech else math.nan
+    passed = n_mech == 1 and r.kinds[0] == MECHANISM and diff < 1e-8 and cross < 1e-8
+    return Check("2", "free crank, all Kr = 0",
+                 "exactly one zero mode, first, labelled rigid-body/mechanism; elastic modes equal "
+                 "those with a vanishing drive spring (1e-8) and M-orthogonal to it",
+                 f"{n_mech} mechanism mode(s) ({r.frequencies[0]:.1e} Hz), labelled "
+                 f"{r.kinds[0]!r}; elastic vs weak drive {diff:.1e}; M-coupling {cross:.1e}",
+                 passed, {"elastic_Hz": el.tolist()})
+
+
+def sparse_mechanism(scene: Scene) -> Check:
+    """The sparse path on a mechanism: the negative shift keeps K - shift M positive definite,
+    and no mode near it is lost (against the dense solver)."""
+    topo, pose = _free_crank(scene)
+    model = build_model(topo, pose.joints)
+    dense, sparse = _solve(model, 10, "dense"), _solve(model, 10, "sparse")
+    shift = -lambda_scale(model)
+    same = dense.kinds == sparse.kinds
+    diff = _rel(sparse.frequencies[1:], dense.frequencies[1:])
+    passed = same and sparse.kinds.count(MECHANISM) == 1 and diff < 1e-8
+    return Check("7c", "mechanism mode with the sparse solver",
+                 "shift < 0; sparse finds the same 1 mechanism + 9 elastic modes as dense, "
+                 "frequencies within 1e-8",
+                 f"shift {shift:.3g} rad^2/s^2; kinds equal {same}; "
+                 f"{sparse.kinds.count(MECHANISM)} mechanism; max difference {diff:.1e}", passed)
+
+
+# -- 3 --------------------------------------------------------------------------------------
+def slenderness(scene: Scene) -> Check:
+    """Every link's in-plane depth set to L / ratio, ratio from 1e4 down to 3; once with the
+    scene's material, once with steel (E/G = 2.6)."""
+    pose, topo = scene.rigid_pose(), scene.topology(ELEMENTS)
+    ratios = (1e4, 1e3, 100.0, 30.0, 10.0, 5.0, 3.0)
+    rows, ok = [], True
+    for material in ("scene", "steel"):
+        for ratio in ratios:
+            links = []
+            for spec in topo.links:
+                length = math.dist(pose.joints[spec.start], pose.joints[spec.end])
+                s = spec.section
+                E, G, rho = (s.E, s.G, s.density) if material == "scene" else (210e9, 81e9, 7850.0)
+                links.append(dataclasses.replace(spec, section=Section.rectangle(
+                    E, G, rho, length / ratio, s.area / s.depth, name=spec.name)))
+            model = build_model(dataclasses.replace(topo, links=tuple(links)), pose.joints)
+            r = _solve(model, 4)
+            warnings = model_warnings(model)
+            drop = max(timoshenko_drop(l.section, l.length) for l in model.links)
+            expect = ratio < SLENDER_LIMIT or drop > SHEAR_WARN
+            finite = bool(np.all(np.isfinite(r.frequencies)) and r.frequencies.min() > 0)
+            ok &= finite and bool(warnings) == expect and all("L/h" in w for w in warnings)
+            rows.append({"material": material, "L_over_h": ratio, "f_Hz": r.frequencies.tolist(),
+                         "timoshenko_drop": drop, "warnings": warnings})
+    first = {m: min(r["L_over_h"] for r in rows if r["material"] == m and not r["warnings"])
+             if any(r["material"] == m and not r["warnings"] for r in rows) else None
+             for m in ("scene", "steel")}
+    stubby = rows[-1]["warnings"][0] if rows[-1]["warnings"] else "(no warning)"
+    return Check("3", "slender L/h = 1e4 to stubby L/h = 3 (scene material, then steel)",
+                 f"finite positive frequencies; a warning naming L/h exactly where L/h < "
+                 f"{SLENDER_LIMIT:g} or shear lowers the first bending frequency by > "
+                 f"{100 * SHEAR_WARN:g} % (Timoshenko)",
+                 f"no warning down to L/h = {first['scene']:g} (scene material, E/G = "
+                 f"{topo.links[0].section.E / topo.links[0].section.G:.0f}) and {first['steel']:g} "
+                 f"(steel); steel at L/h 3: \"{stubby}\"", ok, {"rows": rows})
+
+
+# -- 4 --------------------------------------------------------------------------------------
+def _raises(fn, kind):
+    try:
+        fn()
+    except kind as exc:
+        return str(exc)
+    return None
+
+
+def kinematics(scene: Scene) -> list[Check]:
+    """Unreachable mu, a non-Grashof linkage, poses at and near a dead centre."""
+    checks = []
+    no90 = FourBar.from_ratios(0.2, 1.2, 0.9, 0.3)  # mu stays within [41.8, 68.0] deg
+    msg = _raises(lambda: no90.pose_at_mu(math.radians(90)), KinematicsError)
+    checks.append(Check("4a", "mu = 90 deg unreachable (R = 0.2, 1.2, 0.9)",
+                        "KinematicsError naming the reachable range", msg or "no error",
+                        bool(msg and "not reachable" in msg)))
+    triple = FourBar.from_ratios(0.6, 0.7, 0.8, 0.3)  # s + l > p + q: triple rocker
+    msg = _raises(triple.transmission_limits, KinematicsError)
+    beyond = _raises(lambda: triple.pose(math.radians(180)), KinematicsError)
+    # the crank's limit angle: A on the circle where coupler and rocker are collinear
+    L1, L2, L3, L4 = triple.lengths
+    limit = math.acos((L1**2 + L2**2 - (L3 + L4) ** 2) / (2 * L1 * L2))
+    near = triple.pose(limit - 1e-4)
+    warnings = pose_warnings(triple, near)
+    at = _raises(lambda: triple.pose(limit), KinematicsError)
+    checks.append(Check("4b", "non-Grashof linkage (R = 0.6, 0.7, 0.8)",
+                        "errors for mu limits and for a crank angle where the loop cannot close; "
+                        "a warning that the input cannot turn fully",
+                        f"{(msg or 'no error')[:70]}...; theta2 = 180: {(beyond or 'no error')[:60]}...",
+                        bool(msg and beyond and any("cannot turn" in w for w in warnings))))
+    checks.append(Check("4c", "pose at and near a dead centre (mu -> 180 deg)",
+                        "at the dead centre a KinematicsError; 1e-4 rad before it a warning with "
+                        "the distance in degrees",
+                        f"at: {(at or 'no error')[:60]}...; near (mu = {math.degrees(near.mu):.2f} "
+                        f"deg): {[w for w in warnings if 'dead centre' in w][:1]}",
+                        bool(at and any("dead centre" in w for w in warnings))))
+    return checks
+
+
+# -- 5 --------------------------------------------------------------------------------------
+def contrast(scene: Scene) -> list[Check]:
+    """Steel crank with a 1e6 times softer coupler; then a 1e6 times lighter coupler."""
+    pose, topo = scene.rigid_pose(), scene.topology(ELEMENTS)
+    out = []
+    for cid, what, field in (("5a", "stiffness", "E"), ("5b", "mass", "density")):
+        links = []
+        for spec in topo.links:
+            s = spec.section
+            if spec.name == "crank":
+                s = dataclasses.replace(s, E=210e9, G=81e9, density=7850.0)
+            elif spec.name == "coupler":
+                s = dataclasses.replace(s, E=210e9 / 1e6 if field == "E" else 210e9,
+                                        G=81e9 / 1e6 if field == "E" else 81e9,
+                                        density=7850.0 / 1e6 if field == "density" else 7850.0)
+            links.append(dataclasses.replace(spec, section=s))
+        model = build_model(dataclasses.replace(topo, links=tuple(links)), pose.joints)
+        dense, sparse = _solve(model, 8, "dense"), _solve(model, 8, "sparse")
+        raw_d, raw_s = _solve(model, 8, "dense", refine=False), _solve(model, 8, "sparse", refine=False)
+        diff, raw = _rel(sparse.frequencies, dense.frequencies), _rel(raw_s.frequencies, raw_d.frequencies)
+        out.append(Check(cid, f"{what} contrast 1e6 (steel crank, coupler {what} / 1e6)",
+                         "dense and sparse frequencies agree within 1e-8",
+                         f"max relative difference {diff:.1e} (unrefined eigenvalues: {raw:.1e}); "
+                         f"f1 {dense.frequencies[0]:.6g} Hz", diff < 1e-8))
+    return out
+
+
+# -- 6 --------------------------------------------------------------------------------------
+def dense_refused(scene: Scene) -> Check:
+    """A model above DENSE_REFUSE DOFs: the dense solver refuses with a message."""
+    elements = DENSE_REFUSE // 9 + 10
+    model = build_model(scene.topology(elements), scene.rigid_pose().joints)
+    msg = _raises(lambda: _solve(model, 4, "dense"), NumericalError)
+    return Check("6a", f"dense solve of {model.n_dofs} DOFs",
+                 f"refused with a message (limit {DENSE_REFUSE} DOFs), before any allocation",
+                 msg or "no error", bool(msg and "refused" in msg))
+
+
+SPAN_ELEMENTS = 32  # per span of the large model: far from the double-precision limit
+
+
+LONG_SPANS = (0.15, 0.14, 0.13, 0.12, 0.11, 0.105)  # [m]: the six lowest modes, >= 5 % apart
+
+
+def graded_spans(section, spans: int) -> tuple[Topology, dict]:
+    """``spans`` pinned-pinned spans in a row. The first six are LONG_SPANS, the rest graded
+    from 0.1 m down to 0.095 m, so the lowest modes stay as far apart at any size (solver cost
+    then measures size, not clustering) and no two frequencies coincide. The lowest is the
+    longest span's, (pi / L)^2 sqrt(EI / rhoA) with L = 0.15 m."""
+    rest = max(spans - len(LONG_SPANS), 0)
+    lengths = np.concatenate([LONG_SPANS[:spans], 0.1 * (1 - 0.05 * np.arange(rest) / max(rest, 1))])
+    x = np.concatenate([[0.0], np.cumsum(lengths)])
+    joints = tuple(JointSpec(f"J{i}", True, math.inf, 0.0) for i in range(spans + 1))
+    links = tuple(LinkSpec(f"s{i}", f"J{i}", f"J{i + 1}", section, SPAN_ELEMENTS)
+                  for i in range(spans))
+    return Topology(links, joints), {f"J{i}": (float(xi), 0.0) for i, xi in enumerate(x)}
+
+
+def large_sparse(scene: Scene, sizes=(12_500, 25_000, 50_000, 100_000)) -> Check:
+    """Sparse solves up to 1e5 DOFs, each in a fresh process, on a row of graded pinned spans
+    (well conditioned at any size, unlike one link cut ever finer): the lowest frequency must
+    match the closed form and the memory of the work must grow linearly."""
+    rows = []
+    dofs_per_span = 3 * (SPAN_ELEMENTS + 1)
+    for dofs in sizes:
+        spans = max(1, -(-dofs // (dofs_per_span - 4)))  # the pins fix x, y of both span ends
+        code = ("from flexlink.studies.stability import _large_child;"
+                f"_large_child({scene.path!r},{spans})")
+        t0 = time.perf_counter()
+        done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+        if done.returncode != 0:
+            return Check("6b", "sparse path up to 1e5 DOFs", "solves", done.stderr[-300:], False)
+        n, f1, exact, rss_before, rss_after = done.stdout.split()
+        rows.append({"dofs": int(n), "f1_Hz": float(f1), "closed_form_Hz": float(exact),
+                     "peak_MB": float(rss_after) / 1024,
+                     "work_MB": (float(rss_after) - float(rss_before)) / 1024,
+                     "seconds": time.perf_counter() - t0})
+    # The work's own memory (peak minus what the interpreter and imports already held), so
+    # that the fixed start-up memory cannot make a linear growth look otherwise.
+    per_dof = [r["work_MB"] * 1e3 / r["dofs"] for r in rows]
+    exponent = float(np.polyfit(np.log([r["dofs"] for r in rows]),
+                                np.log([r["work_MB"] for r in rows]), 1)[0])
+    accuracy = max(_rel(r["f1_Hz"], r["closed_form_Hz"]) for r in rows)
+    passed = max(per_dof) < 2.5 * min(per_dof) and exponent < 1.25 and accuracy < 1e-6
+    return Check("6b", f"sparse path up to {rows[-1]['dofs']} DOFs",
+                 "solves; f1 = closed form (1e-6); memory of the work grows linearly (kB per "
+                 "DOF within 2.5x across sizes, fitted exponent < 1.25)",
+                 "; ".join(f"{r['dofs']} DOFs {r['work_MB']:.0f} MB {r['seconds']:.1f} s" for r in rows)
+                 + f"; kB per DOF {', '.join(f'{g:.2f}' for g in per_dof)}; exponent "
+                 f"{exponent:.2f}; f1 vs closed form {accuracy:.1e}",
+                 passed, {"rows": rows, "memory_exponent": exponent})
+
+
+def _large_child(path: str, spans: int) -> None:
+    """Entry of ``large_sparse``'s subprocess: print DOFs, f1, its closed form [Hz], and peak
+    RSS [kB] before and after the work."""
+    section = next(iter(load_scene(path).sections.values()))
+    before = _memory_kb("VmRSS")
+    topology, points = graded_spans(section, spans)
+    model = build_model(topology, points)
+    r = _solve(model, 4, "sparse")
+    longest = LONG_SPANS[0]
+    exact = (math.pi / longest) ** 2 * math.sqrt(section.EI / section.mass_per_length) / (2 * math.pi)
+    print(r.n_dofs, r.frequencies[r.elastic][0], exact, before, _memory_kb("VmHWM"))
+
+
+def _memory_kb(field: str) -> int:
+    """Current (VmRSS) or peak (VmHWM) resident memory of this process [kB]. Not
+    getrusage's ru_maxrss: Linux carries that over from the parent across fork and exec, so a
+    child of a large process would report the parent's peak."""
+    with open("/proc/self/status") as fh:
+        return next(int(line.split()[1]) for line in fh if line.startswith(field + ":"))
+
+
+# -- 7 --------------------------------------------------------------------------------------
+def repeated(scene: Scene) -> Check:
+    """Two identical, uncoupled cantilevers (at 0 and 60 deg): every frequency twice."""
+    s = next(iter(scene.sections.values()))
+    joints = (JointSpec("Ga", True, math.inf, math.inf), JointSpec("Ea", False, 0.0, 0.0),
+              JointSpec("Gb", True, math.inf, math.inf), JointSpec("Eb", False, 0.0, 0.0))
+    links = (LinkSpec("a", "Ga", "Ea", s, ELEMENTS), LinkSpec("b", "Gb", "Eb", s, ELEMENTS))
+    L = 0.2
+    c, sn = math.cos(math.radians(60)), math.sin(math.radians(60))
+    model = build_model(Topology(links, joints), {"Ga": (0, 0), "Ea": (L, 0),
+                                                  "Gb": (1, 0), "Eb": (1 + L * c, L * sn)})
+    out = {}
+    for method in ("dense", "sparse"):
+        r = _solve(model, 8, method)
+        f = r.frequencies
+        out[method] = (f, r.orthogonality_error, r.kinds.count(MECHANISM))
+    f, ortho, mech = out["sparse"]
+    pairs = _rel(f[0::2], f[1::2])
+    vs_dense = _rel(out["sparse"][0], out["dense"][0])
+    beta1 = 1.875104068711961  # cantilever: cos b cosh b = -1
+    closed = beta1**2 * math.sqrt(s.EI / (s.mass_per_length * L**4)) / (2 * math.pi)
+    passed = pairs < 1e-10 and vs_dense < 1e-10 and max(ortho, out["dense"][1]) < 1e-10 \
+        and mech == 0 and _rel(f[0], closed) < 1e-6
+    return Check("7a", "repeated eigenvalues: two identical uncoupled cantilevers",
+                 "4 pairs, each pair equal (1e-10); sparse = dense; M-orthonormal (1e-10); "
+                 "pair 1 = closed form 1.8751^2 sqrt(EI/(rhoA L^4)) / 2 pi (1e-6)",
+                 f"pair spread {pairs:.1e}; sparse vs dense {vs_dense:.1e}; orthogonality "
+                 f"{max(ortho, out['dense'][1]):.1e}; f1 {f[0]:.6f} Hz vs closed form "
+                 f"{closed:.6f} Hz", passed)
+
+
+def massless(scene: Scene) -> list[Check]:
+    """Massless DOFs: rotations without rotary inertia, a spring-only node, a DOF with neither
+    mass nor stiffness."""
+    pose = scene.rigid_pose()
+    model = build_model(scene.topology(64), pose.joints)
+    K, _ = assemble(model)
+    T, lam = reduction(model), lambda_scale(model)
+    M = lumped_mass(model)
+    no_rotary = sp.diags(np.where(np.arange(model.n_dofs) % 3 == 2, 0.0, M.diagonal()), format="csr")
+    hrz = solve_modes(K, M, 6, T=T, lambda_ref=lam)
+    r = solve_modes(K, no_rotary, 6, T=T, lambda_ref=lam)
+    diff = _rel(r.frequencies, hrz.frequencies)
+    checks = [Check("7b-1", "lumped mass without rotary inertia (every rz DOF massless)",
+                    "massless DOFs condensed, no solver error; within 1e-3 of HRZ lumping at 64 "
+                    "elements/link (rotary inertia is an O(h^2) effect)",
+                    f"{r.condensed} DOFs condensed; max difference from HRZ {diff:.1e}",
+                    r.condensed > 0 and diff < 1e-3)]
+    # a node hanging on springs only, with no mass, tied to the coupler's mid node
+    small = build_model(scene.topology(ELEMENTS), pose.joints)
+    Ks, Ms = assemble(small)
+    Ts = reduction(small)
+    base = solve_modes(Ks, Ms, 6, T=Ts, lambda_ref=lambda_scale(small))
+    coupler = next(l for l in small.links if l.name == "coupler")
+    mid = coupler.first_node + coupler.elements // 2
+    n = small.n_dofs
+    k = 1e6
+    rows, cols, vals = [], [], []
+    for d in range(3):
+        a, b = 3 * mid + d, n + d
+        rows += [a, b, a, b]
+        cols += [a, b, b, a]
+        vals += [k, k, -k, -k]
+    Kx = sp.block_diag([Ks, sp.csr_matrix((3, 3))]) + sp.csr_matrix((vals, (rows, cols)), shape=(n + 3, n + 3))
+    Mx = sp.block_diag([Ms, sp.csr_matrix((3, 3))]).tocsr()
+    Tx = sp.block_diag([Ts, sp.identity(3)]).tocsr()
+    r = solve_modes(Kx.tocsr(), Mx, 6, T=Tx, lambda_ref=lambda_scale(small))
+    diff = _rel(r.frequencies, base.frequencies)
+    checks.append(Check("7b-2", "a massless node hanging on springs",
+                        "condensed (3 DOFs); frequencies unchanged (1e-10): it carries no inertia",
+                        f"{r.condensed} DOFs condensed; max change {diff:.1e}",
+                        r.condensed == 3 and diff < 1e-10))
+    Kz = sp.block_diag([Ks, sp.csr_matrix((3, 3))]).tocsr()
+    msg = _raises(lambda: solve_modes(Kz, Mx, 6, T=Tx, lambda_ref=lambda_scale(small)), NumericalError)
+    checks.append(Check("7b-3", "a node with neither mass nor stiffness",
+                        "NumericalError that says so (never a solver crash)", msg or "no error",
+                        bool(msg and "neither mass nor stiffness" in msg)))
+    return checks
+
+
+# -- 8 --------------------------------------------------------------------------------------
+def units(scene: Scene) -> list[Check]:
+    """Easy unit slips: caught by plausibility ranges or by explicit units."""
+    cases = (("8a", "mm typed as m", {"linkage.ground": "300 m"}, "did you mean 300 mm"),
+             ("8b", "GPa typed as Pa", {"material": {"E": "53 Pa", "density": "1490 kg/m^3"}},
+              "did you mean 53 GPa"),
+             ("8c", "mm typed as m in a section", {"section.width": "20 m"}, "did you mean 20 mm"),
+             ("8d", "a bare number", {"section.width": 20}, "without a unit"))
+    out = []
+    for cid, what, overrides, needle in cases:
+        msg = _raises(lambda: load_scene(scene.path, overrides=overrides), InputError)
+        out.append(Check(cid, f"unit slip: {what} {overrides}",
+                         f"InputError naming the field and '{needle}'", msg or "no error",
+                         bool(msg and needle in msg)))
+    return out
+
+
+FAST = (bearing_sweep, free_crank, slenderness, kinematics, contrast, dense_refused, repeated,
+        massless, sparse_mechanism, units)
+SLOW = (large_sparse,)
+
+
+def run_checks(scene: Scene, slow: bool = False, progress=None) -> list[Check]:
+    """Every fast check (and the slow ones if ``slow``), in issue order; a check that raises
+    unexpectedly is reported as failed, never hides the others."""
+    checks = FAST + (SLOW if slow else ())
+    out = []
+    for fn in (progress(checks) if progress else checks):
+        t0 = time.perf_counter()
+        try:
+            result = fn(scene)
+        except (FlexlinkError, ValueError, ArithmeticError) as exc:
+            result = Check(fn.__name__, fn.__name__, "no exception", f"{type(exc).__name__}: {exc}",
+                           False)
+        for c in result if isinstance(result, list) else [result]:
+            out.append(dataclasses.replace(c, details={**c.details,
+                                                       "seconds": time.perf_counter() - t0}))
+    return sorted(out, key=lambda c: c.id)
