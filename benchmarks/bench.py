@@ -34,7 +34,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from flexlink.fe.assembly import reduction  # noqa: E402
 from flexlink.fe.model import build_model  # noqa: E402
-from flexlink.scene.load import load_scene  # noqa: E402
+from flexlink.scene import load_scene  # noqa: E402
 from flexlink.analysis.sweep import _DensePlan, modal_sweep  # noqa: E402
 
 CASES = [ROOT / "cases" / f"case{i}.toml" for i in (1, 2, 3, 4)]
@@ -55,7 +55,7 @@ def median_time(work, repeats: int, clock=time.process_time) -> float:
 def cycle_poses(scene, count: int):
     """``count`` poses evenly spaced over one crank turn, on the scene's branch."""
     thetas = np.radians(np.arange(count) * 360.0 / count + 0.5)
-    return [scene.linkage.pose(t, scene.pose.branch).joints for t in thetas]
+    return [scene.rigid_pose(t).joints for t in thetas]
 
 
 def target(name: str, measured: str, goal: str, met: bool) -> None:

@@ -16,7 +16,7 @@ from pathlib import Path  # noqa: E402
 import numpy as np  # noqa: E402
 from pyinstrument import Profiler  # noqa: E402
 
-from flexlink.scene.load import load_scene  # noqa: E402
+from flexlink.scene import load_scene  # noqa: E402
 from flexlink.analysis.sweep import modal_sweep  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent

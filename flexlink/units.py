@@ -52,6 +52,10 @@ def parse_quantity(text: object, dimension: str, *, source: str | None = None,
         raise InputError(f"cannot read {text!r} as a number with a unit", source=source,
                          field=field, expected=expected)
     number, unit = float(match.group(1)), match.group(2)
+    if not math.isfinite(number):  # e.g. "1e400": overflows to inf, never silently "rigid"
+        raise InputError(f"{match.group(1)} is not a finite number", source=source, field=field,
+                         expected=expected + ("; write 'rigid' for an infinitely stiff joint"
+                                              if "stiffness" in dimension else ""))
     if unit not in table:
         other = [d for d, t in UNITS.items() if unit in t]
         hint = f"; '{unit}' is a unit of {other[0]}, not of {dimension}" if other else ""

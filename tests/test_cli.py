@@ -62,7 +62,7 @@ def test_console_script_help():
 def test_modes_follows_the_scene_model_family(tmp_path):
     """A scene that chooses the out-of-plane family is reported with that family's modes."""
     from flexlink.analysis.families import elastic_modes
-    from flexlink.scene.load import load_scene
+    from flexlink.scene import load_scene
 
     scene_file = tmp_path / "oop.toml"
     scene_file.write_text(f'base = "{ROOT / "cases" / "case1.toml"}"\n[model]\nfamily = "out-of-plane"\n')

@@ -62,9 +62,10 @@ def test_observed_order_is_two_and_four_without_axial_strain(scene):
     assert np.all(np.abs(cv.richardson(levels).observed - 2) < 0.25)
     # Links 1e4 times stiffer axially (same EI and mass per length): the P1 axial error goes
     # away and the Hermite bending order 4 shows.
-    stiff = {k: dataclasses.replace(s, area=s.area * 1e4, density=s.density / 1e4)
-             for k, s in scene.sections.items()}
-    axially_rigid = dataclasses.replace(scene, sections=stiff)
+    stiff = tuple(dataclasses.replace(link, section=dataclasses.replace(
+        link.section, area=link.section.area * 1e4, density=link.section.density / 1e4))
+        for link in scene.links)
+    axially_rigid = dataclasses.replace(scene, links=stiff)
     levels = [cv.run_level(axially_rigid, cv.CHOICES[0], e, 4, 1) for e in (4, 8, 16)]
     assert np.all(np.abs(cv.richardson(levels).observed - 4) < 0.1)
 

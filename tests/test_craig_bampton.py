@@ -21,8 +21,7 @@ from flexlink.analysis.solve import solve_modes
 from flexlink.studies.cycle import kinematic_cycle
 from flexlink.fe.link import link_matrices
 from flexlink.fe.model import build_model, layout
-from flexlink.scene.load import load_scene
-from flexlink.scene.general import as_general
+from flexlink.scene import load_scene
 from flexlink.analysis.sweep import modal_sweep
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -32,7 +31,7 @@ CONVERGED = 64  # elements/link the mesh rule picks for the Table II cases at 1e
 
 
 def cycle_poses(scene, count):
-    return [scene.linkage.pose(t, scene.pose.branch).joints
+    return [scene.rigid_pose(t).joints
             for t in np.radians(np.arange(count) * 360.0 / count + 0.5)]
 
 
@@ -50,7 +49,7 @@ def test_table2_cases_match_full_model_at_converged_mesh(path):
 
 
 def test_general_scene_matches_full_model():
-    scene = as_general(load_scene(ROOT / "scenes" / "wiper.toml"))
+    scene = load_scene(ROOT / "scenes" / "wiper.toml")
     states = kinematic_cycle(scene, 4).states
     assert max_difference(scene.topology(32), [s.points for s in states]) <= TOL
 

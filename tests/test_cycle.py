@@ -13,8 +13,7 @@ from flexlink.studies.cycle import ModalMap, crossings, kinematic_cycle, modal_m
 from flexlink.fe.model import JointSpec, LinkSpec, Section, Topology, build_model
 from flexlink.kinematics.motion import body_summary, limit_positions
 from flexlink.studies.prb import prb_frequency
-from flexlink.scene.load import load_scene
-from flexlink.scene.general import as_general
+from flexlink.scene import load_scene
 from flexlink.analysis.solve import solve_modes
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -23,18 +22,21 @@ SCENES = ROOT / "scenes"
 
 def test_modal_map_agrees_with_single_pose_analysis_at_mu_90():
     scene = load_scene(ROOT / "cases" / "case2.toml")
-    general = as_general(scene)
-    result = modal_map(general, n_poses=8, n_modes=3, elements_per_link=4, reduction=None)
-    fb = scene.linkage
-    np.testing.assert_allclose(result.mu90["coupler/rocker"], fb.crank_angles_for_mu(math.pi / 2),
-                               atol=0.05)  # linear interpolation over 45 deg steps
-    # the pose at crank angle 0 analysed on its own gives the map's first row
-    at_zero = dataclasses.replace(scene, pose=dataclasses.replace(scene.pose, crank_angle=0.0,
-                                                                  transmission_angle=None))
-    single = analyze(at_zero, 3, 4).elastic_frequencies(3)
+    result = modal_map(scene, n_poses=8, n_modes=3, elements_per_link=4, reduction=None)
+    fb = scene.four_bar
+    np.testing.assert_allclose(np.sort(result.mu90["coupler/rocker"]),
+                               fb.crank_angles_for_mu(math.pi / 2),
+                               atol=0.1)  # linear interpolation over 45 deg steps: ~h^2 mu"/8
+    # the map starts at the scene's own pose; at another crank angle a single-pose analysis
+    # gives the same row too
+    single = analyze(scene, 3, 4).elastic_frequencies(3)
     np.testing.assert_allclose(result.frequencies[0], single, rtol=1e-10)
+    at_zero = dataclasses.replace(scene, start=0.0)
+    shifted = modal_map(at_zero, n_poses=8, n_modes=3, elements_per_link=4, reduction=None)
+    np.testing.assert_allclose(shifted.frequencies[0],
+                               analyze(at_zero, 3, 4).elastic_frequencies(3), rtol=1e-10)
     # the default map (Craig-Bampton links) is within its stated 1e-6 of the full model
-    reduced = modal_map(general, n_poses=8, n_modes=3, elements_per_link=4)
+    reduced = modal_map(scene, n_poses=8, n_modes=3, elements_per_link=4)
     np.testing.assert_allclose(reduced.frequencies[0], single, rtol=1e-6)
 
 

@@ -19,7 +19,7 @@ from flexlink.output.export_vtk import mode_set, modes_mesh, write_animation, wr
 from flexlink.fileio import write_atomic_with
 from flexlink.fe.modeshape import sample_shapes
 from flexlink.output.report import case_summary
-from flexlink.scene.load import load_scene
+from flexlink.scene import load_scene
 
 from helpers import single_beam
 

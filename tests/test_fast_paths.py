@@ -16,7 +16,7 @@ from flexlink.analysis.modal import analyze
 from flexlink.fe.assembly import _rotated, assemble, reduction, rotation
 from flexlink.fe.link import link_matrices
 from flexlink.fe.model import GROUND, build_model
-from flexlink.scene.load import load_scene
+from flexlink.scene import load_scene
 from flexlink.analysis.sweep import _DensePlan, modal_sweep, parallel_modal_sweep
 
 CASES = Path(__file__).resolve().parent.parent / "cases"
@@ -63,7 +63,7 @@ def test_assemble_and_sweep_plan_match_reference(name, overrides):
     topology = scene.topology(5)
     plan = None
     for theta in np.radians([3.0, 97.0, 181.0, 275.0]):
-        model = build_model(topology, scene.linkage.pose(theta, "open").joints)
+        model = build_model(topology, scene.rigid_pose(theta).joints)
         K_ref, M_ref = reference_matrices(model)
         K, M = assemble(model)
         assert close(K.toarray(), K_ref) and close(M.toarray(), M_ref)
@@ -114,7 +114,7 @@ def test_rotated_equals_explicit_transformation():
 
 def test_parallel_sweep_equals_serial():
     scene = load_scene(CASES / "case4.toml")
-    poses = [scene.linkage.pose(t, "open").joints for t in np.radians([5.0, 95.0, 185.0, 275.0, 300.0])]
+    poses = [scene.rigid_pose(t).joints for t in np.radians([5.0, 95.0, 185.0, 275.0, 300.0])]
     serial = modal_sweep(scene.topology(4), poses, 3)
     parallel = parallel_modal_sweep(scene.topology(4), poses, 3, n_jobs=2)
     np.testing.assert_array_equal(parallel.frequencies, serial.frequencies)

@@ -109,7 +109,7 @@ def test_two_loop_velocity_coefficients_match_finite_differences():
     # differences of the solved angles and K (h = 1e-5: truncation ~ 1e-10)
     from pathlib import Path
 
-    from flexlink.scene.load import load_scene
+    from flexlink.scene import load_scene
 
     scene = load_scene(Path(__file__).resolve().parent.parent / "scenes" / "wiper.toml")
     cycle = scene.linkage.cycle(crank_angles(36), scene.guess)

@@ -10,7 +10,7 @@ import pytest
 from flexlink.analysis.modal import analyze, lambda_scale
 from flexlink.fe.assembly import assemble, reduction
 from flexlink.fe.model import build_model
-from flexlink.scene.load import load_scene
+from flexlink.scene import load_scene
 from flexlink.analysis.solve import solve_modes
 
 CASES = Path(__file__).resolve().parent.parent / "cases"

@@ -12,7 +12,7 @@ from flexlink.analysis.families import elastic_modes
 from flexlink.fe.model import JointSpec, LinkSpec, Section, Topology
 from flexlink.analysis.outofplane import (StripProperties, chain_matrices, element_matrices,
                                  out_of_plane_modes, rotation)
-from flexlink.scene.load import load_scene
+from flexlink.scene import load_scene
 
 CASES = Path(__file__).resolve().parent.parent / "cases"
 INF = math.inf

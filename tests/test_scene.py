@@ -6,7 +6,7 @@ from pathlib import Path
 import pytest
 
 from flexlink.errors import InputError
-from flexlink.scene.load import load_scene, scene_files
+from flexlink.scene import load_scene, scene_files
 
 CASES = Path(__file__).resolve().parent.parent / "cases"
 
@@ -15,7 +15,7 @@ def test_shipped_cases_load_with_assumptions():
     files = scene_files([CASES])
     assert [f.name for f in files] == ["case1.toml", "case2.toml", "case3.toml", "case4.toml"]
     scene = load_scene(files[0])
-    assert math.isclose(scene.linkage.crank, 0.267 * 0.3)
+    assert math.isclose(scene.four_bar.crank, 0.267 * 0.3)
     fields = {a.field for a in scene.assumptions}
     assert {"linkage.ground", "section.width", "section.ply_thickness", "joints.Kt",
             "joints.Kr", "drive.stiffness"} <= fields

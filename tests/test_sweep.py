@@ -6,7 +6,7 @@ from pathlib import Path
 import numpy as np
 
 from flexlink.analysis.modal import analyze
-from flexlink.scene.load import load_scene
+from flexlink.scene import load_scene
 from flexlink.analysis.sweep import modal_sweep
 
 CASES = Path(__file__).resolve().parent.parent / "cases"
@@ -14,12 +14,12 @@ CASES = Path(__file__).resolve().parent.parent / "cases"
 
 def test_sweep_matches_single_pose_analysis():
     scene = load_scene(CASES / "case2.toml")
-    theta = scene.linkage.crank_angles_for_mu(math.pi / 2)
-    poses = [scene.linkage.pose(t, "open").joints for t in theta]
+    theta = scene.four_bar.crank_angles_for_mu(math.pi / 2)
+    poses = [scene.four_bar.pose(t, "open").joints for t in theta]
     sweep = modal_sweep(scene.topology(8), poses, 4)
     single = analyze(scene, 4, 8).elastic_frequencies(4)
     np.testing.assert_allclose(sweep.frequencies[0], single, rtol=1e-12)
     # theta2 and 360 deg - theta2 on the other branch are mirror images: same spectrum
-    mirrored = modal_sweep(scene.topology(8), [scene.linkage.pose(theta[1], "crossed").joints], 4)
+    mirrored = modal_sweep(scene.topology(8), [scene.four_bar.pose(theta[1], "crossed").joints], 4)
     np.testing.assert_allclose(mirrored.frequencies[0], single, rtol=1e-9)
     assert not sweep.mechanism_counts.any()

@@ -13,21 +13,15 @@ from __future__ import annotations
 import numpy as np
 
 from flexlink.analysis.modal import analyze
-from flexlink.errors import InputError
 from flexlink.analysis.outofplane import analyze_out_of_plane
-from flexlink.scene.load import Scene
+from flexlink.scene import Scene
 
 FAMILIES = ("planar", "out-of-plane", "3d")
 IN_PLANE, OUT_OF_PLANE = "in-plane", "out-of-plane"
 
 
 def scene_family(scene: Scene) -> str:
-    r = scene.reader()
-    family = r.raw("model.family", "planar")
-    if family not in FAMILIES:
-        raise InputError(f"unknown model family {family!r}", source=r.src("model.family"),
-                         field="model.family", expected=" or ".join(repr(f) for f in FAMILIES))
-    return family
+    return scene.options.family  # one of FAMILIES, checked by the scene schema
 
 
 def elastic_modes(scene: Scene, n_modes: int, elements: int | None = None,

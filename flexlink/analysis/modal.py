@@ -14,7 +14,7 @@ from flexlink.kinematics.fourbar import Pose
 from flexlink.fe.model import FrameModel, build_model
 from flexlink.scene.plausibility import model_warnings, pose_warnings
 from flexlink.fe.rigid import rigidified
-from flexlink.scene.load import Scene
+from flexlink.scene import Scene
 from flexlink.analysis.solve import ModalResult, solve_modes
 
 log = logging.getLogger(__name__)
@@ -62,7 +62,7 @@ def analyze(scene: Scene, n_modes: int = 4, elements_per_link: int | None = None
     pose = scene.rigid_pose()
     topology = scene.topology(elements_per_link)
     model = rigidified(build_model(topology, pose.joints))
-    warnings = tuple(pose_warnings(scene.linkage, pose) + model_warnings(model))
+    warnings = tuple(pose_warnings(scene.four_bar, pose) + model_warnings(model))
     for w in warnings:
         if (scene.path, w) not in _WARNED:  # once per process: sweeps call this many times
             _WARNED.add((scene.path, w))

@@ -41,7 +41,7 @@ import scipy.sparse as sp
 
 from flexlink.fe.assembly import reduction, springs_stiffness_entries
 from flexlink.fe.model import GROUND, FrameModel, Section, Springs, build_model
-from flexlink.scene.load import Scene
+from flexlink.scene import Scene
 from flexlink.analysis.solve import ModalResult, solve_modes
 
 DOF_NAMES = ("w", "rx", "ry")
@@ -157,13 +157,7 @@ def lambda_scale(model: FrameModel) -> float:
 
 def tilt_stiffnesses(scene: Scene) -> dict[str, float]:
     """Ktilt [N m/rad] per joint from ``joints.<J>.Ktilt`` or ``joints.Ktilt`` (default rigid)."""
-    r = scene.reader()
-    out = {}
-    for joint in scene.joints:
-        field = f"joints.{joint.name}.Ktilt" if r.has(f"joints.{joint.name}.Ktilt") else "joints.Ktilt"
-        out[joint.name] = r.quantity(field, "rotational stiffness", default="rigid",
-                                     allow_zero=True)
-    return out
+    return dict(scene.options.tilt)
 
 
 def out_of_plane_modes(topology, points, tilt: dict[str, float], n_modes: int,

@@ -47,7 +47,7 @@ def command(scenes, free_specs, families, starts, seed, samples, vf_sd, thicknes
     from flexlink.studies.comparison import StudySettings, run_study
     from flexlink.analysis.families import scene_family
     from flexlink.fileio import prepare_out_dir, write_atomic
-    from flexlink.scene.load import load_scene, scene_files
+    from flexlink.scene import load_scene, scene_files
     from flexlink.units import parse_quantity
 
     out = prepare_out_dir(out_dir)

@@ -31,7 +31,7 @@ def command(scene_path, n_modes, max_elements, repeats, tol, as_json, out_dir):
 
     from flexlink.studies import convergence as cv
     from flexlink.fileio import prepare_out_dir, write_atomic
-    from flexlink.scene.load import load_scene
+    from flexlink.scene import load_scene
 
     tol = cv.DEFAULT_TOL if tol is None else tol
     out = prepare_out_dir(out_dir)

@@ -33,17 +33,16 @@ def command(scene_path, n_modes, poses, elements, speed, margin, harmonics, as_j
     come within --margin of a natural frequency anywhere in the cycle."""
     from flexlink.studies.cycle import csv_text, modal_map, plot_map, resonances, runs
     from flexlink.fileio import prepare_out_dir, write_atomic
-    from flexlink.scene.load import load_scene
-    from flexlink.scene.general import as_general
+    from flexlink.scene import load_scene
     from flexlink.units import parse_quantity
     from ._progress import progress_bar
 
     out = prepare_out_dir(out_dir)
-    scene = as_general(load_scene(scene_path))
+    scene = load_scene(scene_path)
     if speed is not None:
         omega = parse_quantity(speed, "angular speed", source="command line", field="--speed")
     else:
-        omega = scene.reader().quantity("operation.crank_speed", "angular speed", default=None)
+        omega = scene.options.crank_speed
     result = modal_map(scene, poses, n_modes, elements,
                        progress=progress_bar("modal map", as_json))
     hits = resonances(result, omega, margin, harmonics) if omega else []

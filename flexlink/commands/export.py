@@ -42,7 +42,7 @@ def command(scenes, n_modes, elements, method, subdivide, phases, amplitude, pic
     from flexlink.output.export import ExportSettings, export_case
     from flexlink.fileio import prepare_out_dir, write_atomic
     from flexlink.output.report import case_summary
-    from flexlink.scene.load import load_scene, scene_files
+    from flexlink.scene import load_scene, scene_files
 
     settings = ExportSettings(n_modes=n_modes, subdivisions=subdivide, phases=phases,
                               amplitude=amplitude, pictures=pictures, plot=True)

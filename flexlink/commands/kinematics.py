@@ -115,26 +115,24 @@ def command(scene_path, poses, speed, as_json, out_dir):
     limit positions, torque ratio 1/K; for a scene with [[family]] tables, every member too."""
     from flexlink.fileio import prepare_out_dir, write_atomic
     from flexlink.kinematics.motion import csv_text
-    from flexlink.scene.load import load_scene
-    from flexlink.scene.general import as_general
+    from flexlink.scene import load_scene
     from flexlink.units import parse_quantity
     from ._progress import progress_bar
 
     out = prepare_out_dir(out_dir)
-    scene = as_general(load_scene(scene_path))
-    r = scene.reader()
+    scene = load_scene(scene_path)
     if speed is not None:
         omega = parse_quantity(speed, "angular speed", source="command line", field="--speed")
     else:
-        omega = r.quantity("operation.crank_speed", "angular speed", default=None)
+        omega = scene.options.crank_speed
     cycle, doc = _analyse(scene, poses, omega, progress_bar("kinematics", as_json))
     stem = Path(scene_path).stem
     written = [write_atomic(out / f"{stem}-kinematics.csv", csv_text(cycle, omega))]
     members = []
-    for family in r.raw("family", []):
-        field, label = family["field"], family.get("name", family["field"])
-        for value in family["values"]:
-            member = as_general(load_scene(scene_path, overrides={field: value}))
+    for variant in scene.options.variants:
+        field, label = variant.field, variant.name
+        for value in variant.values:
+            member = load_scene(scene_path, overrides={field: value})
             _, mdoc = _analyse(member, poses, omega, None)
             mdoc.update({"family": label, "field": field, "value": value})
             members.append(mdoc)

@@ -32,7 +32,7 @@ def command(scenes, n_modes, elements, method, tol, as_json, out_dir):
     from flexlink.analysis.families import elastic_modes, scene_family
     from flexlink.fileio import prepare_out_dir, write_atomic
     from flexlink.output.report import case_summary, csv_text, format_case, overall_mean_abs
-    from flexlink.scene.load import load_scene, scene_files
+    from flexlink.scene import load_scene, scene_files
 
     # analysis warnings come back in result.warnings and are printed with their case below;
     # logging them as well would show each one twice
@@ -73,7 +73,7 @@ def _mesh(scene, n_modes, elements, tol):
 
     if elements is not None:
         return elements, {"rule": "command line (-e)", "elements_per_link": elements}
-    if scene.reader().has("mesh.elements_per_link"):
+    if scene.elements_per_link is not None:
         return scene.elements_per_link, {"rule": "scene (mesh.elements_per_link)",
                                          "elements_per_link": scene.elements_per_link}
     rule = mesh_for_tolerance(scene, n_modes, tol)

@@ -27,18 +27,18 @@ def command(scene_path, n_modes, elements, as_json, out_dir):
     from flexlink.fe.assembly import assemble, reduction
     from flexlink.fileio import prepare_out_dir, write_atomic
     from flexlink.fe.model import build_model
+    from flexlink.errors import InputError
     from flexlink.studies.prb import prb_frequency
-    from flexlink.scene.load import load_scene
-    from flexlink.scene.general import as_general
+    from flexlink.scene import load_scene
     from flexlink.analysis.solve import ELASTIC, solve_modes
 
     out = prepare_out_dir(out_dir)
-    scene = as_general(load_scene(scene_path))
-    r = scene.reader()
+    scene = load_scene(scene_path)
+    p = scene.options.prb
+    if p is None:
+        raise InputError("no [prb] table: nothing to compare", source=scene.path, field="prb")
     state = scene.linkage.solve(scene.start, scene.guess)
-    prb = prb_frequency(scene, state, r.raw("prb.strip"), r.raw("prb.pivot"), r.raw("prb.link"),
-                        r.raw("prb.clamp"), r.number("prb.gamma", 0.5, 1.0),
-                        r.number("prb.K_theta", 0.1, 10.0))
+    prb = prb_frequency(scene, state, p.strip, p.pivot, p.link, p.clamp, p.gamma, p.K_theta)
     model = build_model(scene.topology(elements), state.points)
     K, M = assemble(model)
     modes = solve_modes(K, M, n_modes + 4, T=reduction(model), lambda_ref=lambda_scale(model))

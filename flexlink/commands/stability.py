@@ -23,7 +23,7 @@ def command(scene_path, slow, as_json, out_dir):
     from tqdm import tqdm
 
     from flexlink.fileio import prepare_out_dir, write_atomic
-    from flexlink.scene.load import load_scene
+    from flexlink.scene import load_scene
     from flexlink.studies.stability import run_checks
 
     out = prepare_out_dir(out_dir)

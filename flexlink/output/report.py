@@ -45,6 +45,15 @@ def mean_abs_errors(rows: list[dict]) -> dict[str, float]:
     return out
 
 
+def linkage_summary(scene) -> dict:
+    """Lengths [m] of the four-bar (with its Grashof class), or of each beam link."""
+    fb = scene.four_bar
+    if fb is not None:
+        return {"ground_m": fb.ground, "crank_m": fb.crank, "coupler_m": fb.coupler,
+                "rocker_m": fb.rocker, "grashof": fb.grashof_class()}
+    return {"bodies": [b.name for b in scene.linkage.bodies]}
+
+
 def case_summary(result: CaseResult, n_modes: int, family: str = "planar", computed=None,
                  kinds=None) -> dict:
     """JSON-ready summary of one case. ``computed``/``kinds``: the frequencies [Hz] and mode
@@ -56,10 +65,9 @@ def case_summary(result: CaseResult, n_modes: int, family: str = "planar", compu
         "scene": scene.name,
         "file": scene.path,
         "family": family,
-        "linkage": {"ground_m": scene.linkage.ground, "crank_m": scene.linkage.crank,
-                    "coupler_m": scene.linkage.coupler, "rocker_m": scene.linkage.rocker,
-                    "grashof": scene.linkage.grashof_class()},
-        "pose": {"theta2_deg": math.degrees(pose.theta2), "mu_deg": math.degrees(pose.mu),
+        "linkage": linkage_summary(scene),
+        "pose": {"theta2_deg": math.degrees(pose.theta2),
+                 "mu_deg": None if pose.mu is None else math.degrees(pose.mu),
                  "branch": pose.branch,
                  "joints_m": {k: list(v) for k, v in pose.joints.items()}},
         "elements_per_link": result.elements_per_link,

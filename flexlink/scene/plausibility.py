@@ -52,23 +52,27 @@ def _range_finding(kind, value, source, field) -> Finding | None:
 
 
 def scene_findings(scene) -> list[Finding]:
-    """Implausible lengths, section sizes, moduli and densities of a scene."""
-    r = scene.reader()
+    """Implausible lengths, section sizes, moduli and densities of a scene (a
+    ``contract.Scene``)."""
+    def where(*fields):
+        field = next((f for f in fields if scene.has_field(f)), fields[-1])
+        return scene.file_of(field), field
+
     found = []
-    for name, value in zip(("ground", "crank", "coupler", "rocker"), scene.linkage.lengths):
-        field = f"linkage.{name}" if r.has(f"linkage.{name}") else "linkage.ground"
-        found.append(_range_finding("length", value, r.src(field), field))
+    if scene.four_bar is not None:
+        for name, value in zip(("ground", "crank", "coupler", "rocker"), scene.four_bar.lengths):
+            found.append(_range_finding("length", value, *where(
+                f"linkage.{name}", f"linkage.four_bar.{name}", "linkage.ground")))
     for link, s in scene.sections.items():
         thickness = s.area / s.depth
         for kind, key, value in (("section", "width", s.depth), ("section", "thickness", thickness),
                                  ("E", "E", s.E), ("density", "density", s.density)):
             if kind == "section":
-                own = f"links.{link}.section.{key}"
-                field = own if r.has(own) else f"section.{key}"
+                fields = (f"links.{link}.section.{key}", f"section.{key}")
             else:
-                prefix = f"links.{link}.material" if r.has(f"links.{link}.material") else "material"
-                field = f"{prefix}.{key}" if r.has(f"{prefix}.{key}") else prefix
-            found.append(_range_finding(kind, value, r.src(field), field))
+                fields = (f"links.{link}.material.{key}", f"links.{link}.material",
+                          f"material.{key}", "material")
+            found.append(_range_finding(kind, value, *where(*fields)))
     unique = {}
     for f in found:
         if f is not None:
@@ -82,8 +86,7 @@ def check_scene(scene) -> None:
     findings = scene_findings(scene)
     if not findings:
         return
-    mode = scene.reader().raw("checks.plausibility", "error")
-    if mode == "warn":
+    if scene.options.plausibility == "warn":
         for f in findings:
             log.warning("%s: %s: %s", f.source, f.field, f.message)
         return
@@ -117,16 +120,19 @@ def model_warnings(model) -> list[str]:
     return out
 
 
-def pose_warnings(linkage, pose) -> list[str]:
-    """Poses near a dead centre (mu near 0 or 180 deg) and linkages whose crank cannot turn."""
+def pose_warnings(four_bar, pose) -> list[str]:
+    """Poses near a dead centre (a transmission angle near 0 or 180 deg) and four-bars
+    (``four_bar``, None for other linkages) whose crank cannot turn."""
     out = []
-    grashof = linkage.grashof_class()
-    if grashof not in ("crank-rocker", "double-crank"):
+    grashof = four_bar.grashof_class() if four_bar is not None else None
+    if grashof is not None and grashof not in ("crank-rocker", "double-crank"):
         out.append(f"the linkage is {grashof}: its input link cannot turn fully; the pose is one "
                    "of a limited range")
-    mu = math.degrees(pose.mu)
-    distance = min(mu, 180.0 - mu)
-    if distance < TOGGLE_WARN_DEG:
-        out.append(f"transmission angle {mu:.3f} deg is {distance:.3g} deg from a dead centre "
-                   f"(0 or 180 deg): the pose and the joint loads are very sensitive there")
+    for pair, mu_rad in pose.transmission.items():
+        mu = math.degrees(mu_rad)
+        distance = min(mu, 180.0 - mu)
+        if distance < TOGGLE_WARN_DEG:
+            out.append(f"transmission angle {pair} {mu:.3f} deg is {distance:.3g} deg from a dead "
+                       "centre (0 or 180 deg): the pose and the joint loads are very sensitive "
+                       "there")
     return out

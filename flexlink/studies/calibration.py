@@ -22,7 +22,7 @@ import numpy as np
 from flexlink.errors import FlexlinkError, InputError
 from flexlink.analysis.families import elastic_modes
 from flexlink.parallel import run_tasks
-from flexlink.scene.load import Scene, load_scene
+from flexlink.scene import Scene, load_scene
 from flexlink.units import parse_quantity
 
 log = logging.getLogger(__name__)
@@ -43,13 +43,12 @@ def _nominal_drive(scene: Scene):
 
 
 def _nominal_tilt(scene: Scene):
-    r = scene.reader()
-    return r.quantity("joints.Ktilt", "rotational stiffness", default="rigid", allow_zero=True)
+    return next(iter(scene.options.tilt.values()), float("inf"))
 
 
 # name -> (scene fields it sets, dimension, SI unit written into overrides, nominal(scene))
 KNOWN = {
-    "L1": (("linkage.ground",), "length", "m", lambda s: s.linkage.ground),
+    "L1": (("linkage.ground",), "length", "m", lambda s: s.four_bar.ground),
     "width": (("section.width",), "length", "m", _nominal_section(0)),
     "thickness": (("section.thickness",), "length", "m", _nominal_section(1)),
     "Kt": (("joints.Kt",), "translational stiffness", "N/m", lambda s: s.joints[0].Kt),

@@ -23,7 +23,7 @@ import numpy as np
 from flexlink.analysis.modal import analyze
 from flexlink.errors import NumericalError
 from flexlink.fileio import write_atomic
-from flexlink.scene.load import Scene
+from flexlink.scene import Scene
 from flexlink.analysis.solve import DENSE_LIMIT
 
 ORDER = 2  # see module docstring; the second extrapolation step uses ORDER + 2

@@ -13,31 +13,23 @@ import math
 import numpy as np
 
 from flexlink.kinematics.linkage import Cycle, crank_angles, crossings
-from flexlink.scene.general import GeneralScene
+from flexlink.scene import Scene
+from flexlink.scene.contract import transmission_angles as pose_transmission_angles
 from flexlink.analysis.sweep import modal_sweep
 
 
-def kinematic_cycle(scene: GeneralScene, n_poses: int = 360, progress=None) -> Cycle:
+def kinematic_cycle(scene: Scene, n_poses: int = 360, progress=None) -> Cycle:
     """Rigid poses at ``n_poses`` input angles over one revolution from ``scene.start``."""
     return scene.linkage.cycle(crank_angles(n_poses, scene.start), scene.guess, progress)
 
 
-def transmission_angles(scene: GeneralScene, cycle: Cycle) -> dict[str, np.ndarray]:
+def transmission_angles(scene: Scene, cycle: Cycle) -> dict[str, np.ndarray]:
     """mu [rad] over the cycle for each body pair of ``scene.transmission``: the angle between
     the two bodies' lines at the joint they share (0 or 180 deg at a dead centre)."""
-    out = {}
-    for a, b in scene.transmission:
-        body_a, body_b = scene.linkage.body(a), scene.linkage.body(b)
-        shared = next(j for j in body_a.joints if j in body_b.joints)
-        far_a = next(j for j in body_a.joints if j != shared)
-        far_b = next(j for j in body_b.joints if j != shared)
-        mu = []
-        for s in cycle.states:
-            u = np.subtract(s.points[far_a], s.points[shared])
-            v = np.subtract(s.points[far_b], s.points[shared])
-            mu.append(math.atan2(abs(u[0] * v[1] - u[1] * v[0]), u @ v))
-        out[f"{a}/{b}"] = np.array(mu)
-    return out
+    per_pose = [pose_transmission_angles(scene.linkage, scene.transmission, s.points)
+                for s in cycle.states]
+    return {pair: np.array([mu[pair] for mu in per_pose]) for pair in per_pose[0]} \
+        if per_pose and per_pose[0] else {}
 
 
 @dataclasses.dataclass(frozen=True)
@@ -52,7 +44,7 @@ class ModalMap:
     mu90: dict[str, np.ndarray]
 
 
-def modal_map(scene: GeneralScene, n_poses: int = 360, n_modes: int = 3,
+def modal_map(scene: Scene, n_poses: int = 360, n_modes: int = 3,
               elements_per_link: int | None = None, progress=None,
               reduction: str | None = "craig-bampton") -> ModalMap:
     """The first ``n_modes`` elastic frequencies at ``n_poses`` input angles over the cycle.

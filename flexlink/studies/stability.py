@@ -25,7 +25,7 @@ from flexlink.kinematics.fourbar import FourBar
 from flexlink.fe.model import JointSpec, LinkSpec, Section, Topology, build_model
 from flexlink.scene.plausibility import SHEAR_WARN, SLENDER_LIMIT, model_warnings, pose_warnings, timoshenko_drop
 from flexlink.fe.rigid import RIGID_RATIO, element_stiffness_scale, rigidified
-from flexlink.scene.load import Scene, load_scene
+from flexlink.scene import RigidPose, Scene, load_scene
 from flexlink.analysis.solve import DENSE_REFUSE, MECHANISM, solve_modes
 
 log = logging.getLogger(__name__)
@@ -234,7 +234,8 @@ def kinematics(scene: Scene) -> list[Check]:
     L1, L2, L3, L4 = triple.lengths
     limit = math.acos((L1**2 + L2**2 - (L3 + L4) ** 2) / (2 * L1 * L2))
     near = triple.pose(limit - 1e-4)
-    warnings = pose_warnings(triple, near)
+    warnings = pose_warnings(triple, RigidPose(near.theta2, near.joints,
+                                              {"coupler/rocker": near.mu}, near.branch))
     at = _raises(lambda: triple.pose(limit), KinematicsError)
     checks.append(Check("4b", "non-Grashof linkage (R = 0.6, 0.7, 0.8)",
                         "errors for mu limits and for a crank angle where the loop cannot close; "

@@ -23,7 +23,7 @@ from flexlink.errors import FlexlinkError, InputError
 from flexlink.analysis.families import elastic_modes
 from flexlink.materials.mixtures import Constituent, load_constituent, woven_composite
 from flexlink.parallel import run_tasks
-from flexlink.scene.load import load_scene
+from flexlink.scene import load_scene
 
 PROPERTIES = ("E", "G", "density")
 REL_STEP = 0.01
@@ -45,23 +45,22 @@ class Inputs:
 def scene_inputs(path, base_overrides: dict, vf_sd: float, thickness_sd: float) -> Inputs:
     """The uncertain inputs of a scene with a composite material, at ``base_overrides``."""
     scene = load_scene(path, overrides=base_overrides)
-    r = scene.reader()
-    if not r.has("material.composite"):
+    composite = scene.composite
+    if composite is None:
         raise InputError("uncertainty propagation needs a composite material table",
                          source=scene.path, field="material.composite")
-    fiber = load_constituent(r.raw("material.composite.fiber"))
-    matrix = load_constituent(r.raw("material.composite.matrix"))
+    fiber, matrix = load_constituent(composite.fiber), load_constituent(composite.matrix)
     nominal, sd = {}, {}
     for prefix, c in (("fiber", fiber), ("matrix", matrix)):
         for prop in PROPERTIES:
             nominal[f"{prefix}.{prop}"] = getattr(c, prop)
             sd[f"{prefix}.{prop}"] = c.spread.get(prop, 0.0)
-    nominal["vf"] = r.number("material.composite.fiber_volume_fraction", 0.0, 1.0)
+    nominal["vf"] = composite.fiber_volume_fraction
     sd["vf"] = vf_sd
     section = scene.sections["crank"]
     nominal["thickness"] = section.area / section.depth
     sd["thickness"] = thickness_sd
-    return Inputs(nominal, sd, r.raw("material.composite.fiber"), r.raw("material.composite.matrix"))
+    return Inputs(nominal, sd, composite.fiber, composite.matrix)
 
 
 def material_overrides(inputs: Inputs, values: dict[str, float]) -> dict:

@@ -1,0 +1,475 @@
+"""The declared scene schema: every table and key a scene file may hold, with unit kind, range,
+default and a doc line. Nothing else reads scene tables, and a key not declared here is an error.
+
+Both scene kinds share one root, ``SceneFile``; ``[linkage] type`` picks the kind:
+"four-bar" (lengths or ratios, pose by transmission or crank angle) or "general" (any planar
+linkage of revolute joints as data, or a four-bar given by lengths or synthesis).
+Quantities are strings with units (``"20 mm"``, see ``units.py``) and come out in SI; stiffness
+may be ``"rigid"`` (infinite: an exact constraint). Notes (``{ value = ..., note = "..." }``) are
+stripped before validation by ``source.py``, so every key below also accepts that form.
+
+Docs and editor support are generated from these models (``reference.py``).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from typing import Annotated, Literal, Union
+
+from pydantic import (AfterValidator, BaseModel, BeforeValidator, ConfigDict, Field,
+                      WithJsonSchema, model_validator)
+
+from flexlink.errors import InputError
+from flexlink.units import UNITS, parse_quantity
+
+
+@dataclasses.dataclass(frozen=True)
+class Unit:
+    """Field metadata for the docs: the unit kind (a key of ``units.UNITS``, or "-" for a plain
+    number) and the accepted range as a person would write it."""
+
+    kind: str
+    range: str = ""
+
+
+def _check_range(value: float, low, high, low_open, high_open, shown):
+    ok = ((low is None or (value > low if low_open else value >= low))
+          and (high is None or (value < high if high_open else value <= high)))
+    if not ok:
+        raise ValueError(f"must be {'in ' if shown[:1] in '([' else ''}{shown}")
+    return value
+
+
+def quantity(kind: str, low: float | None = None, high: float | None = None, *,
+             low_open: bool = True, high_open: bool = True, shown: str = "",
+             rigid: bool = False):
+    """A string with a unit of ``kind``, converted to SI [kind's SI unit]; range in SI."""
+    def parse(value):
+        if rigid and isinstance(value, str) and value.strip().lower() == "rigid":
+            return math.inf
+        try:
+            return parse_quantity(value, kind)
+        except InputError as exc:
+            raise ValueError(str(exc)) from None
+
+    def check(value):
+        if math.isinf(value):
+            return value
+        return _check_range(value, low, high, low_open, high_open, shown)
+
+    units = sorted(UNITS[kind], key=len, reverse=True)
+    alternatives = "|".join(u.replace("^", r"\^").replace("*", r"\*").replace("/", "/")
+                            for u in units) + ("|rigid" if rigid else "")
+    pattern = rf"^\s*(?:[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?\s*)?(?:{alternatives})\s*$"
+    return Annotated[float, BeforeValidator(parse), AfterValidator(check),
+                     WithJsonSchema({"type": "string", "pattern": pattern}),
+                     Unit(kind, shown + (" or 'rigid'" if rigid else ""))]
+
+
+def number(low: float, high: float, *, integer: bool = False, low_open: bool = False,
+           high_open: bool = False):
+    """A plain number (no unit) in [low, high]; ``integer`` for whole numbers."""
+    lb, hb = "(" if low_open else "[", ")" if high_open else "]"
+    shown = f"{lb}{low:g}, {high:g}{hb}"
+
+    def parse(value):
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            hint = " (a plain number, no unit)" if isinstance(value, str) else ""
+            raise ValueError(f"got {value!r}{hint}; expected a {'whole ' if integer else ''}"
+                             f"number in {shown}")
+        if not math.isfinite(value):
+            raise ValueError(f"got {value!r}; expected a finite number in {shown}")
+        if integer and not float(value).is_integer():
+            raise ValueError(f"got {value!r}; expected a whole number in {shown}")
+        return _check_range(value, low, high, low_open, high_open, shown)
+
+    schema = {"type": "integer" if integer else "number"}
+    schema.update({"exclusiveMinimum" if low_open else "minimum": low,
+                   "exclusiveMaximum" if high_open else "maximum": high})
+    return Annotated[int if integer else float, BeforeValidator(parse), WithJsonSchema(schema),
+                     Unit("-", shown)]
+
+
+LENGTH = quantity("length", 0.0, shown="> 0")
+ANGLE = quantity("angle", shown="any")
+OPEN_ANGLE = quantity("angle", 0.0, math.pi, shown="(0, 180) deg")
+MODULUS = quantity("modulus", 0.0, shown="> 0")
+DENSITY = quantity("density", 0.0, shown="> 0")
+TRANSLATIONAL = quantity("translational stiffness", 0.0, low_open=False, shown=">= 0", rigid=True)
+ROTATIONAL = quantity("rotational stiffness", 0.0, low_open=False, shown=">= 0", rigid=True)
+JOINT_MASS = quantity("mass", 0.0, low_open=False, shown=">= 0")
+POSITIVE_MASS = quantity("mass", 0.0, shown="> 0")
+Branch = Literal["open", "crossed"]
+Point = Annotated[tuple[quantity("length", shown="any"), quantity("length", shown="any")],
+                  Unit("length", "[x, y]")]
+
+
+class MissingKey(ValueError):
+    """A key a table needs (given what else it holds) is absent; ``key`` names it."""
+
+    def __init__(self, key: str, hint: str = ""):
+        self.key, self.hint = key, hint
+        super().__init__(f"{key}: missing" + (f" ({hint})" if hint else ""))
+
+
+class Table(BaseModel):
+    """A scene table: unknown keys are errors, values are immutable once read."""
+
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+
+def doc(text: str, **kwargs):
+    return Field(description=text, **kwargs)
+
+
+# -- materials and sections ------------------------------------------------------------------
+class Composite(Table):
+    fiber: str = doc("Fibre constituent: a name from the shipped materials (e.g. 'carbon_fiber') "
+                     "or a path to a material .toml file.")
+    matrix: str = doc("Matrix constituent: a shipped name (e.g. 'polyester') or a path.")
+    fiber_volume_fraction: number(0.0, 1.0, low_open=True, high_open=True) = doc(
+        "Fibre volume fraction Vf of the woven 0/90 laminate (rule of mixtures).")
+
+
+class Material(Table):
+    """One of: a woven composite, a shipped isotropic material, or E and density."""
+
+    composite: Composite | None = doc("Woven 0/90 laminate from fibre and matrix constituents.",
+                                      default=None)
+    isotropic: str | None = doc("A shipped isotropic material by name (e.g. 'steel') or a path.",
+                                default=None)
+    E: MODULUS | None = doc("Young's modulus of an isotropic material.", default=None)
+    G: MODULUS | None = doc("Shear modulus; if not given, E / 2.6 (nu = 0.3) is used and listed "
+                            "as an assumption.", default=None)
+    density: DENSITY | None = doc("Density (with E).", default=None)
+
+    @model_validator(mode="after")
+    def _one_kind(self):
+        given = [k for k in ("composite", "isotropic", "E") if getattr(self, k) is not None]
+        if len(given) != 1:
+            raise ValueError("give exactly one of: a [composite] table, isotropic = 'name', "
+                             f"or E and density (got {given or 'none'})")
+        if self.E is not None and self.density is None:
+            raise MissingKey("density", "an isotropic material needs E and density")
+        if self.E is None and (self.G is not None or self.density is not None):
+            raise ValueError("G and density go with E, not with a composite or named material")
+        return self
+
+
+class Section(Table):
+    """A link's cross-section, in one of four forms: width with thickness (or plies times
+    ply_thickness, or the link's mass); area with second_moment; a round tube."""
+
+    width: LENGTH | None = doc("In-plane depth of a flat bar (bending in the mechanism plane uses "
+                               "I = thickness width^3 / 12).", default=None)
+    thickness: LENGTH | None = doc("Out-of-plane thickness of a flat bar.", default=None)
+    plies: number(1, 1000, integer=True) | None = doc(
+        "Number of plies; thickness = plies x ply_thickness.", default=None)
+    ply_thickness: LENGTH | None = doc("Cured thickness of one ply.", default=None)
+    area: quantity("area", 0.0, shown="> 0") | None = doc(
+        "Cross-section area (with second_moment).", default=None)
+    second_moment: quantity("second moment", 0.0, shown="> 0") | None = doc(
+        "Second moment of area for in-plane bending (with area).", default=None)
+    tube_inner_radius: quantity("length", 0.0, low_open=False, shown=">= 0") | None = doc(
+        "Inner radius of a round tube.", default=None)
+    tube_outer_radius: LENGTH | None = doc("Outer radius of a round tube.", default=None)
+    mass: POSITIVE_MASS | None = doc("Mass of the link: sets the thickness of a flat bar or the "
+                                     "wall of a tube from the link's length.", default=None)
+
+
+class LinkTable(Table):
+    """A beam link. Four-bar scenes name crank, coupler, rocker (their ends are fixed) and may
+    only override section and material; general scenes give start and end joints."""
+
+    start: str | None = doc("Joint at the link's start (general scenes).", default=None)
+    end: str | None = doc("Joint at the link's end (general scenes).", default=None)
+    section: Section | None = doc("Section keys overriding the shared [section] key by key.",
+                                  default=None)
+    material: Material | None = doc("Material replacing the shared [material] whole.",
+                                    default=None)
+    elements: number(1, 100000, integer=True) | None = doc(
+        "Elements of this link (general scenes; default: [mesh] elements_per_link).",
+        default=None)
+
+
+# -- joints and drive ------------------------------------------------------------------------
+class JointTable(Table):
+    """One joint's own values, overriding the shared [joints] ones."""
+
+    Kt: TRANSLATIONAL | None = doc("Translational stiffness of the bearing or pin, in x and y.",
+                                   default=None)
+    Kr: ROTATIONAL | None = doc("Torsional stiffness of the bearing or pin (0: turns freely).",
+                                default=None)
+    Ktilt: ROTATIONAL | None = doc("Tilt stiffness about the in-plane axes (out-of-plane model "
+                                   "families only).", default=None)
+    mass: JOINT_MASS | None = doc("Lumped mass of the pin or bearing, on the joint's node.",
+                                  default=None)
+    welded: bool = doc("Ground joint only: its links are welded together and turn in one "
+                       "bearing (e.g. a triangular rocker made of two beams).", default=False)
+
+
+class Joints(Table):
+    """Shared bearing and pin values; [joints.NAME] tables override them per joint."""
+
+    model_config = ConfigDict(extra="allow", frozen=True)
+    __pydantic_extra__: dict[str, JointTable]
+
+    Kt: TRANSLATIONAL | None = doc("Translational stiffness of every bearing and pin.",
+                                   default=None)
+    Kr: ROTATIONAL | None = doc("Torsional stiffness of every bearing and pin.", default=None)
+    Ktilt: ROTATIONAL | None = doc("Tilt stiffness of every joint (out-of-plane families; "
+                                   "default rigid, listed as an assumption where used).",
+                                   default=None)
+
+
+class Drive(Table):
+    link: str = doc("The driven link (e.g. 'crank').")
+    joint: str = doc("The ground joint where the drive holds it (e.g. 'O2').")
+    stiffness: ROTATIONAL = doc("Torsional stiffness of the drive, in parallel with the "
+                                "bearing's Kr; 'rigid' holds the crank angle exactly.")
+
+
+# -- linkage ---------------------------------------------------------------------------------
+class FourBarLinkage(Table):
+    """A four-bar O2-A-B-O4: crank O2A, coupler AB, rocker O4B, ground O2O4. Give the ratios
+    R2, R3, R4 with ground, or the four lengths."""
+
+    type: Literal["four-bar"] = doc("Scene kind.", default="four-bar")
+    R2: number(1e-6, 1e6) | None = doc("Crank / ground length ratio L2/L1.", default=None)
+    R3: number(1e-6, 1e6) | None = doc("Coupler / ground length ratio L3/L1.", default=None)
+    R4: number(1e-6, 1e6) | None = doc("Rocker / ground length ratio L4/L1.", default=None)
+    ground: LENGTH = doc("Ground link length L1 (O2 to O4).")
+    crank: LENGTH | None = doc("Crank length L2 (without ratios).", default=None)
+    coupler: LENGTH | None = doc("Coupler length L3 (without ratios).", default=None)
+    rocker: LENGTH | None = doc("Rocker length L4 (without ratios).", default=None)
+
+    @model_validator(mode="after")
+    def _ratios_or_lengths(self):
+        ratios = {"R2": self.R2, "R3": self.R3, "R4": self.R4}
+        lengths = {"crank": self.crank, "coupler": self.coupler, "rocker": self.rocker}
+        given_ratios = any(v is not None for v in ratios.values())
+        given_lengths = any(v is not None for v in lengths.values())
+        if given_ratios and given_lengths:
+            raise ValueError("give R2, R3 and R4 (with ground), or crank, coupler and rocker "
+                             "lengths (with ground), not a mix")
+        needed = lengths if given_lengths else ratios
+        missing = [k for k, v in needed.items() if v is None]
+        if missing:
+            raise MissingKey(missing[0], "give R2, R3 and R4 with ground, or crank, coupler and "
+                                         "rocker lengths with ground")
+        return self
+
+
+class FourBarLengths(Table):
+    ground: LENGTH = doc("Ground O2O4.")
+    crank: LENGTH = doc("Crank O2A.")
+    coupler: LENGTH = doc("Coupler AB.")
+    rocker: LENGTH = doc("Rocker O4B.")
+
+
+class BrodellSoni(Table):
+    method: Literal["brodell-soni"] = doc("Crank-rocker with unit time ratio and optimum "
+                                          "transmission angle (Brodell and Soni).")
+    gamma_min: quantity("angle", 0.0, math.pi / 2, high_open=False, shown="(0, 90] deg") = doc(
+        "Least transmission angle.")
+    swing: OPEN_ANGLE = doc("Rocker swing angle.")
+    ground: LENGTH = doc("Ground link length.")
+
+
+class Minimax(Table):
+    method: Literal["minimax"] = doc("Mini-max transmission angle, mu = 90 +- delta.")
+    theta4i: OPEN_ANGLE = doc("Rocker angle at mu_min.")
+    delta: quantity("angle", 0.0, math.pi / 2, shown="(0, 90) deg") = doc(
+        "Half-band of the transmission angle about 90 deg.")
+    ground: LENGTH = doc("Ground link length.")
+
+
+class ExtendedRocker(Table):
+    method: Literal["extended-rocker"] = doc("Crank-rocker driven through an extended rocker.")
+    rocker: LENGTH = doc("Design rocker length L4.")
+    swing: OPEN_ANGLE = doc("Rocker swing angle.")
+    coupler_ratio: number(1.0, 1e3) = doc("Coupler / crank ratio L3/L2.")
+    k: number(1e-3, 1e3, low_open=True) = doc("Built rocker / design rocker length L41/L4.",
+                                               default=1.0)
+
+
+Synthesis = Annotated[Union[BrodellSoni, Minimax, ExtendedRocker], Field(discriminator="method")]
+
+
+class BodyTable(Table):
+    joints: list[str] = doc("Joints the body carries, at least two; the first two define its "
+                            "axis.", min_length=2)
+    length: LENGTH | None = doc("Distance between the two joints of a bar.", default=None)
+    arms: list[LENGTH] | None = doc("Distances from the first joint to the others "
+                                    "(bodies of three or more joints).", default=None)
+    angles: list[ANGLE] | None = doc("Angles of those arms from the first arm.", default=None)
+
+    @model_validator(mode="after")
+    def _shape(self):
+        if len(self.joints) == 2 and self.length is None:
+            raise MissingKey("length", "a two-joint body needs the distance between its joints")
+        if len(self.joints) > 2 and (self.arms is None or self.angles is None
+                                     or len(self.arms) != len(self.joints) - 1
+                                     or len(self.angles) != len(self.joints) - 1):
+            raise ValueError(f"a body of {len(self.joints)} joints needs {len(self.joints) - 1} "
+                             "arms and as many angles")
+        return self
+
+
+class PointTable(Table):
+    on: str = doc("Body the point is fixed on.")
+    along: str | None = doc("Body along whose axis the point is placed (default: 'on').",
+                            default=None)
+    at: number(-1e3, 1e3) = doc("Position as a multiple of the 'along' body's length from its "
+                                "first joint, at the start pose.")
+
+
+class GeneralLinkage(Table):
+    """Any planar linkage of revolute joints with one input. Either a four-bar source
+    ([linkage.four_bar] lengths or [linkage.synthesis]) or ground, bodies, guess and driver."""
+
+    type: Literal["general"] = doc("Scene kind.")
+    four_bar: FourBarLengths | None = doc("A four-bar by its lengths.", default=None)
+    synthesis: Synthesis | None = doc("A four-bar from a synthesis method.", default=None)
+    branch: Branch = doc("Assembly branch of a four-bar source.", default="open")
+    ground: dict[str, Point] | None = doc("Ground pivots by name: [x, y].", default=None)
+    bodies: dict[str, BodyTable] | None = doc("Rigid bodies by name.", default=None)
+    guess: dict[str, Point] | None = doc("Rough positions of the moving joints at the start "
+                                         "pose (picks the assembly).", default=None)
+    driver: str | None = doc("The input body (its first joint a ground pivot).", default=None)
+    start: ANGLE = doc("Input angle of the analysed pose.", default=0.0)
+    start_transmission_angle: OPEN_ANGLE | None = doc(
+        "Four-bar sources: start where the transmission angle has this value.", default=None)
+    transmission: list[tuple[str, str]] = doc(
+        "Body pairs whose angle at their shared joint is a transmission angle.", default=[])
+    points: dict[str, PointTable] | None = doc("Extra joints fixed on a body.", default=None)
+
+    @model_validator(mode="after")
+    def _source(self):
+        four_bar = self.four_bar is not None or self.synthesis is not None
+        bodies = any(v is not None for v in (self.ground, self.bodies, self.driver, self.guess))
+        if self.four_bar is not None and self.synthesis is not None:
+            raise ValueError("give [linkage.four_bar] or [linkage.synthesis], not both")
+        if four_bar == bodies:
+            raise ValueError("give a four-bar source ([linkage.four_bar] or [linkage.synthesis]) "
+                             "or ground, bodies, guess and driver")
+        for key in ("ground", "bodies", "guess", "driver"):
+            if bodies and getattr(self, key) is None:
+                raise MissingKey(key, "a linkage of bodies needs ground, bodies, guess and driver")
+        if self.start_transmission_angle is not None and not four_bar:
+            raise ValueError("start_transmission_angle needs a four-bar source")
+        return self
+
+
+Linkage = Annotated[Union[FourBarLinkage, GeneralLinkage], Field(discriminator="type")]
+
+
+class Pose(Table):
+    """The analysed pose of a four-bar: exactly one of transmission_angle or crank_angle."""
+
+    transmission_angle: OPEN_ANGLE | None = doc("Transmission angle mu at B.", default=None)
+    crank_angle: ANGLE | None = doc("Crank angle theta2 from the ground line O2->O4.",
+                                    default=None)
+    branch: Branch = doc("Assembly branch.", default="open")
+
+    @model_validator(mode="after")
+    def _one(self):
+        if self.transmission_angle is None and self.crank_angle is None:
+            raise MissingKey("transmission_angle", "or crank_angle: give exactly one")
+        if self.transmission_angle is not None and self.crank_angle is not None:
+            raise ValueError("give exactly one of transmission_angle or crank_angle, not both")
+        return self
+
+
+# -- stage options ---------------------------------------------------------------------------
+class Mesh(Table):
+    elements_per_link: number(1, 100000, integer=True) | None = doc(
+        "Pins the mesh; without it commands pick the coarsest mesh meeting their frequency "
+        "tolerance and say so.", default=None)
+
+
+class Model(Table):
+    family: Literal["planar", "out-of-plane", "3d"] = doc(
+        "Model family: the paper's in-plane frame, out-of-plane bending and torsion, or both.",
+        default="planar")
+
+
+class Checks(Table):
+    plausibility: Literal["error", "warn"] = doc(
+        "Values outside plausible ranges (unit slips such as '300 m'): refuse or only warn.",
+        default="error")
+
+
+class Operation(Table):
+    crank_speed: quantity("angular speed", 0.0, shown="> 0") | None = doc(
+        "Crank speed for the resonance check and the kinematics (magnitude).", default=None)
+
+
+class Prb(Table):
+    """Pseudo-rigid-body comparison of a compliant strip (``flexlink prb``)."""
+
+    strip: str = doc("The compliant link.")
+    pivot: str = doc("The characteristic pivot joint.")
+    link: str = doc("The PRB link body.")
+    clamp: str = doc("The body the strip is clamped to.")
+    gamma: number(0.5, 1.0) = doc("Characteristic radius factor.")
+    K_theta: number(0.1, 10.0) = doc("Stiffness coefficient.")
+
+
+class Variant(Table):
+    name: str | None = doc("Label of the variant family.", default=None)
+    field: str = doc("Dotted key the variants change, e.g. 'linkage.synthesis.k'.")
+    values: list = doc("Values of that key, as written in a file.", min_length=1)
+
+
+class Reference(Table):
+    """Published or measured frequencies by mode order: any key ending in _Hz is a column."""
+
+    model_config = ConfigDict(extra="allow", frozen=True)
+    __pydantic_extra__: dict[str, list[number(0.0, 1e12, low_open=True)]]
+
+    source: str = doc("Where the reference values come from.", default="")
+
+    @model_validator(mode="after")
+    def _columns(self):
+        for key, values in (self.__pydantic_extra__ or {}).items():
+            if not key.endswith("_Hz"):
+                raise ValueError(f"unknown key {key!r}: a reference column ends in _Hz, e.g. Ex_Hz")
+            if not values:
+                raise ValueError(f"{key} is empty")
+        return self
+
+
+class SceneFile(Table):
+    """A scene: a linkage, its pose, materials, sections, joints and what to report."""
+
+    name: str | None = doc("Display name (default: the file name).", default=None)
+    base: str | None = doc("A file merged underneath this one (its keys lose to this file's).",
+                           default=None)
+    linkage: Linkage = doc("The linkage; 'type' picks the scene kind.")
+    pose: Pose | None = doc("Four-bar scenes: the analysed pose.", default=None)
+    material: Material | None = doc("Material shared by every link.", default=None)
+    section: Section | None = doc("Section shared by every link.", default=None)
+    links: dict[str, LinkTable] = doc("Beam links by name.", default={})
+    joints: Joints | None = doc("Bearings and pins.", default=None)
+    drive: Drive | None = doc("The drive holding the input link (absent: it turns freely).",
+                              default=None)
+    mesh: Mesh = doc("Finite-element mesh.", default=Mesh())
+    model: Model = doc("Model options.", default=Model())
+    reference: Reference | None = doc("Reference frequencies to compare with.", default=None)
+    checks: Checks = doc("Input checks.", default=Checks())
+    operation: Operation = doc("Operating conditions.", default=Operation())
+    prb: Prb | None = doc("Pseudo-rigid-body comparison.", default=None)
+    family: list[Variant] = doc("Variants of the scene: one key over several values "
+                                "(``flexlink kinematics``).", default=[])
+
+    @model_validator(mode="after")
+    def _kind_tables(self):
+        if isinstance(self.linkage, FourBarLinkage):
+            if self.pose is None:
+                raise ValueError("a four-bar scene needs a [pose] table")
+        elif self.pose is not None:
+            raise ValueError("[pose] is for four-bar scenes; a general scene sets [linkage] "
+                             "start or start_transmission_angle")
+        return self

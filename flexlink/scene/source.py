@@ -1,0 +1,167 @@
+"""The text side of a scene file: TOML reading, ``base`` files, overrides and noted values.
+
+What comes out is plain data ready for the schema (``schema.py``), plus where each key came
+from (so an error names the right file) and the notes written beside values.
+
+- ``base = "file.toml"`` merges a shared file underneath the scene: the scene's own keys win,
+  tables merge key by key, except ``material``, which a scene replaces whole (mixing two
+  materials' keys would describe neither).
+- Any value may be written ``{ value = ..., note = "..." }``. A note starting with "assumed"
+  makes the value one of the scene's assumptions, reported with every result.
+- Overrides (``{"section.width": "25 mm"}``) are applied as if written in the file, before
+  validation, so a sweep or a fit goes through the same checks as a file.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import tomllib
+from pathlib import Path
+
+from flexlink.errors import InputError
+
+REPLACED_WHOLE = {"material"}
+OVERRIDES = "overrides"  # the source name of values set by a caller rather than a file
+MAX_BASE_DEPTH = 5
+
+
+@dataclasses.dataclass(frozen=True)
+class Assumption:
+    """A value the scene marks as assumed: ``field`` (dotted key), its ``value`` as written,
+    the ``note`` and the file it came from."""
+
+    field: str
+    value: str
+    note: str
+    source: str
+
+
+@dataclasses.dataclass(frozen=True)
+class SceneSource:
+    """Merged scene data with notes stripped, ``origin`` (dotted key -> file) and assumptions."""
+
+    path: Path
+    data: dict
+    origin: dict[str, str]
+    assumptions: tuple[Assumption, ...]
+
+    def file_of(self, field: str) -> str:
+        """The file a dotted key (or any key below it) came from; the scene file otherwise."""
+        if field in self.origin:
+            return self.origin[field]
+        below = [f for f in self.origin if f.startswith(field + ".")]
+        return self.origin[below[0]] if below else str(self.path)
+
+
+def read_toml(path: Path) -> dict:
+    """A TOML file as a dict; InputError (naming the file) when missing, unreadable or invalid."""
+    try:
+        raw = path.read_bytes()
+    except FileNotFoundError:
+        raise InputError("file not found", source=str(path)) from None
+    except IsADirectoryError:
+        raise InputError("is a folder, not a scene file", source=str(path)) from None
+    except OSError as exc:
+        raise InputError(f"cannot read: {exc.strerror}", source=str(path)) from None
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        line = raw[:exc.start].count(b"\n") + 1
+        raise InputError(f"not UTF-8 text (byte {exc.start}, line {line}): is this a scene file?",
+                         source=str(path), expected="a TOML file in UTF-8") from None
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise InputError(f"not valid TOML: {exc}", source=str(path)) from None
+
+
+def _is_noted(value) -> bool:
+    return isinstance(value, dict) and "value" in value
+
+
+def merge(base: dict, top: dict) -> dict:
+    """Deep-merge ``top`` over ``base``; ``top``'s keys win, REPLACED_WHOLE tables are replaced."""
+    out = dict(base)
+    for key, value in top.items():
+        if (isinstance(value, dict) and not _is_noted(value) and isinstance(out.get(key), dict)
+                and key not in REPLACED_WHOLE):
+            out[key] = merge(out[key], value)
+        else:
+            out[key] = value
+    return out
+
+
+def _origins(data: dict, file: str, prefix: str = "") -> dict[str, str]:
+    out = {}
+    for key, value in data.items():
+        dotted = f"{prefix}{key}"
+        if isinstance(value, dict) and not _is_noted(value):
+            out.update(_origins(value, file, dotted + "."))
+        else:
+            out[dotted] = file
+    return out
+
+
+def _with_bases(path: Path, depth: int = 0) -> tuple[dict, dict]:
+    if depth > MAX_BASE_DEPTH:
+        raise InputError("base files nest too deeply (a loop?)", source=str(path), field="base")
+    data = read_toml(path)
+    base_name = data.pop("base", None)
+    origin = _origins(data, str(path))
+    if base_name is None:
+        return data, origin
+    if not isinstance(base_name, str):
+        raise InputError(f"got {base_name!r}", source=str(path), field="base",
+                         expected="a file name relative to this file, e.g. '_table2.toml'")
+    base_data, base_origin = _with_bases(path.parent / base_name, depth + 1)
+    # a table the scene replaces whole takes its origin from the scene alone
+    kept = {k: v for k, v in base_origin.items()
+            if not any(k == t or k.startswith(t + ".") for t in REPLACED_WHOLE if t in data)}
+    return merge(base_data, data), {**kept, **origin}
+
+
+def _set_dotted(data: dict, origin: dict, field: str, value) -> None:
+    node = data
+    parts = field.split(".")
+    for part in parts[:-1]:
+        node = node.setdefault(part, {})
+        if not isinstance(node, dict) or _is_noted(node):
+            raise InputError("cannot override inside a plain value", source=OVERRIDES, field=field)
+    node[parts[-1]] = value
+    origin[field] = OVERRIDES
+
+
+def _strip_notes(node, origin: dict, prefix: str, found: list[Assumption]):
+    """``node`` with every ``{value, note}`` replaced by its value; assumed notes collected."""
+    if _is_noted(node):
+        extra = set(node) - {"value", "note"}
+        if extra:
+            raise InputError(f"a noted value holds only 'value' and 'note', not {sorted(extra)}",
+                             source=origin.get(prefix), field=prefix)
+        note = node.get("note", "")
+        if not isinstance(note, str):
+            raise InputError(f"got {note!r}", source=origin.get(prefix), field=f"{prefix}.note",
+                             expected="a text")
+        if note.strip().lower().startswith("assumed"):
+            found.append(Assumption(prefix, str(node["value"]), note.strip(),
+                                    origin.get(prefix, "")))
+        return _strip_notes(node["value"], origin, prefix, found)
+    if isinstance(node, dict):
+        return {k: _strip_notes(v, origin, f"{prefix}.{k}" if prefix else k, found)
+                for k, v in node.items()}
+    if isinstance(node, list):
+        return [_strip_notes(v, origin, f"{prefix}[{i}]", found) for i, v in enumerate(node)]
+    return node
+
+
+def read_scene_source(path: str | Path, overrides: dict | None = None) -> SceneSource:
+    """Read ``path`` with its base files, apply ``overrides`` (dotted key -> value as written in
+    a file) and strip the notes."""
+    path = Path(path)
+    data, origin = _with_bases(path)
+    for field, value in (overrides or {}).items():
+        _set_dotted(data, origin, field, value)
+    found: list[Assumption] = []
+    plain = _strip_notes(data, origin, "", found)
+    unique = {(a.field, a.value): a for a in found}
+    return SceneSource(path=path, data=plain, origin=origin, assumptions=tuple(unique.values()))
