@@ -57,10 +57,8 @@ def _walk(loc) -> tuple[list[str], list]:
             if isinstance(t, type) and issubclass(t, BaseModel):
                 if isinstance(item, str) and item in t.model_fields:
                     nxt += _members(t.model_fields[item].annotation)
-                elif "__pydantic_extra__" in getattr(t, "__annotations__", {}):
-                    nxt += _members(typing.get_args(t.__annotations__["__pydantic_extra__"])[1]
-                                    if typing.get_args(t.__annotations__["__pydantic_extra__"])
-                                    else typing.Any)
+                elif schema.extra_type(t) is not None:
+                    nxt += _members(schema.extra_type(t))
             elif typing.get_origin(t) is dict:
                 nxt += _members(typing.get_args(t)[1])
             elif typing.get_origin(t) in (list, tuple):

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import typing
 from typing import Annotated, Literal, Union
 
 from pydantic import (AfterValidator, BaseModel, BeforeValidator, ConfigDict, Field,
@@ -117,6 +118,13 @@ class Table(BaseModel):
     """A scene table: unknown keys are errors, values are immutable once read."""
 
     model_config = ConfigDict(extra="forbid", frozen=True)
+
+
+def extra_type(model: type[BaseModel]):
+    """The value type of a table's free-named keys ([joints.NAME], reference columns), or None
+    for a table whose keys are all declared."""
+    hint = typing.get_type_hints(model, include_extras=True).get("__pydantic_extra__")
+    return typing.get_args(hint)[1] if hint is not None else None
 
 
 def doc(text: str, **kwargs):
