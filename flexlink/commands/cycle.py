@@ -7,7 +7,7 @@ from pathlib import Path
 
 import click
 
-from flexlink.cli import dumps, json_option, out_option
+from flexlink.commands._options import dumps, json_option, out_option
 
 
 @click.command("cycle")
@@ -31,7 +31,7 @@ def command(scene_path, n_modes, poses, elements, speed, margin, harmonics, as_j
     """Natural frequencies of the first modes at every crank angle of SCENE (CSV and PNG in
     --out), the poses where the transmission angle is 90 deg, and the crank harmonics that
     come within --margin of a natural frequency anywhere in the cycle."""
-    from flexlink.studies.cycle import csv_text, modal_map, plot_map, resonances, runs
+    from flexlink.studies.cycle import modal_map, modal_map_csv, plot_map, resonances, runs
     from flexlink.fileio import prepare_out_dir, write_atomic
     from flexlink.scene.load import load_scene
     from flexlink.scene.general import as_general
@@ -49,7 +49,7 @@ def command(scene_path, n_modes, poses, elements, speed, margin, harmonics, as_j
     hits = resonances(result, omega, margin, harmonics) if omega else []
     stem = Path(scene_path).stem
     csv_path, png_path = out / f"{stem}-cycle.csv", out / f"{stem}-cycle.png"
-    write_atomic(csv_path, csv_text(result))
+    write_atomic(csv_path, modal_map_csv(result))
     plot_map(result, png_path, omega, hits)
     f = result.frequencies
     document = {

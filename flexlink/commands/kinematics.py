@@ -7,7 +7,7 @@ from pathlib import Path
 
 import click
 
-from flexlink.cli import dumps, json_option, out_option
+from flexlink.commands._options import dumps, json_option, out_option
 
 
 def _analyse(scene, poses, omega, progress):
@@ -114,7 +114,7 @@ def command(scene_path, poses, speed, as_json, out_dir):
     L = dK/dq of every body of SCENE over one crank revolution: extremes and where they occur,
     limit positions, torque ratio 1/K; for a scene with [[family]] tables, every member too."""
     from flexlink.fileio import prepare_out_dir, write_atomic
-    from flexlink.kinematics.motion import csv_text
+    from flexlink.kinematics.motion import motion_csv
     from flexlink.scene.load import load_scene
     from flexlink.scene.general import as_general
     from flexlink.units import parse_quantity
@@ -129,7 +129,7 @@ def command(scene_path, poses, speed, as_json, out_dir):
         omega = r.quantity("operation.crank_speed", "angular speed", default=None)
     cycle, doc = _analyse(scene, poses, omega, progress_bar("kinematics", as_json))
     stem = Path(scene_path).stem
-    written = [write_atomic(out / f"{stem}-kinematics.csv", csv_text(cycle, omega))]
+    written = [write_atomic(out / f"{stem}-kinematics.csv", motion_csv(cycle, omega))]
     members = []
     for family in r.raw("family", []):
         field, label = family["field"], family.get("name", family["field"])

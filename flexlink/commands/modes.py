@@ -6,7 +6,7 @@ import logging
 
 import click
 
-from flexlink.cli import dumps, json_option, out_option
+from flexlink.commands._options import dumps, json_option, out_option
 
 
 @click.command("modes")
@@ -31,7 +31,7 @@ def command(scenes, n_modes, elements, method, tol, as_json, out_dir):
     from flexlink.studies.convergence import DEFAULT_TOL
     from flexlink.analysis.families import elastic_modes, scene_family
     from flexlink.fileio import prepare_out_dir, write_atomic
-    from flexlink.output.report import case_summary, csv_text, format_case, overall_mean_abs
+    from flexlink.output.report import case_summary, comparison_csv, format_case, overall_mean_abs
     from flexlink.scene.load import load_scene, scene_files
 
     # analysis warnings come back in result.warnings and are printed with their case below;
@@ -52,7 +52,7 @@ def command(scenes, n_modes, elements, method, tol, as_json, out_dir):
     document = {"command": "modes", "cases": summaries,
                 "overall_mean_abs_error_pct": overall_mean_abs(summaries)}
     write_atomic(out / "modes.json", dumps(document))
-    write_atomic(out / "modes.csv", csv_text(summaries))
+    write_atomic(out / "modes.csv", comparison_csv(summaries))
     if as_json:
         click.echo(dumps(document))
         return

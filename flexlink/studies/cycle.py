@@ -114,7 +114,7 @@ def runs(angles: np.ndarray, step: float) -> list[tuple[float, float]]:
     return [(float(a), float(b)) for a, b in out]
 
 
-def csv_text(result: ModalMap) -> str:
+def modal_map_csv(result: ModalMap) -> str:
     """One row per pose: input angle [deg], then f1 ... fN [Hz]."""
     n = result.frequencies.shape[1]
     lines = ["crank_angle_deg," + ",".join(f"f{j + 1}_Hz" for j in range(n))]
