@@ -25,8 +25,11 @@ def test_modes_json_and_files(tmp_path):
             for ref in ("Ex", "FE"):
                 expected = 100 * (row["computed_Hz"] - row[f"{ref}_Hz"]) / row[f"{ref}_Hz"]
                 assert abs(row[f"error_vs_{ref}_pct"] - expected) < 1e-9
-    assert json.loads((tmp_path / "modes.json").read_text()) == doc
+    assert json.loads((tmp_path / "modes.json").read_text()) == doc  # the combined file
     assert (tmp_path / "modes.csv").read_text().count("\n") == 1 + 16
+    for case in doc["cases"]:  # and one pair per scene
+        own = json.loads((tmp_path / Path(case["file"]).stem / "modes.json").read_text())
+        assert own["cases"] == [case]
 
 
 def test_table_output_lists_every_case(tmp_path):

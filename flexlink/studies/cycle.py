@@ -12,6 +12,7 @@ import math
 
 import numpy as np
 
+from flexlink.errors import InputError
 from flexlink.kinematics.linkage import Cycle, crank_angles, crossings
 from flexlink.scene.general import GeneralScene
 from flexlink.analysis.sweep import modal_sweep
@@ -38,6 +39,11 @@ def transmission_angles(scene: GeneralScene, cycle: Cycle) -> dict[str, np.ndarr
             mu.append(math.atan2(abs(u[0] * v[1] - u[1] * v[0]), u @ v))
         out[f"{a}/{b}"] = np.array(mu)
     return out
+
+
+def scene_crank_speed(scene: GeneralScene) -> float | None:
+    """The scene's constant crank speed [rad/s] (``operation.crank_speed``), None if unset."""
+    return scene.reader().quantity("operation.crank_speed", "angular speed", default=None)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -81,11 +87,33 @@ class Resonance:
     closest: float
 
 
+def resonance_speed(crank_speed: float | None) -> tuple[float | None, str | None]:
+    """The crank speed [rad/s] the resonance check runs at (None: no check), and a note saying
+    why it is not the speed given. A negative speed turns the crank the other way: the poses
+    are the same and their natural frequencies do not depend on the speed, so the harmonics
+    that matter are those of |speed|. A zero speed has no harmonics to check."""
+    if crank_speed is None:
+        return None, "no crank speed given: resonance check skipped"
+    if crank_speed == 0:
+        return None, "crank speed 0: no crank harmonics, resonance check skipped"
+    if crank_speed < 0:
+        rpm = -crank_speed * 60 / (2 * math.pi)
+        return -crank_speed, (f"crank speed -{rpm:g} rev/min turns the crank the opposite way; "
+                              f"the resonance check runs at |speed| = {rpm:g} rev/min (the "
+                              "natural frequencies at a pose do not depend on the speed)")
+    return crank_speed, None
+
+
 def resonances(result: ModalMap, crank_speed: float, margin: float = 0.05,
                harmonics: int = 10) -> list[Resonance]:
-    """Harmonics n = 1 ... ``harmonics`` of the crank frequency (``crank_speed`` [rad/s]) that
-    come within ``margin`` (relative) of an elastic frequency anywhere in the cycle. Besides
-    the sampled poses, a mode curve that crosses the harmonic between two poses counts there."""
+    """Harmonics n = 1 ... ``harmonics`` of the crank frequency (``crank_speed`` [rad/s], > 0:
+    see ``resonance_speed``) that come within ``margin`` (relative) of an elastic frequency
+    anywhere in the cycle. Besides the sampled poses, a mode curve that crosses the harmonic
+    between two poses counts there."""
+    if not crank_speed > 0:
+        raise InputError(f"resonance check needs a positive crank speed, got {crank_speed} rad/s",
+                         field="crank_speed", expected="a positive angular speed (see "
+                         "resonance_speed for the sign)")
     f_crank = crank_speed / (2 * math.pi)
     found = []
     for n in range(1, harmonics + 1):
