@@ -43,6 +43,7 @@ class FlexlinkGroup(click.Group):
 
 
 @click.group(cls=FlexlinkGroup)
+@click.version_option(package_name="flexlink", prog_name="flexlink")  # from installed metadata
 @click.option("-v", "--verbose", is_flag=True, help="Log details to stderr.")
 def main(verbose):
     """flexlink: natural frequencies and mode shapes of planar linkages with flexible links."""

@@ -77,3 +77,10 @@ def test_modes_follows_the_scene_model_family(tmp_path):
     expected, kinds = elastic_modes(load_scene(scene_file), 4, 6)
     assert [r["computed_Hz"] for r in case["modes"]] == list(expected)
     assert {r["kind"] for r in case["modes"]} == {"out-of-plane"}
+
+
+def test_version_comes_from_the_package_metadata():
+    from importlib.metadata import version
+
+    result = CliRunner().invoke(main, ["--version"])
+    assert result.exit_code == 0 and result.output == f"flexlink, version {version('flexlink')}\n"

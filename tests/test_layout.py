@@ -162,3 +162,14 @@ def test_kinematics_loads_no_fe_or_sparse_solver():
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True,
                          cwd=PACKAGE_DIR.parent)
     assert out.stdout.strip() == "[]"
+
+
+def test_pyproject_lists_every_package():
+    """pyproject.toml lists the packages (one is mapped from materials/): a new sub-package
+    missing from the list would be left out of the wheel."""
+    import tomllib
+
+    config = tomllib.loads((PACKAGE_DIR.parent / "pyproject.toml").read_text())["tool"]["setuptools"]
+    packages = {module_name(p) for p in PACKAGE_DIR.rglob("__init__.py")}
+    assert set(config["packages"]) == packages | {"flexlink.materials.data"}
+    assert config["package-dir"] == {"flexlink.materials.data": "materials"}
