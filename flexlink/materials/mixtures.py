@@ -42,7 +42,7 @@ from flexlink.units import parse_quantity
 def shipped_materials() -> Traversable:
     """The folder of shipped material files: the package data ``flexlink.materials.data``,
     which pyproject.toml maps from the repository's ``materials/`` folder (in a wheel and in an
-    editable install). A source checkout used without installing (PYTHONPATH) has no such
+    editable install; ``materials/__init__.py`` makes it a package the editable finder maps). A source checkout used without installing (PYTHONPATH) has no such
     package, so the repository folder is read directly."""
     try:
         return resources.files("flexlink.materials.data")
