@@ -10,7 +10,6 @@ progress bar on stderr.
 from __future__ import annotations
 
 import importlib
-import json
 import logging
 import pkgutil
 import sys
@@ -19,23 +18,6 @@ import click
 
 from flexlink import commands as _commands_pkg
 from flexlink.errors import FlexlinkError
-
-
-def _json_default(value):
-    if hasattr(value, "tolist"):
-        return value.tolist()
-    raise TypeError(f"not JSON serialisable: {type(value)}")
-
-
-def dumps(document) -> str:
-    """The one JSON style of every command (NaN refused: JSON has none)."""
-    return json.dumps(document, indent=2, default=_json_default, allow_nan=False)
-
-
-json_option = click.option("--json", "as_json", is_flag=True,
-                           help="Print one machine-readable JSON document on stdout.")
-out_option = click.option("--out", "out_dir", default="out", show_default=True,
-                          type=click.Path(file_okay=False), help="Folder for result files.")
 
 
 class FlexlinkGroup(click.Group):
@@ -61,6 +43,7 @@ class FlexlinkGroup(click.Group):
 
 
 @click.group(cls=FlexlinkGroup)
+@click.version_option(package_name="flexlink", prog_name="flexlink")  # from installed metadata
 @click.option("-v", "--verbose", is_flag=True, help="Log details to stderr.")
 def main(verbose):
     """flexlink: natural frequencies and mode shapes of planar linkages with flexible links."""

@@ -23,10 +23,12 @@ def test_calibrate_writes_report_json_and_plots(tmp_path):
     # the assumed inputs are hundreds of % off and the fit starts from them: it must improve
     assert errors["calibrated_to_Ex_in_sample"] <= errors["assumed_inputs_vs_Ex"] + 1e-9
     assert len(study["cross_validation"]["errors_pct"]) == 2
-    report = (tmp_path / "report.md").read_text()
+    run = tmp_path / "case1+case2"  # the run's folder is named after its scenes
+    assert sorted(doc["files"]) == sorted(str(p) for p in run.iterdir())
+    report = (run / "report.md").read_text()
     assert "cross-validated" in report and "Proportionality" in report
     for name in ("frequencies", "cross_validation", "ratios", "intervals"):
-        assert (tmp_path / f"{name}-planar.png").read_bytes()[:4] == b"\x89PNG"
+        assert (run / f"{name}-planar.png").read_bytes()[:4] == b"\x89PNG"
 
 
 def test_calibrate_refuses_a_bad_free_spec(tmp_path):

@@ -25,8 +25,11 @@ def test_modes_json_and_files(tmp_path):
             for ref in ("Ex", "FE"):
                 expected = 100 * (row["computed_Hz"] - row[f"{ref}_Hz"]) / row[f"{ref}_Hz"]
                 assert abs(row[f"error_vs_{ref}_pct"] - expected) < 1e-9
-    assert json.loads((tmp_path / "modes.json").read_text()) == doc
+    assert json.loads((tmp_path / "modes.json").read_text()) == doc  # the combined file
     assert (tmp_path / "modes.csv").read_text().count("\n") == 1 + 16
+    for case in doc["cases"]:  # and one pair per scene
+        own = json.loads((tmp_path / Path(case["file"]).stem / "modes.json").read_text())
+        assert own["cases"] == [case]
 
 
 def test_table_output_lists_every_case(tmp_path):
@@ -74,3 +77,10 @@ def test_modes_follows_the_scene_model_family(tmp_path):
     expected, kinds = elastic_modes(load_scene(scene_file), 4, 6)
     assert [r["computed_Hz"] for r in case["modes"]] == list(expected)
     assert {r["kind"] for r in case["modes"]} == {"out-of-plane"}
+
+
+def test_version_comes_from_the_package_metadata():
+    from importlib.metadata import version
+
+    result = CliRunner().invoke(main, ["--version"])
+    assert result.exit_code == 0 and result.output == f"flexlink, version {version('flexlink')}\n"

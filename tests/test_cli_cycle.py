@@ -41,7 +41,7 @@ def test_kinematics_reports_synthesis_and_family(tmp_path):
     assert abs(rocker["swing_deg"] - 30) < 1e-9 and abs(rocker["time_ratio"] - 1) < 1e-9
     omega = 2000 * 2 * math.pi / 60
     assert abs(rocker["omega_rad_s"]["max"] - rocker["K"]["max"] * omega) < 1e-9
-    assert (tmp_path / "extended_rocker-kinematics.csv").read_text().count("\n") == 1 + 36
+    assert (tmp_path / "extended_rocker" / "kinematics.csv").read_text().count("\n") == 1 + 36
 
 
 def test_cycle_writes_csv_png_and_checks_resonance(tmp_path):
@@ -51,8 +51,8 @@ def test_cycle_writes_csv_png_and_checks_resonance(tmp_path):
     assert result.exit_code == 0, result.output
     doc = json.loads(result.output)
     assert len(doc["modes"]) == 2
-    for name in ("kineto_aluminium-cycle.csv", "kineto_aluminium-cycle.png"):
-        assert (tmp_path / name).stat().st_size > 0
+    for name in ("cycle.csv", "cycle.png", "cycle.json"):
+        assert (tmp_path / "kineto_aluminium" / name).stat().st_size > 0
     f_crank = 10.0  # Hz
     for hit in doc["resonances"]:
         assert abs(hit["harmonic_Hz"] - hit["harmonic"] * f_crank) < 1e-9

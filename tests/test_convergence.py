@@ -111,8 +111,8 @@ def test_converge_command(tmp_path):
     meeting = [r for r in doc["levels"] if r["max_relative_error"] <= 1e-3]
     assert best["seconds"] == pytest.approx(min(r["assembly_s"] + r["solve_s"] for r in meeting))
     assert len(doc["model_error"]["error_pct"]) == 4
-    assert (tmp_path / "converge.png").read_bytes()[:4] == b"\x89PNG"
-    assert json.loads((tmp_path / "converge.json").read_text()) == doc
+    assert (tmp_path / "case1" / "converge.png").read_bytes()[:4] == b"\x89PNG"
+    assert json.loads((tmp_path / "case1" / "converge.json").read_text()) == doc
 
 
 def test_modes_states_its_mesh_rule(tmp_path):

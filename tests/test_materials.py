@@ -1,9 +1,11 @@
 """Rule of mixtures for the Table I constituents."""
 
 import math
+from pathlib import Path
 
 import pytest
 
+from flexlink.errors import InputError
 from flexlink.materials.mixtures import load_constituent, rule_of_mixtures, woven_beam_modulus, woven_composite
 
 
@@ -41,3 +43,20 @@ def test_isotropic_limit_gives_back_the_modulus():
     # an isotropic 'fabric' narrow strip has modulus E exactly (no Poisson stiffening)
     assert math.isclose(woven_beam_modulus(same), m.E, rel_tol=1e-12)
     assert woven_composite(m, m, 0.3).density == m.density
+
+
+def test_shipped_materials_are_the_repository_files():
+    """Installed or not, the shipped folder holds exactly the files of materials/."""
+    from flexlink.materials.mixtures import shipped_materials
+
+    repo = Path(__file__).resolve().parent.parent / "materials"
+    shipped = {p.name: p.read_bytes() for p in shipped_materials().iterdir()
+               if p.name.endswith(".toml")}
+    assert shipped == {p.name: p.read_bytes() for p in repo.glob("*.toml")}
+
+
+def test_unknown_material_names_the_shipped_ones():
+    from flexlink.materials.mixtures import load_constituent
+
+    with pytest.raises(InputError, match=r"\['carbon_fiber', 'polyester', 'steel'\]"):
+        load_constituent("unobtainium")

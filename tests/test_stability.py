@@ -57,7 +57,7 @@ def test_stability_command(tmp_path, monkeypatch):
     doc = json.loads(result.output)
     assert result.exit_code == 0 and doc["passed"] == doc["total"] == 5
     assert [c["id"] for c in doc["checks"]] == ["7a", "8a", "8b", "8c", "8d"]
-    assert json.loads((tmp_path / "stability.json").read_text()) == doc
+    assert json.loads((tmp_path / "case1" / "stability.json").read_text()) == doc
     monkeypatch.setattr(st, "ELEMENTS", 1)  # makes 7a fail: exit code 1, FAIL printed
     result = CliRunner().invoke(main, ["stability", str(CASE1), "--out", str(tmp_path)])
     assert result.exit_code == 1 and "[FAIL] 7a" in result.output

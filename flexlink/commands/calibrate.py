@@ -8,7 +8,7 @@ import sys
 
 import click
 
-from flexlink.cli import dumps, json_option, out_option
+from flexlink.commands._options import dumps, json_option, out_option
 
 
 @click.command("calibrate")
@@ -41,7 +41,8 @@ def command(scenes, free_specs, families, starts, seed, samples, vf_sd, thicknes
             jobs, as_json, out_dir):
     """Calibrate each model family against the scenes' Ex column (and, separately, the paper's
     FE), cross-validate leaving one case out, fit each case alone and its mode ratios, and
-    propagate Table I scatter by Monte Carlo; writes calibrate.json, report.md and PNG plots."""
+    propagate Table I scatter by Monte Carlo; writes calibrate.json, report.md and PNG plots
+    to OUT/<scene names>/ (e.g. OUT/cases/ for the folder cases/)."""
     from flexlink.studies.calibration import parse_free
     from flexlink.output.calibration_report import PLOTS, best_family, report_markdown
     from flexlink.studies.comparison import StudySettings, run_study
@@ -49,8 +50,9 @@ def command(scenes, free_specs, families, starts, seed, samples, vf_sd, thicknes
     from flexlink.fileio import prepare_out_dir, write_atomic
     from flexlink.scene import load_scene, scene_files
     from flexlink.units import parse_quantity
+    from ._written import announce, run_folder
 
-    out = prepare_out_dir(out_dir)
+    out = run_folder(prepare_out_dir(out_dir), scenes)
     files = [str(f) for f in scene_files(scenes)]
     free = tuple(parse_free(s) for s in free_specs) or None
     settings = StudySettings(
@@ -64,21 +66,22 @@ def command(scenes, free_specs, families, starts, seed, samples, vf_sd, thicknes
         if fam not in chosen:
             chosen.append(fam)
 
-    studies = []
+    studies, written = [], []
     for fam in chosen:  # each family's study is kept as soon as it is done
         studies.append(run_study(files, fam, free, settings))
-        write_atomic(out / f"study-{fam}.json", dumps(studies[-1]))
+        written.append(write_atomic(out / f"study-{fam}.json", dumps(studies[-1])))
     plots = {}
     for study in studies:
         fam = study["family"]
         plots[fam] = {}
         for name, draw in PLOTS.items():
             file = f"{name}-{fam}.png"
-            write_atomic(out / file, draw(study))
+            written.append(write_atomic(out / file, draw(study)))
             plots[fam][name] = file
     line = "flexlink calibrate " + " ".join(shlex.quote(a) for a in sys.argv[2:])
-    write_atomic(out / "report.md", report_markdown(studies, plots, line))
-    document = {"command": "calibrate", "studies": studies}
+    written.append(write_atomic(out / "report.md", report_markdown(studies, plots, line)))
+    written.append(out / "calibrate.json")
+    document = {"command": "calibrate", "studies": studies, "files": [str(p) for p in written]}
     if len(studies) > 1:
         document["best_family_by_cross_validation"] = best_family(studies)["family"]
     write_atomic(out / "calibrate.json", dumps(document))
@@ -98,4 +101,4 @@ def command(scenes, free_specs, families, starts, seed, samples, vf_sd, thicknes
                    f"{u['Ex_inside_count']} of {u['count']} modes")
     if len(studies) > 1:
         click.echo(f"best family by cross-validated error: {document['best_family_by_cross_validation']}")
-    click.echo(f"written: {out / 'report.md'}, {out / 'calibrate.json'} and plots")
+    announce(written, as_json)

@@ -3,11 +3,9 @@
 from __future__ import annotations
 
 import math
-from pathlib import Path
-
 import click
 
-from flexlink.cli import dumps, json_option, out_option
+from flexlink.commands._options import dumps, json_option, out_option
 
 
 @click.command("cycle")
@@ -20,7 +18,8 @@ from flexlink.cli import dumps, json_option, out_option
               help="Elements per link (default: the scene's).")
 @click.option("--speed", default=None,
               help="Crank speed for the resonance check, e.g. '2000 rev/min' (default: the "
-                   "scene's operation.crank_speed; none: no check).")
+                   "scene's operation.crank_speed; none or 0: no check; negative: the other "
+                   "direction, checked at |speed|).")
 @click.option("--margin", default=0.05, show_default=True, type=click.FloatRange(0, 1),
               help="Relative distance that counts as near a natural frequency.")
 @click.option("--harmonics", default=10, show_default=True, type=click.IntRange(1, 10000),
@@ -30,26 +29,27 @@ from flexlink.cli import dumps, json_option, out_option
 def command(scene_path, n_modes, poses, elements, speed, margin, harmonics, as_json, out_dir):
     """Natural frequencies of the first modes at every crank angle of SCENE (CSV and PNG in
     --out), the poses where the transmission angle is 90 deg, and the crank harmonics that
-    come within --margin of a natural frequency anywhere in the cycle."""
-    from flexlink.studies.cycle import csv_text, modal_map, plot_map, resonances, runs
+    come within --margin of a natural frequency anywhere in the cycle. Writes cycle.csv,
+    cycle.png and cycle.json to OUT/<scene>/."""
+    from flexlink.studies.cycle import (modal_map, modal_map_csv, plot_map, resonance_speed,
+                                        resonances, runs)
     from flexlink.fileio import prepare_out_dir, write_atomic
     from flexlink.scene import load_scene
     from flexlink.units import parse_quantity
     from ._progress import progress_bar
+    from ._written import announce, scene_folders
 
-    out = prepare_out_dir(out_dir)
+    [folder] = scene_folders(prepare_out_dir(out_dir), [scene_path])
     scene = load_scene(scene_path)
-    if speed is not None:
-        omega = parse_quantity(speed, "angular speed", source="command line", field="--speed")
-    else:
-        omega = scene.options.crank_speed
+    omega = (scene.options.crank_speed if speed is None else
+             parse_quantity(speed, "angular speed", source="command line", field="--speed"))
+    check_speed, check_note = resonance_speed(omega)
     result = modal_map(scene, poses, n_modes, elements,
                        progress=progress_bar("modal map", as_json))
-    hits = resonances(result, omega, margin, harmonics) if omega else []
-    stem = Path(scene_path).stem
-    csv_path, png_path = out / f"{stem}-cycle.csv", out / f"{stem}-cycle.png"
-    write_atomic(csv_path, csv_text(result))
-    plot_map(result, png_path, omega, hits)
+    hits = resonances(result, check_speed, margin, harmonics) if check_speed else []
+    paths = [folder / "cycle.csv", folder / "cycle.png", folder / "cycle.json"]
+    write_atomic(paths[0], modal_map_csv(result))
+    plot_map(result, paths[1], check_speed, hits)
     f = result.frequencies
     document = {
         "command": "cycle", "scene": scene.name, "poses": poses,
@@ -61,17 +61,20 @@ def command(scene_path, n_modes, poses, elements, speed, margin, harmonics, as_j
                   for j in range(f.shape[1])],
         "mu90_crank_deg": {k: [math.degrees(a) for a in v] for k, v in result.mu90.items()},
         "mechanism_modes_max": int(result.mechanism_counts.max()),
-        "crank_speed_rev_per_min": omega * 60 / (2 * math.pi) if omega else None,
+        "crank_speed_rev_per_min": None if omega is None else omega * 60 / (2 * math.pi),
+        "resonance_check": {"speed_rev_per_min": None if check_speed is None
+                                                 else check_speed * 60 / (2 * math.pi),
+                            "note": check_note},
         "margin": margin,
         "resonances": [{"harmonic": h.harmonic, "harmonic_Hz": h.frequency, "mode": h.mode,
                         "closest_relative_gap": h.closest,
                         "crank_deg_ranges": [[round(math.degrees(a), 2), round(math.degrees(b), 2)]
                                              for a, b in runs(h.angles, 2 * math.pi / poses)]}
                        for h in hits],
-        "files": [str(csv_path), str(png_path)],
+        "files": [str(p) for p in paths],
         "assumptions": [f"{a.field}: {a.note}" for a in scene.assumptions],
     }
-    write_atomic(out / f"{stem}-cycle.json", dumps(document))
+    write_atomic(paths[2], dumps(document))
     if as_json:
         click.echo(dumps(document))
         return
@@ -86,13 +89,14 @@ def command(scene_path, n_modes, poses, elements, speed, margin, harmonics, as_j
     for pair, angles in document["mu90_crank_deg"].items():
         where = (", ".join(f"{a:.2f}" for a in angles) + " deg") if angles else "never in the cycle"
         click.echo(f"mu = 90 deg ({pair}) at crank {where}")
-    if omega:
-        rpm = document["crank_speed_rev_per_min"]
-        if not hits:
-            click.echo(f"resonance check at {rpm:g} rev/min: no harmonic 1..{harmonics} within "
-                       f"{100 * margin:g} % of a natural frequency")
-        for h in document["resonances"]:
-            ranges = ", ".join(f"{a:.1f}-{b:.1f}" for a, b in h["crank_deg_ranges"])
-            click.echo(f"resonance: harmonic {h['harmonic']} ({h['harmonic_Hz']:.2f} Hz) within "
-                       f"{100 * margin:g} % of mode {h['mode']} at crank {ranges} deg")
-    click.echo(f"written: {csv_path}, {png_path}, {out / (stem + '-cycle.json')}")
+    if check_note:
+        click.echo(check_note)
+    if check_speed and not hits:
+        click.echo(f"resonance check at {document['resonance_check']['speed_rev_per_min']:g} "
+                   f"rev/min: no harmonic 1..{harmonics} within {100 * margin:g} % of a natural "
+                   "frequency")
+    for h in document["resonances"]:
+        ranges = ", ".join(f"{a:.1f}-{b:.1f}" for a, b in h["crank_deg_ranges"])
+        click.echo(f"resonance: harmonic {h['harmonic']} ({h['harmonic_Hz']:.2f} Hz) within "
+                   f"{100 * margin:g} % of mode {h['mode']} at crank {ranges} deg")
+    announce(paths, as_json)

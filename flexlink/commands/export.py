@@ -7,7 +7,7 @@ import sys
 
 import click
 
-from flexlink.cli import dumps, json_option, out_option
+from flexlink.commands._options import dumps, json_option, out_option
 
 
 @click.command("export")

@@ -6,7 +6,7 @@ import logging
 
 import click
 
-from flexlink.cli import dumps, json_option, out_option
+from flexlink.commands._options import dumps, json_option, out_option
 
 
 @click.command("modes")
@@ -26,19 +26,23 @@ from flexlink.cli import dumps, json_option, out_option
 @out_option
 def command(scenes, n_modes, elements, method, tol, as_json, out_dir):
     """Natural frequencies of each SCENE (a scene file or a folder of them) at its pose,
-    compared with the scene's reference columns (measured Ex, published FE)."""
+    compared with the scene's reference columns (measured Ex, published FE). Writes
+    OUT/<scene>/modes.json and modes.csv per scene, and OUT/modes.json and modes.csv with
+    every scene when there are several."""
     from flexlink.analysis.modal import analyze
     from flexlink.studies.convergence import DEFAULT_TOL
     from flexlink.analysis.families import elastic_modes, scene_family
     from flexlink.fileio import prepare_out_dir, write_atomic
-    from flexlink.output.report import case_summary, csv_text, format_case, overall_mean_abs
+    from flexlink.output.report import case_summary, comparison_csv, format_case
     from flexlink.scene import load_scene, scene_files
+    from ._written import announce, scene_folders
 
     # analysis warnings come back in result.warnings and are printed with their case below;
     # logging them as well would show each one twice
     logging.getLogger("flexlink.analysis.modal").setLevel(logging.ERROR)
     out = prepare_out_dir(out_dir)
     files = scene_files(scenes)
+    folders = scene_folders(out, files)
     summaries = []
     for path in files:
         scene = load_scene(path)
@@ -49,10 +53,17 @@ def command(scenes, n_modes, elements, method, tol, as_json, out_dir):
             zip(("computed", "kinds"), elastic_modes(scene, n_modes, chosen, method)))
         summaries.append({**case_summary(result, n_modes, family, **other), "mesh": mesh,
                           "warnings": list(result.warnings)})
-    document = {"command": "modes", "cases": summaries,
-                "overall_mean_abs_error_pct": overall_mean_abs(summaries)}
-    write_atomic(out / "modes.json", dumps(document))
-    write_atomic(out / "modes.csv", csv_text(summaries))
+    parts = [(folder / "modes.json", folder / "modes.csv", [s])
+             for folder, s in zip(folders, summaries)]
+    if len(summaries) > 1:  # the combined table of a multi-scene run
+        parts.append((out / "modes.json", out / "modes.csv", summaries))
+    written = [p for j, c, _ in parts for p in (j, c)]
+    document = _document(summaries, written)
+    for json_path, csv_path, part in parts:
+        # the combined file is the printed document; a scene's file lists its own two files
+        own = document if part is summaries else _document(part, [json_path, csv_path])
+        write_atomic(json_path, dumps(own))
+        write_atomic(csv_path, comparison_csv(part))
     if as_json:
         click.echo(dumps(document))
         return
@@ -63,8 +74,15 @@ def command(scenes, n_modes, elements, method, tol, as_json, out_dir):
     if overall:
         click.echo("overall mean |error|: " + ", ".join(
             f"vs {k} {v:.1f} %" for k, v in sorted(overall.items())))
-    click.echo(f"written: {out / 'modes.json'}, {out / 'modes.csv'}")
+    announce(written, as_json)
 
+
+def _document(summaries: list[dict], files) -> dict:
+    from flexlink.output.report import overall_mean_abs
+
+    return {"command": "modes", "cases": summaries,
+            "overall_mean_abs_error_pct": overall_mean_abs(summaries),
+            "files": [str(f) for f in files]}
 
 def _mesh(scene, n_modes, elements, tol):
     """(elements per link, how it was chosen) for one scene: command line, scene, or the

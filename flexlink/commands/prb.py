@@ -8,7 +8,7 @@ from pathlib import Path
 
 import click
 
-from flexlink.cli import dumps, json_option, out_option
+from flexlink.commands._options import dumps, json_option, out_option
 
 
 @click.command("prb")

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import click
 
-from flexlink.cli import dumps, json_option, out_option
+from flexlink.commands._options import dumps, json_option, out_option
 
 SCHEMA_FILE = "scene.schema.json"
 

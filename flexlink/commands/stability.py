@@ -6,7 +6,7 @@ import sys
 
 import click
 
-from flexlink.cli import dumps, json_option, out_option
+from flexlink.commands._options import dumps, json_option, out_option
 
 
 @click.command("stability")
@@ -19,14 +19,15 @@ def command(scene_path, slow, as_json, out_dir):
     stiffness 0 .. 1e30, free crank, slender to stubby links, toggle and unreachable poses,
     stiffness and mass contrast, large models, repeated eigenvalues, massless DOFs, a mechanism
     with the sparse solver, unit slips. Prints expected / got / pass per check; writes
-    stability.json. Exit code 1 if any check fails."""
+    OUT/<scene>/stability.json. Exit code 1 if any check fails."""
     from tqdm import tqdm
 
     from flexlink.fileio import prepare_out_dir, write_atomic
     from flexlink.scene import load_scene
     from flexlink.studies.stability import run_checks
+    from ._written import announce, scene_folders
 
-    out = prepare_out_dir(out_dir)
+    [folder] = scene_folders(prepare_out_dir(out_dir), [scene_path])
     scene = load_scene(scene_path)
 
     def progress(items):
@@ -37,8 +38,9 @@ def command(scene_path, slow, as_json, out_dir):
     document = {"command": "stability", "scene": scene.path, "slow": slow,
                 "passed": sum(c.passed for c in checks), "total": len(checks),
                 "checks": [{"id": c.id, "name": c.name, "expected": c.expected, "got": c.got,
-                            "passed": c.passed, "details": c.details} for c in checks]}
-    write_atomic(out / "stability.json", dumps(document))
+                            "passed": c.passed, "details": c.details} for c in checks],
+                "files": [str(folder / "stability.json")]}
+    write_atomic(folder / "stability.json", dumps(document))
     if as_json:
         click.echo(dumps(document))
     else:
@@ -46,7 +48,7 @@ def command(scene_path, slow, as_json, out_dir):
             click.echo(f"[{'PASS' if c.passed else 'FAIL'}] {c.id:<5} {c.name}\n"
                        f"        expected: {c.expected}\n        got:      {c.got}")
         click.echo(f"\n{document['passed']} of {document['total']} checks passed"
-                   + ("" if slow else " (slow checks skipped: --slow)")
-                   + f"; written: {out / 'stability.json'}")
+                   + ("" if slow else " (slow checks skipped: --slow)"))
+        announce(document["files"], as_json)
     if document["passed"] != document["total"]:
         sys.exit(1)

@@ -6,7 +6,7 @@ import math
 
 import click
 
-from flexlink.cli import dumps, json_option
+from flexlink.commands._options import dumps, json_option
 
 
 def _report(fb, method, inputs, as_json):

@@ -70,7 +70,7 @@ def body_summary(cycle: Cycle, body: str, crank_speed: float | None, output: boo
     return out
 
 
-def csv_text(cycle: Cycle, crank_speed: float | None = None) -> str:
+def motion_csv(cycle: Cycle, crank_speed: float | None = None) -> str:
     """One row per pose: crank angle [deg], then per body angle [deg], K, L (and omega,
     alpha at the crank speed)."""
     cols = ["crank_angle_deg"]

@@ -30,12 +30,24 @@ from __future__ import annotations
 
 import dataclasses
 import tomllib
+from importlib import resources
+from importlib.resources.abc import Traversable
 from pathlib import Path
 
 from flexlink.errors import InputError
 from flexlink.units import parse_quantity
 
-MATERIALS_DIR = Path(__file__).resolve().parents[2] / "materials"
+
+
+def shipped_materials() -> Traversable:
+    """The folder of shipped material files: the package data ``flexlink.materials.data``,
+    which pyproject.toml maps from the repository's ``materials/`` folder (in a wheel and in an
+    editable install; ``materials/__init__.py`` makes it a package the editable finder maps). A source checkout used without installing (PYTHONPATH) has no such
+    package, so the repository folder is read directly."""
+    try:
+        return resources.files("flexlink.materials.data")
+    except ModuleNotFoundError:
+        return Path(__file__).resolve().parents[2] / "materials"
 
 _FIELDS = {"E": "modulus", "G": "modulus", "density": "density"}
 
@@ -80,12 +92,15 @@ class Lamina:
 
 
 def load_constituent(name_or_path: str | Path) -> Constituent:
-    """Read ``materials/<name>.toml`` (or a given path) into a Constituent."""
-    path = Path(name_or_path)
+    """Read the shipped material ``<name>`` (``materials/<name>.toml``) or a given .toml path
+    into a Constituent."""
+    path: Traversable = Path(name_or_path)
     if path.suffix != ".toml":
-        path = MATERIALS_DIR / f"{name_or_path}.toml"
+        path = shipped_materials() / f"{name_or_path}.toml"
     if not path.is_file():
-        known = sorted(p.stem for p in MATERIALS_DIR.glob("*.toml"))
+        shipped = shipped_materials()
+        known = sorted(p.name.removesuffix(".toml") for p in shipped.iterdir()
+                       if p.name.endswith(".toml")) if shipped.is_dir() else []
         raise InputError(f"no material file {path}", field="material",
                          expected=f"one of {known} or a path to a .toml file")
     src = str(path)
@@ -104,8 +119,8 @@ def load_constituent(name_or_path: str | Path) -> Constituent:
     if not isinstance(nu, (int, float)):
         raise InputError("missing or not a number", source=src, field="poisson.mean",
                          expected="a dimensionless number in (-1, 0.5)")
-    return Constituent(name=data.get("name", path.stem), E=values["E"], G=values["G"],
-                       density=values["density"], poisson=float(nu), spread=spread)
+    return Constituent(name=data.get("name", path.name.removesuffix(".toml")), E=values["E"],
+                       G=values["G"], density=values["density"], poisson=float(nu), spread=spread)
 
 
 def rule_of_mixtures(fiber: Constituent, matrix: Constituent, fiber_fraction: float) -> Lamina:

@@ -128,7 +128,9 @@ def format_case(summary: dict) -> str:
     return "\n".join(lines)
 
 
-def csv_text(summaries: list[dict]) -> str:
+def comparison_csv(summaries: list[dict]) -> str:
+    """CSV of the comparison: one row per scene and elastic mode, computed [Hz] and every
+    reference column [Hz] with its % error (the keys of ``comparison_rows``)."""
     keys = ["scene", "mode", "computed_Hz"]
     for s in summaries:
         for row in s["modes"]:

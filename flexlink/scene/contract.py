@@ -145,10 +145,10 @@ class Scene:
         else:
             points = dict(self.linkage.solve(q, self.guess).points)
         return RigidPose(crank_angle=q, joints=points, branch=self.branch,
-                         transmission=transmission_angles(self.linkage, self.transmission, points))
+                         transmission=pose_transmission_angles(self.linkage, self.transmission, points))
 
 
-def transmission_angles(linkage: Linkage, pairs, points) -> dict[str, float]:
+def pose_transmission_angles(linkage: Linkage, pairs, points) -> dict[str, float]:
     """mu [rad] for each body pair: the angle between the two bodies' lines at the joint they
     share (0 or 180 deg at a dead centre)."""
     out = {}

@@ -16,7 +16,7 @@ JOINTS = ("O2", "A", "B", "O4")
 GROUND = {"O2", "O4"}
 
 
-def build(src: SceneSource, sf: schema.SceneFile) -> Scene:
+def build_four_bar(src: SceneSource, sf: schema.SceneFile) -> Scene:
     lk: schema.FourBarLinkage = sf.linkage
     if lk.R2 is not None:
         fb = FourBar.from_ratios(lk.R2, lk.R3, lk.R4, ground=lk.ground)

@@ -111,7 +111,7 @@ def _link_length(linkage: Linkage, start: str, end: str) -> float | None:
     return None
 
 
-def build(src: SceneSource, sf: schema.SceneFile) -> Scene:
+def build_general(src: SceneSource, sf: schema.SceneFile) -> Scene:
     lk: schema.GeneralLinkage = sf.linkage
     ground, bodies, driver, guess, transmission, fb, synthesis, start = _kinematics(src, lk)
     bodies = _with_points(src, lk, bodies, ground, driver, guess, start)

@@ -18,7 +18,7 @@ from flexlink.scene.contract import Scene
 from flexlink.scene.plausibility import check_scene
 from flexlink.scene.source import SceneSource, read_scene_source
 
-BUILDERS = {"four-bar": fourbar.build, "general": general.build}  # linkage.type -> builder
+BUILDERS = {"four-bar": fourbar.build_four_bar, "general": general.build_general}  # linkage.type -> builder
 
 
 def _members(tp) -> list:

@@ -78,7 +78,7 @@ def merged_section(sf: schema.SceneFile, link: str) -> tuple[dict, dict[str, str
 
 def section(src: SceneSource, sf: schema.SceneFile, link: str, mat: BeamMaterial,
             length: float | None) -> Section:
-    """A link's Section from its merged section keys (see ``schema.Section`` for the forms)."""
+    """A link's Section from its merged section keys (see ``schema.SectionTable`` for the forms)."""
     keys, fields = merged_section(sf, link)
     where = fields.get(next(iter(keys), ""), "section")
     label = f"{link}: {mat.name}"
@@ -130,7 +130,7 @@ def section(src: SceneSource, sf: schema.SceneFile, link: str, mat: BeamMaterial
 def joints(src: SceneSource, sf: schema.SceneFile, names: list[str], ground: set[str],
            welded_allowed: bool = True) -> tuple[JointSpec, ...]:
     """JointSpecs for ``names``: each joint's own [joints.<name>] values over the shared ones."""
-    table = sf.joints or schema.Joints()
+    table = sf.joints or schema.JointsTable()
     own = dict(table.__pydantic_extra__ or {})
     for name in own:
         if name not in names:
@@ -157,7 +157,7 @@ def joints(src: SceneSource, sf: schema.SceneFile, names: list[str], ground: set
 def tilt(sf: schema.SceneFile, names: list[str]) -> dict[str, float]:
     """Ktilt [N m/rad] per joint; absent means rigid (stated as an assumption by the
     out-of-plane families, which alone use it)."""
-    table = sf.joints or schema.Joints()
+    table = sf.joints or schema.JointsTable()
     own = table.__pydantic_extra__ or {}
     out = {}
     for name in names:

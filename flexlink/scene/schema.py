@@ -132,7 +132,7 @@ def doc(text: str, **kwargs):
 
 
 # -- materials and sections ------------------------------------------------------------------
-class Composite(Table):
+class CompositeTable(Table):
     fiber: str = doc("Fibre constituent: a name from the shipped materials (e.g. 'carbon_fiber') "
                      "or a path to a material .toml file.")
     matrix: str = doc("Matrix constituent: a shipped name (e.g. 'polyester') or a path.")
@@ -140,10 +140,10 @@ class Composite(Table):
         "Fibre volume fraction Vf of the woven 0/90 laminate (rule of mixtures).")
 
 
-class Material(Table):
+class MaterialTable(Table):
     """One of: a woven composite, a shipped isotropic material, or E and density."""
 
-    composite: Composite | None = doc("Woven 0/90 laminate from fibre and matrix constituents.",
+    composite: CompositeTable | None = doc("Woven 0/90 laminate from fibre and matrix constituents.",
                                       default=None)
     isotropic: str | None = doc("A shipped isotropic material by name (e.g. 'steel') or a path.",
                                 default=None)
@@ -165,7 +165,7 @@ class Material(Table):
         return self
 
 
-class Section(Table):
+class SectionTable(Table):
     """A link's cross-section, in one of four forms: width with thickness (or plies times
     ply_thickness, or the link's mass); area with second_moment; a round tube."""
 
@@ -192,9 +192,9 @@ class LinkTable(Table):
 
     start: str | None = doc("Joint at the link's start (general scenes).", default=None)
     end: str | None = doc("Joint at the link's end (general scenes).", default=None)
-    section: Section | None = doc("Section keys overriding the shared [section] key by key.",
+    section: SectionTable | None = doc("Section keys overriding the shared [section] key by key.",
                                   default=None)
-    material: Material | None = doc("Material replacing the shared [material] whole.",
+    material: MaterialTable | None = doc("Material replacing the shared [material] whole.",
                                     default=None)
     elements: number(1, 100000, integer=True) | None = doc(
         "Elements of this link (general scenes; default: [mesh] elements_per_link).",
@@ -217,7 +217,7 @@ class JointTable(Table):
                        "bearing (e.g. a triangular rocker made of two beams).", default=False)
 
 
-class Joints(Table):
+class JointsTable(Table):
     """Shared bearing and pin values; [joints.NAME] tables override them per joint."""
 
     model_config = ConfigDict(extra="allow", frozen=True)
@@ -231,7 +231,7 @@ class Joints(Table):
                                    default=None)
 
 
-class Drive(Table):
+class DriveTable(Table):
     link: str = doc("The driven link (e.g. 'crank').")
     joint: str = doc("The ground joint where the drive holds it (e.g. 'O2').")
     stiffness: ROTATIONAL = doc("Torsional stiffness of the drive, in parallel with the "
@@ -370,10 +370,10 @@ class GeneralLinkage(Table):
         return self
 
 
-Linkage = Annotated[Union[FourBarLinkage, GeneralLinkage], Field(discriminator="type")]
+LinkageTable = Annotated[Union[FourBarLinkage, GeneralLinkage], Field(discriminator="type")]
 
 
-class Pose(Table):
+class PoseTable(Table):
     """The analysed pose of a four-bar: exactly one of transmission_angle or crank_angle."""
 
     transmission_angle: OPEN_ANGLE | None = doc("Transmission angle mu at B.", default=None)
@@ -391,30 +391,30 @@ class Pose(Table):
 
 
 # -- stage options ---------------------------------------------------------------------------
-class Mesh(Table):
+class MeshTable(Table):
     elements_per_link: number(1, 100000, integer=True) | None = doc(
         "Pins the mesh; without it commands pick the coarsest mesh meeting their frequency "
         "tolerance and say so.", default=None)
 
 
-class Model(Table):
+class ModelTable(Table):
     family: Literal["planar", "out-of-plane", "3d"] = doc(
         "Model family: the paper's in-plane frame, out-of-plane bending and torsion, or both.",
         default="planar")
 
 
-class Checks(Table):
+class ChecksTable(Table):
     plausibility: Literal["error", "warn"] = doc(
         "Values outside plausible ranges (unit slips such as '300 m'): refuse or only warn.",
         default="error")
 
 
-class Operation(Table):
+class OperationTable(Table):
     crank_speed: quantity("angular speed", 0.0, shown="> 0") | None = doc(
         "Crank speed for the resonance check and the kinematics (magnitude).", default=None)
 
 
-class Prb(Table):
+class PrbTable(Table):
     """Pseudo-rigid-body comparison of a compliant strip (``flexlink prb``)."""
 
     strip: str = doc("The compliant link.")
@@ -425,13 +425,13 @@ class Prb(Table):
     K_theta: number(0.1, 10.0) = doc("Stiffness coefficient.")
 
 
-class Variant(Table):
+class VariantTable(Table):
     name: str | None = doc("Label of the variant family.", default=None)
     field: str = doc("Dotted key the variants change, e.g. 'linkage.synthesis.k'.")
     values: list = doc("Values of that key, as written in a file.", min_length=1)
 
 
-class Reference(Table):
+class ReferenceTable(Table):
     """Published or measured frequencies by mode order: any key ending in _Hz is a column."""
 
     model_config = ConfigDict(extra="allow", frozen=True)
@@ -455,21 +455,22 @@ class SceneFile(Table):
     name: str | None = doc("Display name (default: the file name).", default=None)
     base: str | None = doc("A file merged underneath this one (its keys lose to this file's).",
                            default=None)
-    linkage: Linkage = doc("The linkage; 'type' picks the scene kind.")
-    pose: Pose | None = doc("Four-bar scenes: the analysed pose.", default=None)
-    material: Material | None = doc("Material shared by every link.", default=None)
-    section: Section | None = doc("Section shared by every link.", default=None)
+    linkage: LinkageTable = doc("The linkage; 'type' picks the scene kind.")
+    pose: PoseTable | None = doc("Four-bar scenes: the analysed pose.", default=None)
+    material: MaterialTable | None = doc("Material shared by every link.", default=None)
+    section: SectionTable | None = doc("Section shared by every link.", default=None)
     links: dict[str, LinkTable] = doc("Beam links by name.", default={})
-    joints: Joints | None = doc("Bearings and pins.", default=None)
-    drive: Drive | None = doc("The drive holding the input link (absent: it turns freely).",
+    joints: JointsTable | None = doc("Bearings and pins.", default=None)
+    drive: DriveTable | None = doc("The drive holding the input link (absent: it turns freely).",
                               default=None)
-    mesh: Mesh = doc("Finite-element mesh.", default=Mesh())
-    model: Model = doc("Model options.", default=Model())
-    reference: Reference | None = doc("Reference frequencies to compare with.", default=None)
-    checks: Checks = doc("Input checks.", default=Checks())
-    operation: Operation = doc("Operating conditions.", default=Operation())
-    prb: Prb | None = doc("Pseudo-rigid-body comparison.", default=None)
-    family: list[Variant] = doc("Variants of the scene: one key over several values "
+    mesh: MeshTable = doc("Finite-element mesh.", default=MeshTable())
+    model: ModelTable = doc("Model options.", default=ModelTable())
+    reference: ReferenceTable | None = doc("Reference frequencies to compare with.",
+                                           default=None)
+    checks: ChecksTable = doc("Input checks.", default=ChecksTable())
+    operation: OperationTable = doc("Operating conditions.", default=OperationTable())
+    prb: PrbTable | None = doc("Pseudo-rigid-body comparison.", default=None)
+    family: list[VariantTable] = doc("Variants of the scene: one key over several values "
                                 "(``flexlink kinematics``).", default=[])
 
     @model_validator(mode="after")

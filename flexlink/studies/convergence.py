@@ -170,6 +170,82 @@ def cheapest(levels: list[Level], reference: np.ndarray, tol: float) -> Level | 
     return min(ok, key=lambda l: l.total_s) if ok else None
 
 
+def measured_column(scene: Scene) -> tuple[str, list[float]] | None:
+    """The scene's measured reference column ("Ex") [Hz] if it has one, else its first
+    column, as (name, values); None without a reference table."""
+    if scene.reference is None or not scene.reference.columns:
+        return None
+    columns = scene.reference.columns
+    name = "Ex" if "Ex" in columns else next(iter(columns))
+    return name, columns[name]
+
+
+def _pct(computed, measured) -> list[float]:
+    """% error of ``computed`` against ``measured`` [Hz], over the modes both have."""
+    k = min(len(computed), len(measured))
+    return [100 * (computed[i] - measured[i]) / measured[i] for i in range(k)]
+
+
+@dataclasses.dataclass(frozen=True)
+class ConvergenceStudy:
+    """Every level of every choice, the Richardson reference of the first choice, and the JSON
+    document that reports them (``document``: frequencies [Hz], times [s], relative errors)."""
+
+    levels: list[Level]
+    reference: np.ndarray
+    document: dict
+
+
+def convergence_study(scene: Scene, n_modes: int, max_elements: int, repeats: int, tol: float,
+                      progress=None) -> ConvergenceStudy:
+    """Solve ``scene`` at 1, 2, 4, ... ``max_elements`` elements per link with every choice of
+    CHOICES (dense ones up to DENSE_LIMIT DOFs), ``repeats`` times round-robin; extrapolate the
+    first choice (Richardson), measure every level's error against it and against the
+    measured column, and name the cheapest level within the relative tolerance ``tol``."""
+    work = [(c, e) for c in CHOICES for e in mesh_levels(max_elements)
+            if c.method != "dense" or runs_dense(e, scene)]
+    refused: list = []
+    levels = run_levels(scene, work, n_modes, repeats, progress, refused)
+    main_choice = CHOICES[0]
+    extrapolation = richardson([l for l in levels if l.choice == main_choice])
+    ref = extrapolation.reference
+    errors = relative_errors(levels, ref)
+    best = cheapest(levels, ref, tol)
+    measured = measured_column(scene)
+    rows = []
+    for level, err in zip(levels, errors):
+        row = {"choice": level.choice.label, "method": level.choice.method,
+               "mass": level.choice.mass, "refined": level.choice.refine,
+               "elements_per_link": level.elements, "dofs": level.dofs,
+               "assembly_s": level.assembly_s, "solve_s": level.solve_s, "runs": level.runs,
+               "frequencies_Hz": level.frequencies, "relative_error": err,
+               "max_relative_error": float(err.max())}
+        if measured is not None:
+            row[f"error_vs_{measured[0]}_pct"] = _pct(level.frequencies, measured[1])
+        rows.append(row)
+    document = {
+        "command": "converge", "scene": scene.name, "file": scene.path, "modes": n_modes,
+        "repeats": repeats,
+        "reference": {"choice": main_choice.label, "frequencies_Hz": ref,
+                      "order_used": extrapolation.order, "observed_order": extrapolation.observed,
+                      "levels": extrapolation.elements, "asymptotic": extrapolation.asymptotic,
+                      "second_step_change": extrapolation.uncertainty},
+        "model_error": None if measured is None else {
+            "column": measured[0], "measured_Hz": list(measured[1][:len(ref)]),
+            "error_pct": _pct(ref, measured[1])},
+        "tolerance": tol,
+        "cheapest": None if best is None else {
+            "choice": best.choice.label, "elements_per_link": best.elements, "dofs": best.dofs,
+            "seconds": best.total_s,
+            "max_relative_error": float(errors[levels.index(best)].max())},
+        "dense_limit_dofs": DENSE_LIMIT,
+        "levels": rows,
+        "refused": [{"choice": c.label, "elements_per_link": e, "reason": msg}
+                    for c, e, msg in refused],
+    }
+    return ConvergenceStudy(levels=levels, reference=ref, document=document)
+
+
 @dataclasses.dataclass(frozen=True)
 class MeshRule:
     """The default mesh: the coarsest level 2^k whose Richardson error estimate

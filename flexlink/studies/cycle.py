@@ -12,9 +12,10 @@ import math
 
 import numpy as np
 
+from flexlink.errors import InputError
 from flexlink.kinematics.linkage import Cycle, crank_angles, crossings
 from flexlink.scene import Scene
-from flexlink.scene.contract import transmission_angles as pose_transmission_angles
+from flexlink.scene.contract import pose_transmission_angles
 from flexlink.analysis.sweep import modal_sweep
 
 
@@ -73,11 +74,33 @@ class Resonance:
     closest: float
 
 
+def resonance_speed(crank_speed: float | None) -> tuple[float | None, str | None]:
+    """The crank speed [rad/s] the resonance check runs at (None: no check), and a note saying
+    why it is not the speed given. A negative speed turns the crank the other way: the poses
+    are the same and their natural frequencies do not depend on the speed, so the harmonics
+    that matter are those of |speed|. A zero speed has no harmonics to check."""
+    if crank_speed is None:
+        return None, "no crank speed given: resonance check skipped"
+    if crank_speed == 0:
+        return None, "crank speed 0: no crank harmonics, resonance check skipped"
+    if crank_speed < 0:
+        rpm = -crank_speed * 60 / (2 * math.pi)
+        return -crank_speed, (f"crank speed -{rpm:g} rev/min turns the crank the opposite way; "
+                              f"the resonance check runs at |speed| = {rpm:g} rev/min (the "
+                              "natural frequencies at a pose do not depend on the speed)")
+    return crank_speed, None
+
+
 def resonances(result: ModalMap, crank_speed: float, margin: float = 0.05,
                harmonics: int = 10) -> list[Resonance]:
-    """Harmonics n = 1 ... ``harmonics`` of the crank frequency (``crank_speed`` [rad/s]) that
-    come within ``margin`` (relative) of an elastic frequency anywhere in the cycle. Besides
-    the sampled poses, a mode curve that crosses the harmonic between two poses counts there."""
+    """Harmonics n = 1 ... ``harmonics`` of the crank frequency (``crank_speed`` [rad/s], > 0:
+    see ``resonance_speed``) that come within ``margin`` (relative) of an elastic frequency
+    anywhere in the cycle. Besides the sampled poses, a mode curve that crosses the harmonic
+    between two poses counts there."""
+    if not crank_speed > 0:
+        raise InputError(f"resonance check needs a positive crank speed, got {crank_speed} rad/s",
+                         field="crank_speed", expected="a positive angular speed (see "
+                         "resonance_speed for the sign)")
     f_crank = crank_speed / (2 * math.pi)
     found = []
     for n in range(1, harmonics + 1):
@@ -106,7 +129,7 @@ def runs(angles: np.ndarray, step: float) -> list[tuple[float, float]]:
     return [(float(a), float(b)) for a, b in out]
 
 
-def csv_text(result: ModalMap) -> str:
+def modal_map_csv(result: ModalMap) -> str:
     """One row per pose: input angle [deg], then f1 ... fN [Hz]."""
     n = result.frequencies.shape[1]
     lines = ["crank_angle_deg," + ",".join(f"f{j + 1}_Hz" for j in range(n))]

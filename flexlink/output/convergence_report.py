@@ -1,0 +1,75 @@
+"""The convergence study (``studies.convergence``) as CSV and as a human-readable report."""
+
+from __future__ import annotations
+
+
+def convergence_csv(document: dict) -> str:
+    """One row per level and choice: elements per link, DOFs, median times [s], frequencies
+    [Hz] and relative errors against the Richardson reference."""
+    n_modes = document["modes"]
+    head = ["choice", "elements_per_link", "dofs", "assembly_s", "solve_s"]
+    head += [f"f{i + 1}_Hz" for i in range(n_modes)] + [f"err{i + 1}" for i in range(n_modes)]
+    lines = [",".join(head)]
+    for r in document["levels"]:
+        values = [r["choice"], r["elements_per_link"], r["dofs"], f"{r['assembly_s']:.6g}",
+                  f"{r['solve_s']:.6g}"]
+        values += [f"{f:.15g}" for f in r["frequencies_Hz"]]
+        values += [f"{e:.3e}" for e in r["relative_error"]]
+        lines.append(",".join(map(str, values)))
+    return "\n".join(lines) + "\n"
+
+
+def convergence_text(doc: dict) -> str:
+    """The report printed by ``flexlink converge``: the main choice's levels, the model error,
+    every choice's error against time, and the cheapest setting meeting the tolerance."""
+    ref, n_modes, main_label = doc["reference"], doc["modes"], doc["reference"]["choice"]
+    observed = " ".join(f"{p:.2f}" for p in ref["observed_order"])
+    lines = [f"{doc['scene']} ({doc['file']}): mesh convergence of {n_modes} elastic modes, "
+             f"median of {doc['repeats']} runs per level",
+             f"Richardson reference: {main_label} at {'/'.join(map(str, ref['levels']))} "
+             f"elements/link; order used p = {ref['order_used']} (P1 axial element), then "
+             f"{ref['order_used'] + 2} (Hermite bending), which moved it by at most "
+             f"{max(ref['second_step_change']):.0e}",
+             f"observed order {observed} "
+             f"({'asymptotic' if ref['asymptotic'] else 'NOT in the asymptotic range'})",
+             "", f"Discretisation error (relative, vs the Richardson reference), {main_label}:"]
+    head = f"{'el/link':>7} {'DOFs':>6} {'asm ms':>7} {'eig ms':>7}"
+    head += "".join(f" {f'f{i + 1} Hz':>15}" for i in range(n_modes))
+    head += "".join(f" {f'err{i + 1}':>8}" for i in range(n_modes))
+    lines.append(head)
+    for r in doc["levels"]:
+        if r["choice"] != main_label:
+            continue
+        line = (f"{r['elements_per_link']:>7} {r['dofs']:>6} {1e3 * r['assembly_s']:>7.1f} "
+                f"{1e3 * r['solve_s']:>7.1f}")
+        line += "".join(f" {f:>15.9f}" for f in r["frequencies_Hz"])
+        line += "".join(f" {e:>8.1e}" for e in r["relative_error"])
+        lines.append(line)
+    model = doc["model_error"]
+    if model:
+        lines += ["", f"Model error (Richardson reference vs measured {model['column']}; "
+                      "does not shrink with the mesh):",
+                  f"{'mode':>4} {'reference Hz':>14} {model['column'] + ' Hz':>8} {'err %':>9}"]
+        for i, (m, e) in enumerate(zip(model["measured_Hz"], model["error_pct"])):
+            lines.append(f"{i + 1:>4} {ref['frequencies_Hz'][i]:>14.6f} {m:>8.1f} {e:>+9.1f}")
+    lines += ["", "Error against run time, every choice (time = median assembly + eigen solve; "
+                  f"dense stops at {doc['dense_limit_dofs']} DOFs):",
+              f"{'choice':<28} {'el/link':>7} {'DOFs':>6} {'time ms':>9} {'max rel err':>11}"]
+    for r in doc["levels"]:
+        lines.append(f"{r['choice']:<28} {r['elements_per_link']:>7} {r['dofs']:>6} "
+                     f"{1e3 * (r['assembly_s'] + r['solve_s']):>9.2f} "
+                     f"{r['max_relative_error']:>11.1e}")
+    best = doc["cheapest"]
+    lines.append("")
+    if best:
+        lines.append(f"--tol {doc['tolerance']:g}: cheapest setting meeting it is {best['choice']} "
+                     f"at {best['elements_per_link']} elements/link ({best['dofs']} DOFs, "
+                     f"{1e3 * best['seconds']:.1f} ms, max relative error "
+                     f"{best['max_relative_error']:.1e})")
+    else:
+        lines.append(f"--tol {doc['tolerance']:g}: no level meets it; refine further "
+                     "(--max-elements)")
+    for r in doc["refused"]:
+        lines.append(f"refused by the solver: {r['choice']} at {r['elements_per_link']} "
+                     f"elements/link: {r['reason']}")
+    return "\n".join(lines)

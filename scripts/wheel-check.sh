@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# The package as a user gets it: build a wheel from a copy of the files it is made of, install
+# it into a clean temporary venv, and run flexlink from a folder outside the source tree.
+# Catches anything the package reads but does not ship (the material files). pip's cache keeps
+# the dependency install short after the first run.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+repo=$PWD
+unset PYTHONPATH  # the installed wheel alone must do
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+start=$SECONDS
+mkdir "$tmp/src"
+cp -r pyproject.toml README.md flexlink materials "$tmp/src/"  # no build/ left in the checkout
+"${PYTHON:-python3}" -m venv "$tmp/venv"
+"$tmp/venv/bin/python" -m pip install --quiet --disable-pip-version-check "$tmp/src"
+cd "$tmp"
+"$tmp/venv/bin/flexlink" --version
+"$tmp/venv/bin/flexlink" modes "$repo/cases/case1.toml" -e 8 --out "$tmp/out" > "$tmp/modes.txt"
+grep -q "Table II case 1" "$tmp/modes.txt"
+test -s "$tmp/out/case1/modes.json"
+echo "wheel check: built, installed and ran in $((SECONDS - start)) s" >&2
