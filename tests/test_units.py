@@ -54,10 +54,17 @@ def test_number_forms_and_rigid():
         parse_quantity("rigid", "length")  # only a stiffness can be rigid
 
 
-@pytest.mark.parametrize("value", [0.3, 1, True, None, "0.3", "0.3 furlong", "mm 3"])
-def test_values_without_a_known_unit_are_refused(value):
-    with pytest.raises(InputError, match="length"):
+@pytest.mark.parametrize("value, problem", [
+    (0.3, "got 0.3 without a unit"), (1, "got 1 without a unit"), (True, "got True without a unit"),
+    (None, "got None without a unit"), ("0.3", "unknown unit ''"),
+    ("0.3 furlong", "unknown unit 'furlong'"), ("mm 3", "cannot read 'mm 3'")])
+def test_values_without_a_known_unit_are_refused(value, problem):
+    """The message names the file, the field, what was wrong and every accepted spelling."""
+    with pytest.raises(InputError) as info:
         parse_quantity(value, "length", source="s.toml", field="linkage.ground")
+    message = str(info.value)
+    assert message.startswith("s.toml: linkage.ground: ") and problem in message
+    assert "a length as a string with a unit, one of: m, cm, mm, um, in; e.g. '1 m'" in message
 
 
 def test_unit_of_another_dimension_is_named():
