@@ -62,3 +62,11 @@ def test_sensitivities_match_the_scaling_laws():
     # shear moduli do not enter the planar Euler-Bernoulli model at all
     assert np.abs(s.values["fiber.G"]).max() < 1e-9
     assert s.ranked()[0][0] in ("fiber.E", "vf", "fiber.density")
+
+
+def test_fibre_fraction_draws_stay_inside_the_open_unit_interval():
+    """A spread far larger than the mean: the draws are clipped to [0.01, 0.99] (a fraction of 0
+    or 1 is not a composite), and both clips are reached."""
+    inputs = scene_inputs(PATHS[0], {}, vf_sd=5.0, thickness_sd=0.0)
+    vf = np.array([s["vf"] for s in draw_samples(inputs, 200, seed=2)])
+    assert vf.min() == 0.01 and vf.max() == 0.99
