@@ -60,3 +60,31 @@ def test_unknown_material_names_the_shipped_ones():
 
     with pytest.raises(InputError, match=r"\['carbon_fiber', 'polyester', 'steel'\]"):
         load_constituent("unobtainium")
+
+
+def test_rule_of_mixtures_away_from_half_fraction():
+    """At Vf = 0.5 the fibre and matrix fractions are equal, so swapping them goes unseen;
+    Vf = 0.3 against the formulas written out with Table I values."""
+    ply = rule_of_mixtures(load_constituent("carbon_fiber"), load_constituent("polyester"), 0.3)
+    assert math.isclose(ply.E1, 0.3 * 201e9 + 0.7 * 2.4e9, rel_tol=1e-14)  # 61.98 GPa
+    assert math.isclose(ply.E2, 1 / (0.3 / 201e9 + 0.7 / 2.4e9), rel_tol=1e-14)
+    assert math.isclose(ply.G12, 1 / (0.3 / 1526e6 + 0.7 / 50e6), rel_tol=1e-14)
+    assert math.isclose(ply.nu12, 0.3 * 0.21 + 0.7 * 0.35, rel_tol=1e-14)
+    assert math.isclose(ply.density, 0.3 * 1730 + 0.7 * 1250, rel_tol=1e-14)  # 1394 kg/m^3
+
+
+def test_woven_modulus_by_hand_at_vf_0_3():
+    """Balanced 0/90 strip: E = A11 - A12^2 / A11 with A11 = (Q11 + Q22)/2, written out."""
+    E1, E2, nu12 = 0.3 * 201e9 + 0.7 * 2.4e9, 1 / (0.3 / 201e9 + 0.7 / 2.4e9), 0.3 * 0.21 + 0.7 * 0.35
+    d = 1 - nu12 * nu12 * E2 / E1
+    a11, a12 = 0.5 * (E1 + E2) / d, nu12 * E2 / d
+    beam = woven_composite(load_constituent("carbon_fiber"), load_constituent("polyester"), 0.3)
+    assert math.isclose(beam.E, a11 - a12**2 / a11, rel_tol=1e-13)
+    assert math.isclose(beam.G, 1 / (0.3 / 1526e6 + 0.7 / 50e6), rel_tol=1e-14)
+
+
+@pytest.mark.parametrize("vf", [0.0, 1.0, -0.1, 1.2])
+def test_fibre_fraction_outside_open_unit_interval_is_refused(vf):
+    m = load_constituent("polyester")
+    with pytest.raises(InputError, match="fiber_volume_fraction"):
+        rule_of_mixtures(m, m, vf)
