@@ -6,7 +6,7 @@ import math
 import numpy as np
 import pytest
 
-from flexlink.fe.assembly import assemble, rotation
+from flexlink.fe.assembly import assemble, node_rotation
 from flexlink.fe.link import link_matrices
 
 from helpers import single_beam
@@ -91,7 +91,7 @@ def test_rotated_global_matrices_keep_rigid_body_modes():
 
 
 def test_rotation_is_orthogonal():
-    R = rotation(1.234)
+    R = node_rotation(1.234)
     np.testing.assert_allclose(R @ R.T, np.eye(3), atol=1e-15)
 
 

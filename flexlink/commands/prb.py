@@ -23,7 +23,7 @@ def command(scene_path, n_modes, elements, as_json, out_dir):
     """Modes of SCENE (a scene with a [prb] table) at its start pose, where the compliant strip
     is unstressed, with the strip as a flexible beam (FE), and the first frequency of the
     pseudo-rigid-body model (rigid link + torsional spring K = gamma K_Theta E I / l)."""
-    from flexlink.analysis.modal import lambda_scale
+    from flexlink.fe.pose import in_plane_eigen_scale
     from flexlink.fe.assembly import assemble, reduction
     from flexlink.fileio import prepare_out_dir, write_atomic
     from flexlink.fe.model import build_model
@@ -41,7 +41,7 @@ def command(scene_path, n_modes, elements, as_json, out_dir):
                         r.number("prb.K_theta", 0.1, 10.0))
     model = build_model(scene.topology(elements), state.points)
     K, M = assemble(model)
-    modes = solve_modes(K, M, n_modes + 4, T=reduction(model), lambda_ref=lambda_scale(model))
+    modes = solve_modes(K, M, n_modes + 4, T=reduction(model), lambda_ref=in_plane_eigen_scale(model))
     fe = [float(f) for f, k in zip(modes.frequencies, modes.kinds) if k == ELASTIC][:n_modes]
     document = {
         "command": "prb", "scene": scene.name, "synthesis": scene.synthesis,

@@ -18,7 +18,7 @@ Axial (u) and bending (v, rz) DOFs of a straight link are uncoupled in its frame
 is reduced on its own; that keeps every kept mode purely axial or purely bending, and lets a
 link of another length L reuse the reduction made at L0 exactly: with r = L / L0 the chain
 scales as K_axial / r, M_axial r, K_bending r^-3 D K D, M_bending r D M D (D = r on rotation
-DOFs, as ``link.link_entries`` scales a unit element), and the reduced matrices follow with the
+DOFs, as ``link.chain_entries`` scales a unit element), and the reduced matrices follow with the
 same diagonal scaling (D on the boundary rotations only; the modal coordinates absorb the rest).
 
 Mode choice (``CUTOFF``): a link keeps every fixed-interface mode whose frequency is at most

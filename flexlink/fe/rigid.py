@@ -40,15 +40,17 @@ def rigid_threshold(model: FrameModel, ratio: float = RIGID_RATIO) -> np.ndarray
     return ratio * np.where(rotational, rot, trans)
 
 
-def rigidified(model: FrameModel, ratio: float = RIGID_RATIO) -> FrameModel:
-    """``model`` with every finite spring at or above ``rigid_threshold`` made infinite."""
+def rigidified(model: FrameModel, ratio: float = RIGID_RATIO, warn: bool = True) -> FrameModel:
+    """``model`` with every finite spring at or above ``rigid_threshold`` made infinite.
+    ``warn``: log which springs were switched (a sweep warns at its first pose only)."""
     springs = model.springs
     switch = np.isfinite(springs.stiffness) & (springs.stiffness >= rigid_threshold(model, ratio))
     if not switch.any():
         return model
     labels = sorted({springs.labels[i] for i in np.flatnonzero(switch)})
-    log.warning("%d spring(s) at least %g x the stiffest element are treated as rigid (exact "
-                "constraint) instead of as a penalty: %s", int(switch.sum()), ratio,
-                ", ".join(labels))
+    if warn:
+        log.warning("%d spring(s) at least %g x the stiffest element are treated as rigid (exact "
+                    "constraint) instead of as a penalty: %s", int(switch.sum()), ratio,
+                    ", ".join(labels))
     stiffness = np.where(switch, np.inf, springs.stiffness)
     return dataclasses.replace(model, springs=dataclasses.replace(springs, stiffness=stiffness))

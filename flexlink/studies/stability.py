@@ -17,7 +17,7 @@ import time
 import numpy as np
 import scipy.sparse as sp
 
-from flexlink.analysis.modal import lambda_scale
+from flexlink.fe.pose import in_plane_eigen_scale
 from flexlink.fe.assembly import assemble, reduction
 from flexlink.fe.energy import lumped_mass, twice_strain_energy
 from flexlink.errors import FlexlinkError, InputError, KinematicsError, NumericalError
@@ -47,7 +47,7 @@ def _solve(model, n, method="dense", M=None, refine=True):
     K, M0 = assemble(model)
     energy = (lambda U: twice_strain_energy(model, U)) if refine else None
     return solve_modes(K, M0 if M is None else M, n, T=reduction(model),
-                       lambda_ref=lambda_scale(model), method=method, energy=energy)
+                       lambda_ref=in_plane_eigen_scale(model), method=method, energy=energy)
 
 
 def _with_joints(topology: Topology, **changes) -> Topology:
@@ -161,7 +161,7 @@ def sparse_mechanism(scene: Scene) -> Check:
     topo, pose = _free_crank(scene)
     model = build_model(topo, pose.joints)
     dense, sparse = _solve(model, 10, "dense"), _solve(model, 10, "sparse")
-    shift = -lambda_scale(model)
+    shift = -in_plane_eigen_scale(model)
     same = dense.kinds == sparse.kinds
     diff = _rel(sparse.frequencies[1:], dense.frequencies[1:])
     passed = same and sparse.kinds.count(MECHANISM) == 1 and diff < 1e-8
@@ -401,7 +401,7 @@ def massless(scene: Scene) -> list[Check]:
     pose = scene.rigid_pose()
     model = build_model(scene.topology(64), pose.joints)
     K, _ = assemble(model)
-    T, lam = reduction(model), lambda_scale(model)
+    T, lam = reduction(model), in_plane_eigen_scale(model)
     M = lumped_mass(model)
     no_rotary = sp.diags(np.where(np.arange(model.n_dofs) % 3 == 2, 0.0, M.diagonal()), format="csr")
     hrz = solve_modes(K, M, 6, T=T, lambda_ref=lam)
@@ -416,7 +416,7 @@ def massless(scene: Scene) -> list[Check]:
     small = build_model(scene.topology(ELEMENTS), pose.joints)
     Ks, Ms = assemble(small)
     Ts = reduction(small)
-    base = solve_modes(Ks, Ms, 6, T=Ts, lambda_ref=lambda_scale(small))
+    base = solve_modes(Ks, Ms, 6, T=Ts, lambda_ref=in_plane_eigen_scale(small))
     coupler = next(l for l in small.links if l.name == "coupler")
     mid = coupler.first_node + coupler.elements // 2
     n = small.n_dofs
@@ -430,14 +430,14 @@ def massless(scene: Scene) -> list[Check]:
     Kx = sp.block_diag([Ks, sp.csr_matrix((3, 3))]) + sp.csr_matrix((vals, (rows, cols)), shape=(n + 3, n + 3))
     Mx = sp.block_diag([Ms, sp.csr_matrix((3, 3))]).tocsr()
     Tx = sp.block_diag([Ts, sp.identity(3)]).tocsr()
-    r = solve_modes(Kx.tocsr(), Mx, 6, T=Tx, lambda_ref=lambda_scale(small))
+    r = solve_modes(Kx.tocsr(), Mx, 6, T=Tx, lambda_ref=in_plane_eigen_scale(small))
     diff = _rel(r.frequencies, base.frequencies)
     checks.append(Check("7b-2", "a massless node hanging on springs",
                         "condensed (3 DOFs); frequencies unchanged (1e-10): it carries no inertia",
                         f"{r.condensed} DOFs condensed; max change {diff:.1e}",
                         r.condensed == 3 and diff < 1e-10))
     Kz = sp.block_diag([Ks, sp.csr_matrix((3, 3))]).tocsr()
-    msg = _raises(lambda: solve_modes(Kz, Mx, 6, T=Tx, lambda_ref=lambda_scale(small)), NumericalError)
+    msg = _raises(lambda: solve_modes(Kz, Mx, 6, T=Tx, lambda_ref=in_plane_eigen_scale(small)), NumericalError)
     checks.append(Check("7b-3", "a node with neither mass nor stiffness",
                         "NumericalError that says so (never a solver crash)", msg or "no error",
                         bool(msg and "neither mass nor stiffness" in msg)))
