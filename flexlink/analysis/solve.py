@@ -20,7 +20,7 @@ import scipy.linalg as la
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from flexlink.errors import NumericalError
+from flexlink.errors import InputError, NumericalError
 
 log = logging.getLogger(__name__)
 
@@ -332,3 +332,36 @@ def solve_modes(K, M, n_modes: int, *, T=None, lambda_ref: float, method: str = 
                        kinds=kinds, residuals=residuals, backward_errors=backward,
                        orthogonality_error=ev.orthogonality_error, solver=method, n_dofs=p.n,
                        refined=energy is not None, condensed=p.n - p.n_solved)
+
+
+SPARE_MODES = 4  # solved beyond the elastic modes asked for, for mechanism modes below them
+
+
+def lowest_elastic(solve, n_elastic: int, expected_mechanisms: int = 0) -> ModalResult:
+    """The lowest modes up to and including the ``n_elastic``-th elastic one.
+
+    ``solve(k)`` -> ModalResult of the lowest k modes. Solves for ``n_elastic`` plus the
+    mechanism modes expected (these sit lowest) plus SPARE_MODES; when more mechanism modes turn
+    up than there was room for (a free joint frees a whole link), solves again with room for
+    all of them. Returns fewer elastic modes only when the model has no more (every mode was
+    solved); ``require_elastic`` turns that into an error."""
+    k = n_elastic + max(expected_mechanisms, SPARE_MODES)
+    while True:
+        result = solve(k)
+        n_mechanism = result.kinds.count(MECHANISM)
+        if len(result.kinds) - n_mechanism >= n_elastic or len(result.kinds) < k:
+            return result  # enough, or every mode of the model
+        k = n_elastic + n_mechanism + SPARE_MODES
+
+
+def require_elastic(result: ModalResult, n_elastic: int) -> ModalResult:
+    """``result`` if it holds ``n_elastic`` elastic modes; else InputError naming how many the
+    model has (its DOFs less its rigid-body/mechanism modes)."""
+    found = len(result.elastic)
+    if found < n_elastic:
+        raise InputError(
+            f"{n_elastic} elastic modes asked for, but the model has only {found} ({result.n_dofs} "
+            f"DOFs, {result.kinds.count(MECHANISM)} of them rigid-body/mechanism modes"
+            + (f", {result.condensed} massless and condensed" if result.condensed else "") + ")",
+            field="number of modes (-n)", expected=f"at most {found}, or a finer mesh (-e)")
+    return result
