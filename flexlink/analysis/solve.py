@@ -337,15 +337,16 @@ def solve_modes(K, M, n_modes: int, *, T=None, lambda_ref: float, method: str = 
 SPARE_MODES = 4  # solved beyond the elastic modes asked for, for mechanism modes below them
 
 
-def lowest_elastic(solve, n_elastic: int, expected_mechanisms: int = 0) -> ModalResult:
+def lowest_elastic(solve, n_elastic: int, expected_mechanisms: int = 0,
+                   spare: int = SPARE_MODES) -> ModalResult:
     """The lowest modes up to and including the ``n_elastic``-th elastic one.
 
     ``solve(k)`` -> ModalResult of the lowest k modes. Solves for ``n_elastic`` plus the
-    mechanism modes expected (these sit lowest) plus SPARE_MODES; when more mechanism modes turn
+    mechanism modes expected (these sit lowest) plus ``spare``; when more mechanism modes turn
     up than there was room for (a free joint frees a whole link), solves again with room for
-    all of them. Returns fewer elastic modes only when the model has no more (every mode was
+    all of them and SPARE_MODES more. Returns fewer elastic modes only when the model has no more (every mode was
     solved); ``require_elastic`` turns that into an error."""
-    k = n_elastic + max(expected_mechanisms, SPARE_MODES)
+    k = n_elastic + expected_mechanisms + spare
     while True:
         result = solve(k)
         n_mechanism = result.kinds.count(MECHANISM)

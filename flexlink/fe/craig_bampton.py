@@ -201,7 +201,8 @@ def lowest_fixed_interface(length: float, elements: int, EA: float, EI: float,
 
 def boundary_model(lay: _Layout, model: FrameModel) -> FrameModel:
     """The full model's end nodes only (node 2 l: start of link l, 2 l + 1: its end), with the
-    layout's springs and joint masses renumbered onto them. Every spring and joint mass of the
+    model's springs (the layout's, some made rigid by ``pose.pose_model``) and joint masses
+    renumbered onto them. Every spring and joint mass of the
     full model sits on an end node, so nothing is lost (checked)."""
     node_map = {}
     for index, link in enumerate(model.links):
@@ -216,7 +217,7 @@ def boundary_model(lay: _Layout, model: FrameModel) -> FrameModel:
             raise AssertionError("a spring acts on an inner node of a link")
         return 3 * node_map[node] + k
 
-    s = lay.springs
+    s = model.springs
     springs = Springs(np.array([dof(d) for d in s.dof_a], dtype=np.int64),
                       np.array([dof(d) for d in s.dof_b], dtype=np.int64),
                       np.asarray(s.stiffness, dtype=float), s.labels)
