@@ -41,6 +41,17 @@ def test_stiff_springs_give_the_same_frequencies_on_every_path():
     np.testing.assert_allclose(cb, f, rtol=1e-8)
 
 
+def test_stiff_springs_are_exact_in_the_out_of_plane_family_too():
+    from flexlink.analysis.outofplane import analyze_out_of_plane
+
+    rigid = analyze_out_of_plane(load_scene(CASE1, overrides={"joints.Kt": "rigid"}), 4, 16)
+    stiff = analyze_out_of_plane(load_scene(CASE1, overrides={"joints.Kt": "1e16 N/m"}), 4, 16)
+    # the same exact constraint on both: equal up to the solver's round-off (as a penalty,
+    # 1e16 N/m put mode 1 below the round-off floor and the solve was refused)
+    np.testing.assert_allclose(stiff.elastic_frequencies[:4], rigid.elastic_frequencies[:4],
+                               rtol=1e-12)
+
+
 def kt_zero(tmp_path):
     path = tmp_path / "kt0.toml"
     path.write_text(f'base = "{CASE1}"\n[joints]\nKt = "0 N/m"\n')

@@ -9,14 +9,15 @@ revolute joint transmits both out-of-plane bending moments).
 from __future__ import annotations
 
 import dataclasses
+import functools
 
-from flexlink.analysis.solve import ModalResult, solve_modes
+from flexlink.analysis.solve import ModalResult, lowest_elastic, require_elastic, solve_modes
 from flexlink.fe.assembly import reduction
 from flexlink.fe.pose import pose_model
-from flexlink.fe.strip import assemble_out_of_plane, out_of_plane_eigen_scale, out_of_plane_springs
+from flexlink.fe.rigid import rigidified
+from flexlink.fe.strip import (assemble_out_of_plane, out_of_plane_eigen_scale,
+                               out_of_plane_springs, strip_stiffness_scale)
 from flexlink.scene.load import Scene
-
-EXTRA_MODES = 4
 
 
 def tilt_stiffnesses(scene: Scene) -> dict[str, float]:
@@ -32,13 +33,18 @@ def tilt_stiffnesses(scene: Scene) -> dict[str, float]:
 
 def out_of_plane_modes(topology, points, tilt: dict[str, float], n_modes: int,
                        method: str = "auto") -> ModalResult:
-    """Lowest ``n_modes`` (+ EXTRA_MODES) out-of-plane modes of ``topology`` at joint ``points``."""
-    planar = pose_model(topology, points)
+    """The lowest ``n_modes`` elastic out-of-plane modes of ``topology`` at joint ``points``
+    [m], and every rigid-body/mechanism mode below them."""
+    planar = pose_model(topology, points, warn=False)  # its mesh; its springs are replaced
     springs = out_of_plane_springs(planar, topology, tilt)
-    model = dataclasses.replace(planar, springs=springs)
-    K, M = assemble_out_of_plane(model, springs)
-    return solve_modes(K, M, n_modes + EXTRA_MODES, T=reduction(model),
-                       lambda_ref=out_of_plane_eigen_scale(model), method=method)
+    # very stiff out-of-plane springs become exact constraints too, judged against the strip
+    # elements' own stiffness (w: translational; rx, ry: rotational)
+    model = rigidified(dataclasses.replace(planar, springs=springs),
+                       scales=strip_stiffness_scale(planar), rotational=springs.dof_a % 3 != 0)
+    K, M = assemble_out_of_plane(model, model.springs)
+    solve = functools.partial(solve_modes, K, M, T=reduction(model),
+                              lambda_ref=out_of_plane_eigen_scale(model), method=method)
+    return require_elastic(lowest_elastic(solve, n_modes), n_modes)
 
 
 def analyze_out_of_plane(scene: Scene, n_modes: int = 4, elements_per_link: int | None = None,

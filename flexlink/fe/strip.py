@@ -151,3 +151,14 @@ def out_of_plane_eigen_scale(model: FrameModel) -> float:
         p = StripProperties.of(link.section)
         scales += [p.EI / (p.rhoA * link.length**4), p.GJ / (p.rhoIp * link.length**2)]
     return min(scales)
+
+
+def strip_stiffness_scale(model: FrameModel) -> tuple[float, float]:
+    """(translational [N/m], rotational [N m/rad]) stiffness of the stiffest out-of-plane
+    element: 12 EI / h^3 on w; 4 EI / h (bending) or GJ / h (twist) on a rotation."""
+    trans, rot = 0.0, 0.0
+    for link in model.links:
+        p, h = StripProperties.of(link.section), link.length / link.elements
+        trans = max(trans, 12 * p.EI / h**3)
+        rot = max(rot, 4 * p.EI / h, p.GJ / h)
+    return trans, rot
