@@ -30,6 +30,8 @@ DENSE_LIMIT = 4000  # DOFs; largest dense problem a sweep or a convergence study
 AUTO_DENSE_MAX = 250
 DENSE_REFUSE = 20000  # DOFs; a dense solve would need > 3 GB and minutes: refused
 ELASTIC, MECHANISM = "elastic", "rigid-body/mechanism"
+LOST_LIMIT = 10.0  # eps lambda_max / lambda_1 beyond which the lowest mode shapes are lost
+SPARE_MODES = 4  # solved beyond the elastic modes asked for, for mechanism modes below them
 
 
 @dataclasses.dataclass(frozen=True)
@@ -271,9 +273,6 @@ def refined_eigenvalues(vals, shapes, energy, lambda_ref: float, lambda_max: flo
     return vals, np.argsort(vals, kind="stable")
 
 
-LOST_LIMIT = 10.0  # eps lambda_max / lambda_1 beyond which the lowest mode shapes are lost
-
-
 def label(vals, zero: float, lambda_ref: float, zero_tol: float, refined: bool,
           lambda_max: float) -> tuple[str, ...]:
     """ELASTIC or MECHANISM per eigenvalue: below ``zero`` [rad^2/s^2] a mode is a rigid-body
@@ -332,9 +331,6 @@ def solve_modes(K, M, n_modes: int, *, T=None, lambda_ref: float, method: str = 
                        kinds=kinds, residuals=residuals, backward_errors=backward,
                        orthogonality_error=ev.orthogonality_error, solver=method, n_dofs=p.n,
                        refined=energy is not None, condensed=p.n - p.n_solved)
-
-
-SPARE_MODES = 4  # solved beyond the elastic modes asked for, for mechanism modes below them
 
 
 def lowest_elastic(solve, n_elastic: int, expected_mechanisms: int = 0,
