@@ -61,8 +61,8 @@ def refuse_too_fine(topology: Topology, points, limit: float) -> None:
             f"{n} elements per link is too fine for double precision: the estimated "
             f"eps lambda_max / lambda_1 = {ratio:.2g} exceeds {limit:g}, so K's round-off would "
             f"swamp the lowest modes (refused before assembling {_dofs(topology)} DOFs). Use "
-            f"fewer than {finest_supported(topology, points, limit)} elements per link (a bound "
-            "from below: the solver's own check, with the actual lowest mode, may refuse "
+            f"fewer than {finest_supported(topology, points, limit)} elements per link (by this "
+            "estimate; the solver's own check, with the actual lowest mode, may refuse "
             "somewhat coarser meshes too)")
 
 
