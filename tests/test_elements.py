@@ -6,7 +6,7 @@ import math
 import numpy as np
 import pytest
 
-from flexlink.fe.assembly import assemble, rotation
+from flexlink.fe.assembly import assemble, node_rotation
 from flexlink.fe.link import link_matrices
 
 from helpers import single_beam
@@ -94,7 +94,7 @@ def test_rotated_global_matrices_keep_rigid_body_modes():
 def test_rotation_takes_the_link_axis_to_local_x(angle):
     """local = R @ global: the link's own direction (cos a, sin a) is local (1, 0) and its
     normal (-sin a, cos a) is local (0, 1). The transpose would give (cos 2a, sin 2a) instead."""
-    R = rotation(angle)
+    R = node_rotation(angle)
     c, s = math.cos(angle), math.sin(angle)
     np.testing.assert_allclose(R @ [c, s, 0.0], [1.0, 0.0, 0.0], atol=1e-15)
     np.testing.assert_allclose(R @ [-s, c, 0.0], [0.0, 1.0, 0.0], atol=1e-15)

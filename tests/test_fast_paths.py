@@ -13,7 +13,7 @@ import pytest
 import scipy.sparse as sp
 
 from flexlink.analysis.modal import analyze
-from flexlink.fe.assembly import _rotated, assemble, reduction, rotation
+from flexlink.fe.assembly import _rotated, assemble, node_rotation, reduction
 from flexlink.fe.link import link_matrices
 from flexlink.fe.model import GROUND, build_model
 from flexlink.scene import load_scene
@@ -27,7 +27,7 @@ def reference_matrices(model):
     k_blocks, m_blocks = [], []
     for link in model.links:
         k, m = link.local_matrices()
-        T = sp.kron(sp.identity(link.elements + 1), sp.csr_matrix(rotation(link.angle)))
+        T = sp.kron(sp.identity(link.elements + 1), sp.csr_matrix(node_rotation(link.angle)))
         k_blocks.append(T.T @ k @ T)
         m_blocks.append(T.T @ m @ T)
     K = sp.block_diag(k_blocks).toarray()
@@ -108,7 +108,7 @@ def test_sweep_finds_elastic_modes_past_a_mechanism():
 def test_rotated_equals_explicit_transformation():
     k, _ = link_matrices(0.3, 4, 5e6, 12.0, 0.3)
     for angle in (0.3, 2.0, -2.9):
-        T = sp.kron(sp.identity(5), sp.csr_matrix(rotation(angle)))
+        T = sp.kron(sp.identity(5), sp.csr_matrix(node_rotation(angle)))
         assert close(_rotated(k, angle, 5).toarray(), (T.T @ k @ T).toarray())
 
 

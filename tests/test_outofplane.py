@@ -10,8 +10,9 @@ import pytest
 from flexlink.errors import InputError
 from flexlink.analysis.families import elastic_modes
 from flexlink.fe.model import JointSpec, LinkSpec, Section, Topology
-from flexlink.analysis.outofplane import (StripProperties, chain_matrices, element_matrices,
-                                 out_of_plane_modes, rotation)
+from flexlink.analysis.outofplane import out_of_plane_modes
+from flexlink.fe.strip import (StripProperties, strip_chain_matrices, strip_element_matrices,
+                               strip_node_rotation)
 from flexlink.scene import load_scene
 
 CASES = Path(__file__).resolve().parent.parent / "cases"
@@ -52,7 +53,7 @@ def test_strip_properties_closed_forms():
 
 def test_element_symmetric_and_rigid_motions_strain_free():
     l = 0.07
-    k, m = element_matrices(l, P)
+    k, m = strip_element_matrices(l, P)
     assert np.abs(k - k.T).max() <= 1e-15 * np.abs(k).max()
     assert np.linalg.eigvalsh(m).min() > 0
     # rigid motions: translation w; rotation ty about y (w = -ty x); twist tx
@@ -63,8 +64,8 @@ def test_element_symmetric_and_rigid_motions_strain_free():
 
 
 def test_rotated_chain_keeps_three_rigid_body_modes():
-    K, M = chain_matrices(LENGTH, 5, P)
-    T = np.kron(np.eye(6), rotation(0.83))
+    K, M = strip_chain_matrices(LENGTH, 5, P)
+    T = np.kron(np.eye(6), strip_node_rotation(0.83))
     Kg = T.T @ K @ T
     x = np.linspace(0, LENGTH, 6) * np.array([[math.cos(0.83)], [math.sin(0.83)]])
     # global rigid motions: w = 1; rotation rx (w = y rx); rotation ry (w = -x ry)

@@ -30,9 +30,9 @@ def test_fast_check_passes(scene, check):
 
 
 def test_a_failing_check_is_reported(scene, monkeypatch):
-    # one element per cantilever: its frequency misses the closed form by more than 1e-6, and
+    # two elements per cantilever: its frequency misses the closed form by more than 1e-6, and
     # check 7a must say FAIL
-    monkeypatch.setattr(st, "ELEMENTS", 1)
+    monkeypatch.setattr(st, "ELEMENTS", 2)
     assert not st.repeated(scene).passed
 
 
@@ -58,6 +58,6 @@ def test_stability_command(tmp_path, monkeypatch):
     assert result.exit_code == 0 and doc["passed"] == doc["total"] == 5
     assert [c["id"] for c in doc["checks"]] == ["7a", "8a", "8b", "8c", "8d"]
     assert json.loads((tmp_path / "case1" / "stability.json").read_text()) == doc
-    monkeypatch.setattr(st, "ELEMENTS", 1)  # makes 7a fail: exit code 1, FAIL printed
+    monkeypatch.setattr(st, "ELEMENTS", 2)  # makes 7a fail: exit code 1, FAIL printed
     result = CliRunner().invoke(main, ["stability", str(CASE1), "--out", str(tmp_path)])
     assert result.exit_code == 1 and "[FAIL] 7a" in result.output

@@ -3,32 +3,28 @@
 from __future__ import annotations
 
 import dataclasses
+import functools
 import logging
 import time
+from collections.abc import Mapping
 
 import numpy as np
 
+from flexlink.analysis.precision import refuse_too_fine
+from flexlink.analysis.solve import (LOST_LIMIT, ModalResult, lowest_elastic, require_elastic,
+                                     solve_modes)
 from flexlink.fe.assembly import assemble, reduction
 from flexlink.fe.energy import lumped_mass, twice_strain_energy
+from flexlink.fe.model import FrameModel, Topology
+from flexlink.fe.pose import in_plane_eigen_scale, pose_model
 from flexlink.kinematics.fourbar import Pose
-from flexlink.fe.model import FrameModel, build_model
-from flexlink.scene.plausibility import model_warnings, pose_warnings
-from flexlink.fe.rigid import rigidified
 from flexlink.scene import Scene
-from flexlink.analysis.solve import ModalResult, solve_modes
+from flexlink.scene.plausibility import model_warnings, pose_warnings
 
 log = logging.getLogger(__name__)
 
 _WARNED: set[tuple[str, str]] = set()
-EXTRA_MODES = 4  # solved beyond the requested count, so mechanism modes cannot crowd them out
-
-
-def lambda_scale(model: FrameModel) -> float:
-    """The model's own eigenvalue scale [rad^2/s^2]: the smallest EI / (rhoA L^4) of its links.
-
-    A link's lowest bending eigenvalue is this times a constant of order 10 to 500, so modes
-    many orders of magnitude below it are rigid-body or mechanism modes."""
-    return min(l.section.EI / (l.section.mass_per_length * l.length**4) for l in model.links)
+MASSES = ("consistent", "lumped")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -45,7 +41,31 @@ class CaseResult:
         return self.modes.elastic_frequencies[:n]
 
 
-MASSES = ("consistent", "lumped")
+def pose_modes(topology: Topology, points: Mapping[str, tuple[float, float]], n_modes: int,
+               method: str = "auto", mass: str = "consistent", refine: bool = True
+               ) -> tuple[FrameModel, ModalResult, dict[str, float]]:
+    """(model, modes, seconds) of ``topology`` with its joints at ``points`` [m]: the lowest
+    ``n_modes`` elastic modes and every rigid-body/mechanism mode below them, labelled.
+
+    Refuses, before assembling, a mesh too fine for double precision
+    (``precision.refuse_too_fine``), and asking for more elastic modes than the model has
+    (``solve.require_elastic``). ``mass`` and ``refine`` as in ``analyze``."""
+    if mass not in MASSES:
+        raise ValueError(f"unknown mass {mass!r}: one of {MASSES}")
+    t0 = time.perf_counter()
+    refuse_too_fine(topology, points, LOST_LIMIT)
+    model = pose_model(topology, points)
+    K, M = assemble(model)
+    if mass == "lumped":
+        M = lumped_mass(model)
+    T = reduction(model)
+    t1 = time.perf_counter()
+    energy = (lambda shapes: twice_strain_energy(model, shapes)) if refine else None
+    solve = functools.partial(solve_modes, K, M, T=T, lambda_ref=in_plane_eigen_scale(model),
+                              method=method, energy=energy)
+    modes = require_elastic(lowest_elastic(solve, n_modes), n_modes)
+    t2 = time.perf_counter()
+    return model, modes, {"assembly": t1 - t0, "solve": t2 - t1}
 
 
 def analyze(scene: Scene, n_modes: int = 4, elements_per_link: int | None = None,
@@ -56,26 +76,14 @@ def analyze(scene: Scene, n_modes: int = 4, elements_per_link: int | None = None
     ``mass``: "consistent" (the element's own) or "lumped" (HRZ diagonal, ``energy.py``).
     ``refine``: eigenvalues as Rayleigh quotients of the strain energy computed from element
     deformations (``energy.py``), so fine meshes are not limited by the round-off of K."""
-    if mass not in MASSES:
-        raise ValueError(f"unknown mass {mass!r}: one of {MASSES}")
-    t0 = time.perf_counter()
     pose = scene.rigid_pose()
     topology = scene.topology(elements_per_link)
-    model = rigidified(build_model(topology, pose.joints))
+    model, modes, seconds = pose_modes(topology, pose.joints, n_modes, method, mass, refine)
     warnings = tuple(pose_warnings(scene.four_bar, pose) + model_warnings(model))
     for w in warnings:
         if (scene.path, w) not in _WARNED:  # once per process: sweeps call this many times
             _WARNED.add((scene.path, w))
             log.warning("%s: %s", scene.path, w)
-    K, M = assemble(model)
-    if mass == "lumped":
-        M = lumped_mass(model)
-    T = reduction(model)
-    t1 = time.perf_counter()
-    energy = (lambda shapes: twice_strain_energy(model, shapes)) if refine else None
-    modes = solve_modes(K, M, n_modes + EXTRA_MODES, T=T, lambda_ref=lambda_scale(model),
-                        method=method, energy=energy)
-    t2 = time.perf_counter()
     return CaseResult(scene=scene, pose=pose, model=model, modes=modes,
-                      elements_per_link=topology.links[0].elements,
-                      seconds={"assembly": t1 - t0, "solve": t2 - t1}, warnings=warnings)
+                      elements_per_link=topology.links[0].elements, seconds=seconds,
+                      warnings=warnings)

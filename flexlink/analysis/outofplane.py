@@ -1,158 +1,23 @@
-"""The second model family: out-of-plane bending and St Venant torsion of flat strip links.
+"""The out-of-plane model family at a scene's pose: weak-axis bending and St Venant torsion of
+flat strip links (element matrices and assembly in ``fe.strip``, whose docstring gives the DOFs,
+the closed forms and the joint springs).
 
-A flat strip lying in the mechanism plane bends far more easily out of that plane (about its
-weak axis, I = width thickness^3 / 12) and twists (St Venant, GJ) than it bends in plane. For a
-linkage lying in one plane with doubly symmetric sections these motions decouple, to first
-order, from the in-plane ones, so they form their own eigenproblem.
-
-Global DOFs: node i owns 3i (w [m], out of plane), 3i+1 (rx [rad]), 3i+2 (ry [rad]), rotations
-about the global in-plane axes. Local DOFs per node, link frame (x along the link, y in plane,
-z out of plane): (w, tx, ty), tx = twist about the link axis, ty = rotation about local y.
-A rotation ty about y moves a point at x along the link by -ty x in z, so dw/dx = -ty.
-
-Element matrices (closed forms, Przemieniecki; Cook et al. "Concepts and Applications of FEA"),
-element length l, DOF order (w1, w1', w2, w2') for bending and (tx1, tx2) for torsion:
-    bending  K = EI/l^3 [[12, 6l, -12, 6l], [6l, 4l^2, -6l, 2l^2], [-12, -6l, 12, -6l],
-                         [6l, 2l^2, -6l, 4l^2]]
-             M = rhoA l/420 [[156, 22l, 54, -13l], [22l, 4l^2, 13l, -3l^2],
-                             [54, 13l, 156, -22l], [-13l, -3l^2, -22l, 4l^2]]   (consistent)
-    torsion  K = GJ/l [[1, -1], [-1, 1]],  M = rho Ip l/6 [[2, 1], [1, 2]]
-with I = b t^3/12 (b = width, t = thickness), Ip = A (b^2 + t^2)/12 the polar second moment
-of the section (rotary inertia per unit length rho Ip), and the thin-strip St Venant constant
-J = b t^3/3 (1 - 0.63 t/b) (Roark, rectangle, b >= t). G is the laminate's in-plane shear
-modulus, which governs the twisting of a thin strip.
-
-Joints (bearing springs, between coincident link-end nodes or to ground, exactly as in the
-planar model): the translational stiffness Kt [N/m] resists w; a tilt stiffness Ktilt
-[N m/rad] resists rx and ry (a pin or bearing whose axis is the plane normal resists being
-tilted out of the plane). Scene keys: ``joints.Ktilt`` (or ``joints.<J>.Ktilt``), default
-"rigid" (an ideal revolute joint transmits both bending moments); "rigid" is an exact
-constraint (``assembly.reduction``). The drive acts about the plane normal, so it has no
-out-of-plane part. Lumped joint masses act on w.
+Scene keys: ``joints.Ktilt`` (or ``joints.<J>.Ktilt``) [N m/rad], default "rigid" (an ideal
+revolute joint transmits both out-of-plane bending moments).
 """
 
 from __future__ import annotations
 
 import dataclasses
-import math
+import functools
 
-import numpy as np
-import scipy.sparse as sp
-
-from flexlink.fe.assembly import reduction, springs_stiffness_entries
-from flexlink.fe.model import GROUND, FrameModel, Section, Springs, build_model
+from flexlink.analysis.solve import ModalResult, lowest_elastic, require_elastic, solve_modes
+from flexlink.fe.assembly import reduction
+from flexlink.fe.pose import pose_model
+from flexlink.fe.rigid import rigidified
+from flexlink.fe.strip import (assemble_out_of_plane, out_of_plane_eigen_scale,
+                               out_of_plane_springs, strip_stiffness_scale)
 from flexlink.scene import Scene
-from flexlink.analysis.solve import ModalResult, solve_modes
-
-DOF_NAMES = ("w", "rx", "ry")
-EXTRA_MODES = 4
-
-
-@dataclasses.dataclass(frozen=True)
-class StripProperties:
-    """Out-of-plane properties of a rectangular strip: EI [N m^2] (weak axis), GJ [N m^2],
-    rhoA [kg/m], rhoIp [kg m] (rotary inertia about the strip axis per unit length)."""
-
-    EI: float
-    GJ: float
-    rhoA: float
-    rhoIp: float
-
-    @classmethod
-    def of(cls, s: Section) -> "StripProperties":
-        """From a ``Section.rectangle`` (in-plane depth = width b, thickness t = area / b)."""
-        b = s.depth
-        t = s.area / b
-        thin, thick = min(b, t), max(b, t)
-        J = thick * thin**3 / 3.0 * (1.0 - 0.63 * thin / thick)
-        return cls(EI=s.E * b * t**3 / 12.0, GJ=s.G * J, rhoA=s.density * s.area,
-                   rhoIp=s.density * s.area * (b * b + t * t) / 12.0)
-
-
-def element_matrices(l: float, p: StripProperties) -> tuple[np.ndarray, np.ndarray]:
-    """6x6 local (K, M) of one element, DOF order (w1, tx1, ty1, w2, tx2, ty2)."""
-    kb = p.EI / l**3 * np.array([[12, 6 * l, -12, 6 * l], [6 * l, 4 * l * l, -6 * l, 2 * l * l],
-                                 [-12, -6 * l, 12, -6 * l], [6 * l, 2 * l * l, -6 * l, 4 * l * l]])
-    mb = p.rhoA * l / 420 * np.array(
-        [[156, 22 * l, 54, -13 * l], [22 * l, 4 * l * l, 13 * l, -3 * l * l],
-         [54, 13 * l, 156, -22 * l], [-13 * l, -3 * l * l, -22 * l, 4 * l * l]])
-    # (w, w') -> (w, ty) with w' = -ty: flip the sign of the slope rows and columns
-    flip = np.diag([1.0, -1.0, 1.0, -1.0])
-    kb, mb = flip @ kb @ flip, flip @ mb @ flip
-    bend, twist = [0, 2, 3, 5], [1, 4]
-    k, m = np.zeros((6, 6)), np.zeros((6, 6))
-    k[np.ix_(bend, bend)], m[np.ix_(bend, bend)] = kb, mb
-    k[np.ix_(twist, twist)] = p.GJ / l * np.array([[1.0, -1.0], [-1.0, 1.0]])
-    m[np.ix_(twist, twist)] = p.rhoIp * l / 6 * np.array([[2.0, 1.0], [1.0, 2.0]])
-    return k, m
-
-
-def chain_matrices(length: float, elements: int, p: StripProperties):
-    """Local (K, M) of a uniform link of ``elements`` equal elements, size 3 (elements + 1)."""
-    k, m = element_matrices(length / elements, p)
-    n = 3 * (elements + 1)
-    K, M = np.zeros((n, n)), np.zeros((n, n))
-    for e in range(elements):
-        sl = slice(3 * e, 3 * e + 6)
-        K[sl, sl] += k
-        M[sl, sl] += m
-    return K, M
-
-
-def rotation(angle: float) -> np.ndarray:
-    """3x3 R with local (w, tx, ty) = R @ global (w, rx, ry) for a link at ``angle`` [rad]."""
-    c, s = math.cos(angle), math.sin(angle)
-    return np.array([[1.0, 0.0, 0.0], [0.0, c, s], [0.0, -s, c]])
-
-
-def out_of_plane_springs(model: FrameModel, topology, tilt: dict[str, float]) -> Springs:
-    """Bearing springs of every joint: Kt on w, ``tilt[joint]`` on rx and ry."""
-    dof_a, dof_b, k, labels = [], [], [], []
-    for joint in topology.joints:
-        attached = model.joint_nodes[joint.name]
-        partners = [GROUND] * len(attached) if joint.ground else [attached[0]] * len(attached)
-        for node, other in zip(attached, partners):
-            if node == other:
-                continue
-            for dof, name, stiffness in ((0, "w", joint.Kt), (1, "rx", tilt[joint.name]),
-                                         (2, "ry", tilt[joint.name])):
-                if stiffness == 0.0:
-                    continue
-                dof_a.append(3 * node + dof)
-                dof_b.append(GROUND if other == GROUND else 3 * other + dof)
-                k.append(stiffness)
-                labels.append(f"{joint.name} {name}")
-    return Springs(np.asarray(dof_a, dtype=np.int64), np.asarray(dof_b, dtype=np.int64),
-                   np.asarray(k, dtype=float), tuple(labels))
-
-
-def assemble_out_of_plane(model: FrameModel, springs: Springs):
-    """(K, M) CSR of the out-of-plane problem on ``model``'s mesh, not reduced."""
-    k_blocks, m_blocks = [], []
-    for link in model.links:
-        K, M = chain_matrices(link.length, link.elements, StripProperties.of(link.section))
-        T = np.kron(np.eye(link.elements + 1), rotation(link.angle))
-        k_blocks.append(T.T @ K @ T)
-        m_blocks.append(T.T @ M @ T)
-    K = sp.block_diag(k_blocks, format="csr")
-    M = sp.block_diag(m_blocks, format="csr")
-    rows, cols, vals = springs_stiffness_entries(springs)
-    n = model.n_dofs
-    K = K + sp.coo_matrix((vals, (rows, cols)), shape=(n, n)).tocsr()
-    if model.point_masses:
-        idx = np.array([3 * node for node, _ in model.point_masses])
-        mass = np.array([m for _, m in model.point_masses])
-        M = M + sp.coo_matrix((mass, (idx, idx)), shape=(n, n)).tocsr()
-    return K, M
-
-
-def lambda_scale(model: FrameModel) -> float:
-    """Smallest weak-axis bending or torsion eigenvalue scale of the links [rad^2/s^2]."""
-    scales = []
-    for link in model.links:
-        p = StripProperties.of(link.section)
-        scales += [p.EI / (p.rhoA * link.length**4), p.GJ / (p.rhoIp * link.length**2)]
-    return min(scales)
 
 
 def tilt_stiffnesses(scene: Scene) -> dict[str, float]:
@@ -162,13 +27,18 @@ def tilt_stiffnesses(scene: Scene) -> dict[str, float]:
 
 def out_of_plane_modes(topology, points, tilt: dict[str, float], n_modes: int,
                        method: str = "auto") -> ModalResult:
-    """Lowest ``n_modes`` (+ EXTRA_MODES) out-of-plane modes of ``topology`` at joint ``points``."""
-    planar = build_model(topology, points)
+    """The lowest ``n_modes`` elastic out-of-plane modes of ``topology`` at joint ``points``
+    [m], and every rigid-body/mechanism mode below them."""
+    planar = pose_model(topology, points, warn=False)  # its mesh; its springs are replaced
     springs = out_of_plane_springs(planar, topology, tilt)
-    model = dataclasses.replace(planar, springs=springs)
-    K, M = assemble_out_of_plane(model, springs)
-    return solve_modes(K, M, n_modes + EXTRA_MODES, T=reduction(model),
-                       lambda_ref=lambda_scale(model), method=method)
+    # very stiff out-of-plane springs become exact constraints too, judged against the strip
+    # elements' own stiffness (w: translational; rx, ry: rotational)
+    model = rigidified(dataclasses.replace(planar, springs=springs),
+                       scales=strip_stiffness_scale(planar), rotational=springs.dof_a % 3 != 0)
+    K, M = assemble_out_of_plane(model, model.springs)
+    solve = functools.partial(solve_modes, K, M, T=reduction(model),
+                              lambda_ref=out_of_plane_eigen_scale(model), method=method)
+    return require_elastic(lowest_elastic(solve, n_modes), n_modes)
 
 
 def analyze_out_of_plane(scene: Scene, n_modes: int = 4, elements_per_link: int | None = None,

@@ -20,7 +20,7 @@ import scipy.linalg as la
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from flexlink.errors import NumericalError
+from flexlink.errors import InputError, NumericalError
 
 log = logging.getLogger(__name__)
 
@@ -30,6 +30,8 @@ DENSE_LIMIT = 4000  # DOFs; largest dense problem a sweep or a convergence study
 AUTO_DENSE_MAX = 250
 DENSE_REFUSE = 20000  # DOFs; a dense solve would need > 3 GB and minutes: refused
 ELASTIC, MECHANISM = "elastic", "rigid-body/mechanism"
+LOST_LIMIT = 10.0  # eps lambda_max / lambda_1 beyond which the lowest mode shapes are lost
+SPARE_MODES = 4  # solved beyond the elastic modes asked for, for mechanism modes below them
 
 
 @dataclasses.dataclass(frozen=True)
@@ -131,106 +133,153 @@ def _norm1(A) -> float:
     return float(sums.max()) if sums.size else 0.0
 
 
-def solve_modes(K, M, n_modes: int, *, T=None, lambda_ref: float, method: str = "auto",
-                zero_tol: float = 1e-6, backward_tol: float = 1e-10, energy=None) -> ModalResult:
-    """Lowest ``n_modes`` modes of (K, M), optionally reduced by u = T q.
+@dataclasses.dataclass(frozen=True)
+class Prepared:
+    """The eigenproblem as the solver sees it: ``Kr``, ``Mr`` reduced by u = T q (what the
+    checks use), ``Ks``, ``Ms`` after condensing massless DOFs (what the solver gets), and
+    ``expand`` mapping solver vectors back to reduced ones."""
 
-    ``lambda_ref`` [rad^2/s^2] is the model's own scale (e.g. the lowest bare-beam eigenvalue);
-    modes below ``zero_tol * lambda_ref`` are labelled rigid-body/mechanism. ``method`` is
-    "dense", "sparse" or "auto" (dense up to AUTO_DENSE_MAX DOFs). DOFs without mass are condensed
-    exactly (never handed to the eigen solver). ``energy``: optional callable giving u^T K u
-    for full-size shapes without cancellation (``energy.twice_strain_energy``); the eigenvalues
-    are then its Rayleigh quotients, free of the round-off of K's large entries. Raises
-    NumericalError on NaN, clearly negative eigenvalues, a backward error above
-    ``backward_tol`` or lost M-orthogonality.
-    """
+    Kr: object
+    Mr: object
+    Ks: object
+    Ms: object
+    expand: object  # callable (n_s, k) -> (n, k), or None when nothing was condensed
+
+    @property
+    def n(self) -> int:
+        return self.Kr.shape[0]
+
+    @property
+    def n_solved(self) -> int:
+        return self.Ks.shape[0]
+
+    @property
+    def lambda_max(self) -> float:
+        """Lower estimate of the largest eigenvalue [rad^2/s^2]: the largest diagonal ratio."""
+        return float((self.Ks.diagonal() / self.Ms.diagonal()).max())
+
+
+def prepare(K, M, T=None) -> Prepared:
+    """Reduce (K, M) by u = T q and condense the massless DOFs (``_condense_massless``)."""
     if T is None and isinstance(K, np.ndarray) and isinstance(M, np.ndarray) \
             and np.all(M.diagonal() > 0):
         # a sweep's small dense matrices stay dense: converting them to CSR and back costs
         # more than their eigen solve
-        Kr, Mr, condensed = K, M, None
-    else:
-        Kr, Mr = (K, M) if T is None else ((T.T @ K @ T).tocsr(), (T.T @ M @ T).tocsr())
-        Kr, Mr = sp.csr_matrix(Kr), sp.csr_matrix(Mr)
-        condensed = _condense_massless(Kr, Mr)
-    n = Kr.shape[0]
-    if n == 0:
+        return Prepared(K, M, K, M, None)
+    Kr, Mr = (K, M) if T is None else ((T.T @ K @ T).tocsr(), (T.T @ M @ T).tocsr())
+    Kr, Mr = sp.csr_matrix(Kr), sp.csr_matrix(Mr)
+    if Kr.shape[0] == 0:
         raise NumericalError("the model has no free DOFs: every DOF is constrained")
-    Ks, Ms = (Kr, Mr) if condensed is None else condensed[:2]
-    ns = Ks.shape[0]
-    k = min(n_modes, ns)
-    if method == "auto":
-        method = "dense" if ns <= AUTO_DENSE_MAX or k >= ns - 1 else "sparse"
-    if method == "dense" and ns > DENSE_REFUSE:
-        raise NumericalError(f"dense solve refused for {ns} DOFs (limit {DENSE_REFUSE}): it needs "
-                             f"{8 * 2 * ns * ns / 1e9:.1f} GB; use method='sparse'")
-    if method == "sparse" and k >= ns - 1:
-        method = "dense"  # ARPACK needs k < n - 1
-    # K's own round-off leaves a rigid-body mode about eps * lambda_max above zero (lambda_max
-    # grows with mesh refinement); the diagonal ratio estimates lambda_max from below.
-    lambda_max = float((Ks.diagonal() / Ms.diagonal()).max())
-    floor = 100 * np.finfo(float).eps * lambda_max
-    if method not in ("dense", "sparse"):
+    condensed = _condense_massless(Kr, Mr)
+    if condensed is None:
+        return Prepared(Kr, Mr, Kr, Mr, None)
+    return Prepared(Kr, Mr, condensed[0], condensed[1], condensed[2])
+
+
+def roundoff_floor(lambda_max: float) -> float:
+    """K's own round-off leaves a rigid-body mode about eps lambda_max above zero [rad^2/s^2]."""
+    return 100 * np.finfo(float).eps * lambda_max
+
+
+def pick_method(method: str, n_solved: int, k: int) -> str:
+    """"dense" or "sparse" for ``k`` modes of a problem of ``n_solved`` DOFs."""
+    if method not in ("auto", "dense", "sparse"):
         raise ValueError(f"unknown eigen method {method!r}: dense, sparse or auto")
+    if method == "auto":
+        method = "dense" if n_solved <= AUTO_DENSE_MAX or k >= n_solved - 1 else "sparse"
+    if method == "dense" and n_solved > DENSE_REFUSE:
+        raise NumericalError(f"dense solve refused for {n_solved} DOFs (limit {DENSE_REFUSE}): it "
+                             f"needs {8 * 2 * n_solved * n_solved / 1e9:.1f} GB; use method='sparse'")
+    if method == "sparse" and k >= n_solved - 1:
+        method = "dense"  # ARPACK needs k < n - 1
+    return method
+
+
+def eigen_solve(p: Prepared, k: int, method: str, lambda_ref: float):
+    """The lowest ``k`` eigenpairs of ``p`` by ``method`` ("dense" or "sparse"), vectors
+    expanded to the reduced DOFs: (eigenvalues [rad^2/s^2], vectors (n, k))."""
     solver = _dense if method == "dense" else _sparse
+    floor = roundoff_floor(p.lambda_max)
     try:
-        vals, vecs = solver(Ks, Ms, k, shift=-lambda_ref)
+        vals, vecs = solver(p.Ks, p.Ms, k, shift=-lambda_ref)
     except NumericalError:
         if floor <= lambda_ref:
             raise
         # On a mesh this fine, K - shift M is singular in floating point unless the shift is at
         # least the round-off floor; retry there (slower to converge, but it factorises), and
-        # let the floor check below judge what comes out.
-        vals, vecs = solver(Ks, Ms, k, shift=-floor)
-    if condensed is not None:
-        vecs = condensed[2](vecs)
+        # let the floor check judge what comes out.
+        vals, vecs = solver(p.Ks, p.Ms, k, shift=-floor)
+    if p.expand is not None:
+        vecs = p.expand(vecs)
+    return vals, vecs
 
+
+@dataclasses.dataclass(frozen=True)
+class Evidence:
+    """Per mode: relative residual and normwise backward error; max |V^T M V - I|."""
+
+    vectors: np.ndarray  # mass-normalised (n, k)
+    residuals: np.ndarray
+    backward_errors: np.ndarray
+    orthogonality_error: float
+
+
+def check(p: Prepared, vals, vecs, zero: float, method: str,
+          backward_tol: float = 1e-10) -> Evidence:
+    """Mass-normalise ``vecs`` and check the answer: NaN, eigenvalues below ``-zero``
+    [rad^2/s^2], backward error above ``backward_tol``, lost M-orthogonality (NumericalError)."""
     if not np.all(np.isfinite(vals)):
         raise NumericalError("eigen solve returned NaN or infinite eigenvalues")
-    zero = max(zero_tol * lambda_ref, floor)
     if vals.min() < -zero:
         raise NumericalError(f"negative eigenvalue {vals.min():.6g} rad^2/s^2: K is not positive "
                              "semi-definite (check spring and section inputs)")
-    # mass-normalise (eigh already does; ARPACK's vectors are normalised the same way, redo to be sure)
-    norms = np.sqrt(np.einsum("ij,ij->j", vecs, Mr @ vecs))
-    vecs = vecs / norms
-    KV, MV = Kr @ vecs, Mr @ vecs
+    # eigh already mass-normalises and ARPACK's vectors are normalised the same way; redo it
+    # so the checks below do not rest on either
+    vecs = vecs / np.sqrt(np.einsum("ij,ij->j", vecs, p.Mr @ vecs))
+    KV, MV = p.Kr @ vecs, p.Mr @ vecs
     R = np.linalg.norm(KV - MV * vals, axis=0)
     with np.errstate(divide="ignore", invalid="ignore"):
         residuals = R / np.linalg.norm(KV, axis=0)
-    backward = R / ((_norm1(Kr) + np.abs(vals) * _norm1(Mr)) * np.linalg.norm(vecs, axis=0))
-    ortho = float(np.abs(vecs.T @ MV - np.eye(k)).max())
+    backward = R / ((_norm1(p.Kr) + np.abs(vals) * _norm1(p.Mr)) * np.linalg.norm(vecs, axis=0))
+    ortho = float(np.abs(vecs.T @ MV - np.eye(vecs.shape[1])).max())
     if backward.max() > backward_tol:
         raise NumericalError(f"eigen backward error {backward.max():.3g} exceeds {backward_tol:g} "
                              f"(mode {int(backward.argmax()) + 1}, {method} solver)")
     if ortho > 1e-6:
         raise NumericalError(f"eigenvectors lost M-orthogonality: max |V^T M V - I| = {ortho:.3g}")
-    shapes = vecs if T is None else np.asarray(T @ vecs)
-    if energy is not None:
-        vals = np.asarray(energy(shapes), dtype=float)  # v^T M v = 1: the Rayleigh quotient
-        # The quotient is free of K's cancellation, but not of a vector that is itself lost:
-        # K as stored perturbs its own spectrum by about eps lambda_max, so past
-        # eps lambda_max / lambda_1 ~ 10 the lowest vectors are wrong and their quotients with
-        # them (a 30 000-element cantilever: mode 1 off by 11 %, 10 000 elements: 3e-5).
-        elastic = vals > zero_tol * lambda_ref
-        if elastic.any():
-            lost = np.finfo(float).eps * lambda_max / vals[elastic].min()
-            if lost > 10:
-                raise NumericalError(
-                    f"the mesh is too fine for double precision: eps lambda_max / lambda_1 = "
-                    f"{lost:.2g}, so the lowest mode shapes are lost to round-off in K. Use fewer "
-                    "elements per link")
-            if lost > 1e-2:
-                log.warning("eps lambda_max / lambda_1 = %.2g: the lowest frequencies may be off "
-                            "by 1e-5 or more; use fewer elements per link", lost)
-        order = np.argsort(vals, kind="stable")
-        vals, shapes, residuals, backward = vals[order], shapes[:, order], residuals[order], backward[order]
-        # The quotient of a mechanism mode is ~ (eps lambda_max)^2 / lambda: the round-off floor
-        # above no longer applies (it passes lambda_1 near 512 elements per link).
-        zero = zero_tol * lambda_ref
-    else:
-        # Between the physical threshold and the round-off floor a mode cannot be told apart
-        # from a mechanism: the mesh is too fine for double precision without refinement.
+    return Evidence(vecs, residuals, backward, ortho)
+
+
+def refined_eigenvalues(vals, shapes, energy, lambda_ref: float, lambda_max: float,
+                        zero_tol: float):
+    """Eigenvalues as energy Rayleigh quotients ``energy(shapes)`` (v^T M v = 1), and the order
+    that sorts them. Refuses vectors lost to K's round-off (NumericalError)."""
+    vals = np.asarray(energy(shapes), dtype=float)
+    # The quotient is free of K's cancellation, but not of a vector that is itself lost:
+    # K as stored perturbs its own spectrum by about eps lambda_max, so past
+    # eps lambda_max / lambda_1 ~ 10 the lowest vectors are wrong and their quotients with
+    # them (a 30 000-element cantilever: mode 1 off by 11 %, 10 000 elements: 3e-5).
+    elastic = vals > zero_tol * lambda_ref
+    if elastic.any():
+        lost = np.finfo(float).eps * lambda_max / vals[elastic].min()
+        if lost > LOST_LIMIT:
+            raise NumericalError(
+                f"the mesh is too fine for double precision: eps lambda_max / lambda_1 = "
+                f"{lost:.2g}, so the lowest mode shapes are lost to round-off in K. Use fewer "
+                "elements per link")
+        if lost > 1e-2:
+            log.warning("eps lambda_max / lambda_1 = %.2g: the lowest frequencies may be off "
+                        "by 1e-5 or more; use fewer elements per link", lost)
+    return vals, np.argsort(vals, kind="stable")
+
+
+def label(vals, zero: float, lambda_ref: float, zero_tol: float, refined: bool,
+          lambda_max: float) -> tuple[str, ...]:
+    """ELASTIC or MECHANISM per eigenvalue: below ``zero`` [rad^2/s^2] a mode is a rigid-body
+    or mechanism mode. Unrefined eigenvalues between the physical threshold
+    ``zero_tol * lambda_ref`` and ``zero`` (the round-off floor) cannot be told apart from a
+    mechanism: NumericalError."""
+    if not refined:
         unsure = (vals >= zero_tol * lambda_ref) & (vals < zero)
         if unsure.any():
             raise NumericalError(
@@ -244,9 +293,72 @@ def solve_modes(K, M, n_modes: int, *, T=None, lambda_ref: float, method: str = 
             log.warning("eigenvalues carry about %.1g relative round-off (eps lambda_max / "
                         "lambda_1): the mesh is finer than double precision supports without "
                         "the energy refinement", np.finfo(float).eps * lambda_max / elastic[0])
-    kinds = tuple(MECHANISM if v < zero else ELASTIC for v in vals)
+    return tuple(MECHANISM if v < zero else ELASTIC for v in vals)
+
+
+def solve_modes(K, M, n_modes: int, *, T=None, lambda_ref: float, method: str = "auto",
+                zero_tol: float = 1e-6, backward_tol: float = 1e-10, energy=None) -> ModalResult:
+    """Lowest ``n_modes`` modes of (K, M), optionally reduced by u = T q: ``prepare``,
+    ``eigen_solve``, ``check``, then (optionally) ``refined_eigenvalues`` and ``label``.
+
+    ``lambda_ref`` [rad^2/s^2] is the model's own scale (e.g. the lowest bare-beam eigenvalue);
+    modes below ``zero_tol * lambda_ref`` are labelled rigid-body/mechanism. ``method`` is
+    "dense", "sparse" or "auto" (dense up to AUTO_DENSE_MAX DOFs). DOFs without mass are condensed
+    exactly (never handed to the eigen solver). ``energy``: optional callable giving u^T K u
+    for full-size shapes without cancellation (``energy.twice_strain_energy``); the eigenvalues
+    are then its Rayleigh quotients, free of the round-off of K's large entries. Raises
+    NumericalError on NaN, clearly negative eigenvalues, a backward error above
+    ``backward_tol`` or lost M-orthogonality.
+    """
+    p = prepare(K, M, T)
+    k = min(n_modes, p.n_solved)
+    method = pick_method(method, p.n_solved, k)
+    lambda_max = p.lambda_max
+    vals, vecs = eigen_solve(p, k, method, lambda_ref)
+    zero = max(zero_tol * lambda_ref, roundoff_floor(lambda_max))
+    ev = check(p, vals, vecs, zero, method, backward_tol)
+    shapes = ev.vectors if T is None else np.asarray(T @ ev.vectors)
+    residuals, backward = ev.residuals, ev.backward_errors
+    if energy is not None:
+        vals, order = refined_eigenvalues(vals, shapes, energy, lambda_ref, lambda_max, zero_tol)
+        vals, shapes, residuals, backward = vals[order], shapes[:, order], residuals[order], backward[order]
+        # The quotient of a mechanism mode is ~ (eps lambda_max)^2 / lambda: the round-off floor
+        # no longer applies (it passes lambda_1 near 512 elements per link).
+        zero = zero_tol * lambda_ref
+    kinds = label(vals, zero, lambda_ref, zero_tol, energy is not None, lambda_max)
     lam = np.clip(vals, 0.0, None)
     return ModalResult(eigenvalues=vals, frequencies=np.sqrt(lam) / (2 * np.pi), shapes=shapes,
                        kinds=kinds, residuals=residuals, backward_errors=backward,
-                       orthogonality_error=ortho, solver=method, n_dofs=n,
-                       refined=energy is not None, condensed=0 if condensed is None else n - ns)
+                       orthogonality_error=ev.orthogonality_error, solver=method, n_dofs=p.n,
+                       refined=energy is not None, condensed=p.n - p.n_solved)
+
+
+def lowest_elastic(solve, n_elastic: int, expected_mechanisms: int = 0,
+                   spare: int = SPARE_MODES) -> ModalResult:
+    """The lowest modes up to and including the ``n_elastic``-th elastic one.
+
+    ``solve(k)`` -> ModalResult of the lowest k modes. Solves for ``n_elastic`` plus the
+    mechanism modes expected (these sit lowest) plus ``spare``; when more mechanism modes turn
+    up than there was room for (a free joint frees a whole link), solves again with room for
+    all of them and SPARE_MODES more. Returns fewer elastic modes only when the model has no more (every mode was
+    solved); ``require_elastic`` turns that into an error."""
+    k = n_elastic + expected_mechanisms + spare
+    while True:
+        result = solve(k)
+        n_mechanism = result.kinds.count(MECHANISM)
+        if len(result.kinds) - n_mechanism >= n_elastic or len(result.kinds) < k:
+            return result  # enough, or every mode of the model
+        k = n_elastic + n_mechanism + SPARE_MODES
+
+
+def require_elastic(result: ModalResult, n_elastic: int) -> ModalResult:
+    """``result`` if it holds ``n_elastic`` elastic modes; else InputError naming how many the
+    model has (its DOFs less its rigid-body/mechanism modes)."""
+    found = len(result.elastic)
+    if found < n_elastic:
+        raise InputError(
+            f"{n_elastic} elastic modes asked for, but the model has only {found} ({result.n_dofs} "
+            f"DOFs, {result.kinds.count(MECHANISM)} of them rigid-body/mechanism modes"
+            + (f", {result.condensed} massless and condensed" if result.condensed else "") + ")",
+            field="number of modes (-n)", expected=f"at most {found}, or a finer mesh (-e)")
+    return result

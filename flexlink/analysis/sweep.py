@@ -19,15 +19,14 @@ from collections.abc import Iterable, Mapping
 
 import numpy as np
 
-from flexlink.analysis.modal import lambda_scale
-from flexlink.fe.assembly import assemble, link_entries, point_mass_entries, spring_entries
+from flexlink.fe.pose import in_plane_eigen_scale
+from flexlink.fe.assembly import assemble, placed_link_entries, point_mass_entries, spring_entries
 from flexlink.fe.assembly import reduction as rigid_reduction
 from flexlink.fe.craig_bampton import CUTOFF, CraigBamptonPlan, lowest_fixed_interface
-from flexlink.fe.link import link_entries as local_entries
-from flexlink.fe.model import FrameModel, Topology, build_model, layout
-from flexlink.analysis.solve import DENSE_LIMIT, DENSE_REFUSE, ELASTIC, solve_modes
-
-EXTRA_MODES = 4  # room for mechanism modes when more turn up than at the previous pose
+from flexlink.fe.link import chain_entries
+from flexlink.fe.model import FrameModel, Topology, layout
+from flexlink.fe.pose import pose_model
+from flexlink.analysis.solve import DENSE_LIMIT, DENSE_REFUSE, ELASTIC, lowest_elastic, solve_modes
 
 
 @dataclasses.dataclass(frozen=True)
@@ -39,7 +38,7 @@ class SweepResult:
     mechanism_counts: np.ndarray
 
 
-# A node's rotation R = [[c, s, 0], [-s, c, 0], [0, 0, 1]] (assembly.rotation), each entry as
+# A node's rotation R = [[c, s, 0], [-s, c, 0], [0, 0, 1]] (assembly.node_rotation), each entry as
 # (sign, factor) with factor 0: c, 1: s, 2: 1, 3: 0; a rotated entry's coefficient R[p, i] R[q, j]
 # is then +- one of the products c c, c s, s s, c, s, 1 (or 0), indexed by _PRODUCT.
 _R_SIGN = np.array([[1, 1, 1], [-1, 1, 1], [1, 1, 1]])
@@ -76,7 +75,7 @@ class _DensePlan:
         self.spare = self.n * self.n
         self.n_links = len(model.links)
 
-        rows, cols, _, _, _ = link_entries(model)
+        rows, cols, _, _, _ = placed_link_entries(model)
         link_of = np.repeat(np.arange(self.n_links),
                             [len(self._local(link)[0]) for link in model.links])
         p, q = rows % 3, cols % 3
@@ -99,7 +98,7 @@ class _DensePlan:
     @staticmethod
     def _local(link):
         s = link.section
-        return local_entries(link.length, link.elements, s.EA, s.EI, s.mass_per_length)
+        return chain_entries(link.length, link.elements, s.EA, s.EI, s.mass_per_length)
 
     def slots(self, rows, cols) -> np.ndarray:
         r, c = self.column[rows], self.column[cols]
@@ -139,18 +138,11 @@ class _DensePlan:
 
 
 def _solve_lowest(solve, n_modes: int, expected_mechanisms: int):
-    """``solve(k)`` -> ModalResult of the lowest k modes. Solves for n_modes plus the mechanism
-    modes expected (these sit lowest); if more turn up, solves once more with room for them
-    (at least EXTRA_MODES). Returns (the ModalResult, bool mask of its elastic modes)."""
-    k = n_modes + expected_mechanisms
-    for _ in range(2):
-        result = solve(k)
-        elastic = np.array([kind == ELASTIC for kind in result.kinds])
-        n_mechanism = len(elastic) - int(elastic.sum())
-        if elastic.sum() >= n_modes or len(elastic) < k:  # enough, or every mode of the model
-            break
-        k = n_modes + max(n_mechanism + 1, EXTRA_MODES)
-    return result, elastic
+    """``solve.lowest_elastic`` (``expected_mechanisms``: found at the previous pose, usually
+    the same at the next) and the bool mask of its elastic modes."""
+    # no spare modes: a sweep's poses usually repeat the previous pose's mechanism count
+    result = lowest_elastic(solve, n_modes, expected_mechanisms, spare=0)
+    return result, np.array([kind == ELASTIC for kind in result.kinds])
 
 
 def _lowest_elastic(solve, n_modes: int, expected_mechanisms: int):
@@ -183,8 +175,8 @@ def modal_sweep(topology: Topology, poses: Iterable[Mapping[str, tuple[float, fl
     expected = 0  # mechanism modes found at the previous pose: usually the same at the next
     fixed = layout(topology)
     for i, points in enumerate(iterator):
-        model = build_model(topology, points, fixed)
-        lambda_ref = lambda_scale(model)
+        model = pose_model(topology, points, fixed, warn=i == 0)
+        lambda_ref = in_plane_eigen_scale(model)
         if i == 0:
             T = rigid_reduction(model)  # depends on the topology only
             n = model.n_dofs if T is None else T.shape[1]
@@ -217,8 +209,8 @@ def _craig_bampton_sweep(topology: Topology, poses, n_modes: int, freqs: np.ndar
     fixed = layout(topology)
     plan, expected = None, 0
     for i, points in enumerate(poses):
-        model = build_model(topology, points, fixed)
-        lambda_ref = lambda_scale(model)
+        model = pose_model(topology, points, fixed, warn=i == 0)
+        lambda_ref = in_plane_eigen_scale(model)
         if plan is None:
             lowest = min(lowest_fixed_interface(l.length, l.elements, l.section.EA, l.section.EI,
                                                 l.section.mass_per_length) for l in model.links)

@@ -15,7 +15,11 @@ from flexlink.commands._options import dumps, json_option, out_option
 @click.option("--poses", default=360, show_default=True, type=click.IntRange(3, 100000),
               help="Crank angles over one revolution.")
 @click.option("-e", "--elements", default=None, type=click.IntRange(1, 100000),
-              help="Elements per link (default: the scene's).")
+              help="Elements per link (default: the scene's mesh.elements_per_link if it pins "
+                   "one, else the coarsest mesh meeting --tol at the start pose).")
+@click.option("--tol", default=None, type=click.FloatRange(0, 1, min_open=True),
+              help="Relative frequency tolerance of the default mesh (as in `flexlink modes`) "
+                   "[default: 1e-6].")
 @click.option("--speed", default=None,
               help="Crank speed for the resonance check, e.g. '2000 rev/min' (default: the "
                    "scene's operation.crank_speed; none or 0: no check; negative: the other "
@@ -26,13 +30,14 @@ from flexlink.commands._options import dumps, json_option, out_option
               help="Crank harmonics n = 1 ... this number.")
 @json_option
 @out_option
-def command(scene_path, n_modes, poses, elements, speed, margin, harmonics, as_json, out_dir):
+def command(scene_path, n_modes, poses, elements, tol, speed, margin, harmonics, as_json, out_dir):
     """Natural frequencies of the first modes at every crank angle of SCENE (CSV and PNG in
     --out), the poses where the transmission angle is 90 deg, and the crank harmonics that
     come within --margin of a natural frequency anywhere in the cycle. Writes cycle.csv,
     cycle.png and cycle.json to OUT/<scene>/."""
     from flexlink.studies.cycle import (modal_map, modal_map_csv, plot_map, resonance_speed,
                                         resonances, runs)
+    from flexlink.analysis.mesh import DEFAULT_TOL, choose_mesh
     from flexlink.fileio import prepare_out_dir, write_atomic
     from flexlink.scene import load_scene
     from flexlink.units import parse_quantity
@@ -44,7 +49,8 @@ def command(scene_path, n_modes, poses, elements, speed, margin, harmonics, as_j
     omega = (scene.options.crank_speed if speed is None else
              parse_quantity(speed, "angular speed", source="command line", field="--speed"))
     check_speed, check_note = resonance_speed(omega)
-    result = modal_map(scene, poses, n_modes, elements,
+    mesh = choose_mesh(scene, n_modes, elements, DEFAULT_TOL if tol is None else tol)
+    result = modal_map(scene, poses, n_modes, mesh.elements,
                        progress=progress_bar("modal map", as_json))
     hits = resonances(result, check_speed, margin, harmonics) if check_speed else []
     paths = [folder / "cycle.csv", folder / "cycle.png", folder / "cycle.json"]
@@ -61,6 +67,7 @@ def command(scene_path, n_modes, poses, elements, speed, margin, harmonics, as_j
                   for j in range(f.shape[1])],
         "mu90_crank_deg": {k: [math.degrees(a) for a in v] for k, v in result.mu90.items()},
         "mechanism_modes_max": int(result.mechanism_counts.max()),
+        "mesh": mesh.as_dict(),
         "crank_speed_rev_per_min": None if omega is None else omega * 60 / (2 * math.pi),
         "resonance_check": {"speed_rev_per_min": None if check_speed is None
                                                  else check_speed * 60 / (2 * math.pi),
@@ -79,6 +86,7 @@ def command(scene_path, n_modes, poses, elements, speed, margin, harmonics, as_j
         click.echo(dumps(document))
         return
     click.echo(f"{scene.name}: first {n_modes} elastic modes over {poses} crank angles")
+    click.echo(mesh.describe())
     if scene.synthesis:
         click.echo(f"synthesis {scene.synthesis['method']}: " + ", ".join(
             f"{k} {1e3 * v:.3f} mm" for k, v in scene.synthesis["lengths_m"].items()))

@@ -15,7 +15,11 @@ from flexlink.commands._options import dumps, json_option, out_option
 @click.option("-n", "--modes", "n_modes", default=4, show_default=True,
               type=click.IntRange(1, 200), help="Number of elastic modes to export.")
 @click.option("-e", "--elements", default=None, type=click.IntRange(1, 100000),
-              help="Elements per link (default: the scene's mesh.elements_per_link).")
+              help="Elements per link (default: the scene's mesh.elements_per_link if it pins "
+                   "one, else the coarsest mesh meeting --tol).")
+@click.option("--tol", default=None, type=click.FloatRange(0, 1, min_open=True),
+              help="Relative frequency tolerance of the default mesh (as in `flexlink modes`) "
+                   "[default: 1e-6].")
 @click.option("--method", type=click.Choice(["auto", "dense", "sparse"]), default="auto",
               show_default=True, help="Eigen solver.")
 @click.option("--subdivide", default=4, show_default=True, type=click.IntRange(1, 64),
@@ -30,13 +34,14 @@ from flexlink.commands._options import dumps, json_option, out_option
                    "plot (matplotlib) is drawn either way.")
 @json_option
 @out_option
-def command(scenes, n_modes, elements, method, subdivide, phases, amplitude, pictures, as_json,
+def command(scenes, n_modes, elements, tol, method, subdivide, phases, amplitude, pictures, as_json,
             out_dir):
     """Write, for each SCENE (a scene file or a folder of them), the first modes as a .vtu, a
     .pvd animation per mode, a PNG per mode, an overview sheet and a frequency plot, into
     OUT/<scene file name>/, and a list of everything in OUT/export.json."""
     from tqdm import tqdm
 
+    from flexlink.analysis.mesh import DEFAULT_TOL, choose_mesh
     from flexlink.analysis.modal import analyze
     from flexlink.errors import InputError
     from flexlink.output.export import ExportSettings, export_case
@@ -53,25 +58,27 @@ def command(scenes, n_modes, elements, method, subdivide, phases, amplitude, pic
     if clash:
         raise InputError(f"two scene files would write to the same folder {clash[0]!r}",
                          source="command line", expected="scene files with different names")
-    cases = []
+    cases, meshes = [], []
     bar = tqdm(files, desc="export", unit="scene", file=sys.stderr,
                disable=as_json or not sys.stderr.isatty())
     for path in bar:
         scene = load_scene(path)
-        result = analyze(scene, n_modes, elements, method)
+        mesh = choose_mesh(scene, n_modes, elements, DEFAULT_TOL if tol is None else tol)
+        result = analyze(scene, n_modes, mesh.elements, method)
         summary = case_summary(result, n_modes)
         written = export_case(result, summary, out, settings)
-        cases.append({"scene": scene.name, "file": str(path),
+        cases.append({"scene": scene.name, "file": str(path), "mesh": mesh.as_dict(),
                       "frequencies_Hz": [row["computed_Hz"] for row in summary["modes"]],
                       "files": written})
+        meshes.append(mesh)
     document = {"command": "export", "out": str(out), "cases": cases}
     write_atomic(out / "export.json", dumps(document))
     if as_json:
         click.echo(dumps(document))
         return
-    for case in cases:
+    for case, mesh in zip(cases, meshes):
         f = case["files"]
         click.echo(f"{case['scene']}: {len(case['frequencies_Hz'])} modes -> {f['folder']}/  "
                    f"({len(f['vtu'])} .vtu, {len(f['pvd'])} .pvd with {len(f['frames'])} frames, "
-                   f"{len(f['pictures'])} pictures, {len(f['plot'])} plot)")
+                   f"{len(f['pictures'])} pictures, {len(f['plot'])} plot)\n  {mesh.describe()}")
     click.echo(f"written: {out / 'export.json'}")

@@ -29,8 +29,8 @@ def command(scenes, n_modes, elements, method, tol, as_json, out_dir):
     compared with the scene's reference columns (measured Ex, published FE). Writes
     OUT/<scene>/modes.json and modes.csv per scene, and OUT/modes.json and modes.csv with
     every scene when there are several."""
+    from flexlink.analysis.mesh import DEFAULT_TOL, choose_mesh
     from flexlink.analysis.modal import analyze
-    from flexlink.studies.convergence import DEFAULT_TOL
     from flexlink.analysis.families import elastic_modes, scene_family
     from flexlink.fileio import prepare_out_dir, write_atomic
     from flexlink.output.report import case_summary, comparison_csv, format_case
@@ -43,16 +43,17 @@ def command(scenes, n_modes, elements, method, tol, as_json, out_dir):
     out = prepare_out_dir(out_dir)
     files = scene_files(scenes)
     folders = scene_folders(out, files)
-    summaries = []
+    summaries, meshes = [], []
     for path in files:
         scene = load_scene(path)
-        chosen, mesh = _mesh(scene, n_modes, elements, DEFAULT_TOL if tol is None else tol)
-        result = analyze(scene, n_modes, chosen, method)
+        mesh = choose_mesh(scene, n_modes, elements, DEFAULT_TOL if tol is None else tol)
+        result = analyze(scene, n_modes, mesh.elements, method)
         family = scene_family(scene)
         other = {} if family == "planar" else dict(
-            zip(("computed", "kinds"), elastic_modes(scene, n_modes, chosen, method)))
-        summaries.append({**case_summary(result, n_modes, family, **other), "mesh": mesh,
-                          "warnings": list(result.warnings)})
+            zip(("computed", "kinds"), elastic_modes(scene, n_modes, mesh.elements, method)))
+        summaries.append({**case_summary(result, n_modes, family, **other),
+                          "mesh": mesh.as_dict(), "warnings": list(result.warnings)})
+        meshes.append(mesh)
     parts = [(folder / "modes.json", folder / "modes.csv", [s])
              for folder, s in zip(folders, summaries)]
     if len(summaries) > 1:  # the combined table of a multi-scene run
@@ -67,8 +68,8 @@ def command(scenes, n_modes, elements, method, tol, as_json, out_dir):
     if as_json:
         click.echo(dumps(document))
         return
-    for s in summaries:
-        click.echo(format_case(s) + "\n" + _mesh_line(s["mesh"]) + "".join(
+    for s, mesh in zip(summaries, meshes):
+        click.echo(format_case(s) + "\n" + mesh.describe() + "".join(
             f"\nwarning: {w}" for w in s["warnings"]) + "\n")
     overall = document["overall_mean_abs_error_pct"]
     if overall:
@@ -83,28 +84,3 @@ def _document(summaries: list[dict], files) -> dict:
     return {"command": "modes", "cases": summaries,
             "overall_mean_abs_error_pct": overall_mean_abs(summaries),
             "files": [str(f) for f in files]}
-
-def _mesh(scene, n_modes, elements, tol):
-    """(elements per link, how it was chosen) for one scene: command line, scene, or the
-    tolerance rule of ``convergence.mesh_for_tolerance``."""
-    from flexlink.studies.convergence import ORDER, mesh_for_tolerance
-
-    if elements is not None:
-        return elements, {"rule": "command line (-e)", "elements_per_link": elements}
-    if scene.elements_per_link is not None:
-        return scene.elements_per_link, {"rule": "scene (mesh.elements_per_link)",
-                                         "elements_per_link": scene.elements_per_link}
-    rule = mesh_for_tolerance(scene, n_modes, tol)
-    return rule.elements, {"rule": "tolerance", "elements_per_link": rule.elements,
-                           "tolerance": tol, "estimated_relative_error": rule.estimate,
-                           "richardson_order": ORDER}
-
-
-def _mesh_line(mesh: dict) -> str:
-    if mesh["rule"] != "tolerance":
-        return (f"mesh: {mesh['elements_per_link']} elements/link from the {mesh['rule']}; "
-                "discretisation error not estimated (omit it to use --tol)")
-    return (f"mesh: {mesh['elements_per_link']} elements/link, the coarsest meeting the relative "
-            f"frequency tolerance {mesh['tolerance']:g} (estimated discretisation error "
-            f"{mesh['estimated_relative_error']:.1e}, order-{mesh['richardson_order']} Richardson "
-            "estimate)")

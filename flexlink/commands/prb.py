@@ -23,14 +23,11 @@ def command(scene_path, n_modes, elements, as_json, out_dir):
     """Modes of SCENE (a scene with a [prb] table) at its start pose, where the compliant strip
     is unstressed, with the strip as a flexible beam (FE), and the first frequency of the
     pseudo-rigid-body model (rigid link + torsional spring K = gamma K_Theta E I / l)."""
-    from flexlink.analysis.modal import lambda_scale
-    from flexlink.fe.assembly import assemble, reduction
+    from flexlink.analysis.modal import pose_modes
     from flexlink.fileio import prepare_out_dir, write_atomic
-    from flexlink.fe.model import build_model
     from flexlink.errors import InputError
     from flexlink.studies.prb import prb_frequency
     from flexlink.scene import load_scene
-    from flexlink.analysis.solve import ELASTIC, solve_modes
 
     out = prepare_out_dir(out_dir)
     scene = load_scene(scene_path)
@@ -39,10 +36,8 @@ def command(scene_path, n_modes, elements, as_json, out_dir):
         raise InputError("no [prb] table: nothing to compare", source=scene.path, field="prb")
     state = scene.linkage.solve(scene.start, scene.guess)
     prb = prb_frequency(scene, state, p.strip, p.pivot, p.link, p.clamp, p.gamma, p.K_theta)
-    model = build_model(scene.topology(elements), state.points)
-    K, M = assemble(model)
-    modes = solve_modes(K, M, n_modes + 4, T=reduction(model), lambda_ref=lambda_scale(model))
-    fe = [float(f) for f, k in zip(modes.frequencies, modes.kinds) if k == ELASTIC][:n_modes]
+    modes = pose_modes(scene.topology(elements), state.points, n_modes)[1]
+    fe = [float(f) for f in modes.elastic_frequencies[:n_modes]]
     document = {
         "command": "prb", "scene": scene.name, "synthesis": scene.synthesis,
         "pose_crank_deg": math.degrees(scene.start),

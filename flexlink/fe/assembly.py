@@ -16,11 +16,11 @@ import math
 import numpy as np
 import scipy.sparse as sp
 
-from flexlink.fe.link import link_entries as local_entries
+from flexlink.fe.link import chain_entries
 from flexlink.fe.model import GROUND, FrameModel
 
 
-def rotation(angle: float) -> np.ndarray:
+def node_rotation(angle: float) -> np.ndarray:
     """3x3 R with local = R @ global for one node, ``angle`` [rad] of the link axis."""
     c, s = math.cos(angle), math.sin(angle)
     return np.array([[c, s, 0.0], [-s, c, 0.0], [0.0, 0.0, 1.0]])
@@ -57,7 +57,7 @@ def _rotated(matrix, angle: float, nodes: int):
     return sp.coo_matrix((values[0], (rows, cols)), shape=(n, n)).tocsr()
 
 
-def link_entries(model: FrameModel):
+def placed_link_entries(model: FrameModel):
     """All links' local entries at their global node offsets, not yet rotated:
     (rows, cols, values (2, e) = K and M, cos, sin (e,) of each entry's link)."""
     parts = []
@@ -66,7 +66,7 @@ def link_entries(model: FrameModel):
         if link.first_node != next_node:  # build_model numbers links contiguously
             raise AssertionError("links must own consecutive node ranges")
         s = link.section
-        rows, cols, k, m = local_entries(link.length, link.elements, s.EA, s.EI,
+        rows, cols, k, m = chain_entries(link.length, link.elements, s.EA, s.EI,
                                          s.mass_per_length)
         offset = 3 * link.first_node
         parts.append((rows + offset, cols + offset, k, m,
@@ -106,7 +106,7 @@ def point_mass_entries(model: FrameModel):
 def assemble(model: FrameModel) -> tuple[sp.csr_matrix, sp.csr_matrix]:
     """(K [N/m, N, N m per rad], M [kg, kg m, kg m^2]) for the whole model, CSR, not reduced."""
     n = model.n_dofs
-    rows, cols, values = rotated_entries(*link_entries(model))
+    rows, cols, values = rotated_entries(*placed_link_entries(model))
     k_rows, k_cols, k_vals = spring_entries(model)
     m_rows, m_cols, m_vals = point_mass_entries(model)
     K = sp.coo_matrix((np.concatenate([values[0], k_vals]),

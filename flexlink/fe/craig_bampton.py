@@ -18,7 +18,7 @@ Axial (u) and bending (v, rz) DOFs of a straight link are uncoupled in its frame
 is reduced on its own; that keeps every kept mode purely axial or purely bending, and lets a
 link of another length L reuse the reduction made at L0 exactly: with r = L / L0 the chain
 scales as K_axial / r, M_axial r, K_bending r^-3 D K D, M_bending r D M D (D = r on rotation
-DOFs, as ``link.link_entries`` scales a unit element), and the reduced matrices follow with the
+DOFs, as ``link.chain_entries`` scales a unit element), and the reduced matrices follow with the
 same diagonal scaling (D on the boundary rotations only; the modal coordinates absorb the rest).
 
 Mode choice (``CUTOFF``): a link keeps every fixed-interface mode whose frequency is at most
@@ -201,7 +201,8 @@ def lowest_fixed_interface(length: float, elements: int, EA: float, EI: float,
 
 def boundary_model(lay: _Layout, model: FrameModel) -> FrameModel:
     """The full model's end nodes only (node 2 l: start of link l, 2 l + 1: its end), with the
-    layout's springs and joint masses renumbered onto them. Every spring and joint mass of the
+    model's springs (the layout's, some made rigid by ``pose.pose_model``) and joint masses
+    renumbered onto them. Every spring and joint mass of the
     full model sits on an end node, so nothing is lost (checked)."""
     node_map = {}
     for index, link in enumerate(model.links):
@@ -216,7 +217,7 @@ def boundary_model(lay: _Layout, model: FrameModel) -> FrameModel:
             raise AssertionError("a spring acts on an inner node of a link")
         return 3 * node_map[node] + k
 
-    s = lay.springs
+    s = model.springs
     springs = Springs(np.array([dof(d) for d in s.dof_a], dtype=np.int64),
                       np.array([dof(d) for d in s.dof_b], dtype=np.int64),
                       np.asarray(s.stiffness, dtype=float), s.labels)

@@ -94,14 +94,14 @@ def link_matrices(length: float, elements: int, EA: float, EI: float, mass_per_l
     length [m], elements (>= 1), EA [N], EI [N m^2], mass_per_length [kg/m].
     Returns (K, M) of size 3 (elements + 1), DOF order as in the module docstring.
     """
-    rows, cols, k, m = link_entries(length, elements, EA, EI, mass_per_length)
+    rows, cols, k, m = chain_entries(length, elements, EA, EI, mass_per_length)
     n = 3 * (elements + 1)
     return (sp.coo_matrix((k, (rows, cols)), shape=(n, n)).tocsr(),
             sp.coo_matrix((m, (rows, cols)), shape=(n, n)).tocsr())
 
 
 @functools.lru_cache(maxsize=256)
-def link_entries(length: float, elements: int, EA: float, EI: float, mass_per_length: float):
+def chain_entries(length: float, elements: int, EA: float, EI: float, mass_per_length: float):
     """The same K and M as ``link_matrices`` as one list of local entries, for assemblers
     that rotate and scatter many links at once: (rows, cols, k_values, m_values), read-only
     arrays; K[rows, cols] and M[rows, cols] sum over repeated (row, col) pairs. Cached, since a

@@ -21,7 +21,7 @@ import dataclasses
 
 import numpy as np
 
-from flexlink.fe.assembly import rotation
+from flexlink.fe.assembly import node_rotation
 from flexlink.fe.model import FrameModel
 
 
@@ -81,7 +81,7 @@ def sample_shapes(model: FrameModel, shapes: np.ndarray, subdivisions: int = 4) 
     for link_index, link in enumerate(model.links):
         n_el = link.elements
         h = link.length / n_el
-        R = rotation(link.angle)[:2, :2]  # global (ux, uy) -> local (u, v)
+        R = node_rotation(link.angle)[:2, :2]  # global (ux, uy) -> local (u, v)
         nodal = shapes.reshape(-1, 3, k)[link.nodes]  # (n_el + 1, 3, k)
         local = np.einsum("ij,njk->nik", R, nodal[:, :2])  # (n_el + 1, 2, k): u, v
         u, v, rz = local[:, 0], local[:, 1], nodal[:, 2]

@@ -33,22 +33,33 @@ def element_stiffness_scale(model: FrameModel) -> tuple[float, float]:
     return trans, rot
 
 
-def rigid_threshold(model: FrameModel, ratio: float = RIGID_RATIO) -> np.ndarray:
-    """Per spring of ``model``: the stiffness [N/m or N m/rad] above which it is made rigid."""
-    trans, rot = element_stiffness_scale(model)
-    rotational = model.springs.dof_a % 3 == 2
+def rigid_threshold(model: FrameModel, ratio: float = RIGID_RATIO, scales=None,
+                    rotational=None) -> np.ndarray:
+    """Per spring of ``model``: the stiffness [N/m or N m/rad] above which it is made rigid.
+
+    ``scales``: (translational, rotational) element stiffness of the model's family, default
+    ``element_stiffness_scale`` (in-plane frame); ``rotational``: per spring, whether it acts
+    on a rotation, default the in-plane DOF order (rz every third DOF)."""
+    trans, rot = element_stiffness_scale(model) if scales is None else scales
+    if rotational is None:
+        rotational = model.springs.dof_a % 3 == 2
     return ratio * np.where(rotational, rot, trans)
 
 
-def rigidified(model: FrameModel, ratio: float = RIGID_RATIO) -> FrameModel:
-    """``model`` with every finite spring at or above ``rigid_threshold`` made infinite."""
+def rigidified(model: FrameModel, ratio: float = RIGID_RATIO, warn: bool = True, scales=None,
+               rotational=None) -> FrameModel:
+    """``model`` with every finite spring at or above ``rigid_threshold`` made infinite.
+    ``warn``: log which springs were switched (a sweep warns at its first pose only);
+    ``scales``, ``rotational``: as in ``rigid_threshold``, for another model family."""
     springs = model.springs
-    switch = np.isfinite(springs.stiffness) & (springs.stiffness >= rigid_threshold(model, ratio))
+    threshold = rigid_threshold(model, ratio, scales, rotational)
+    switch = np.isfinite(springs.stiffness) & (springs.stiffness >= threshold)
     if not switch.any():
         return model
     labels = sorted({springs.labels[i] for i in np.flatnonzero(switch)})
-    log.warning("%d spring(s) at least %g x the stiffest element are treated as rigid (exact "
-                "constraint) instead of as a penalty: %s", int(switch.sum()), ratio,
-                ", ".join(labels))
+    if warn:
+        log.warning("%d spring(s) at least %g x the stiffest element are treated as rigid (exact "
+                    "constraint) instead of as a penalty: %s", int(switch.sum()), ratio,
+                    ", ".join(labels))
     stiffness = np.where(switch, np.inf, springs.stiffness)
     return dataclasses.replace(model, springs=dataclasses.replace(springs, stiffness=stiffness))

@@ -20,16 +20,16 @@ import statistics
 
 import numpy as np
 
+from flexlink.analysis.mesh import DEFAULT_TOL, ORDER, MeshRule, mesh_for_tolerance  # noqa: F401 (re-exported)
 from flexlink.analysis.modal import analyze
 from flexlink.errors import NumericalError
 from flexlink.fileio import write_atomic
 from flexlink.scene import Scene
 from flexlink.analysis.solve import DENSE_LIMIT
 
-ORDER = 2  # see module docstring; the second extrapolation step uses ORDER + 2
+# ORDER: see module docstring; the second extrapolation step uses ORDER + 2
 REPEAT_BUDGET_S = 5.0  # a level stops repeating once its runs took this long (slow dense levels)
 ORDER_SLACK = 0.5  # observed order within ORDER +- this counts as asymptotic
-DEFAULT_TOL = 1e-6  # relative frequency tolerance of the default mesh rule
 
 
 @dataclasses.dataclass(frozen=True)
@@ -244,38 +244,6 @@ def convergence_study(scene: Scene, n_modes: int, max_elements: int, repeats: in
                     for c, e, msg in refused],
     }
     return ConvergenceStudy(levels=levels, reference=ref, document=document)
-
-
-@dataclasses.dataclass(frozen=True)
-class MeshRule:
-    """The default mesh: the coarsest level 2^k whose Richardson error estimate
-    |f_h - f_h/2| / (2^p - 1) / f is at most ``tol`` for every reported mode."""
-
-    elements: int
-    tol: float
-    estimate: float
-    history: tuple[tuple[int, float], ...]  # (elements, estimate) per refinement step
-
-
-def mesh_for_tolerance(scene: Scene, n_modes: int, tol: float = DEFAULT_TOL,
-                       method: str = "sparse", start: int = 4, max_elements: int = 4096) -> MeshRule:
-    """Refine by doubling from ``start`` until the estimated relative error <= ``tol``.
-
-    The energy-refined frequencies do not depend on the eigen solver to 1e-12, so the fast
-    sparse one serves for the estimate whatever solver the final answer uses."""
-    previous = analyze(scene, n_modes, start, method).elastic_frequencies(n_modes)
-    elements, history = start, []
-    while elements < max_elements:
-        elements *= 2
-        current = analyze(scene, n_modes, elements, method).elastic_frequencies(n_modes)
-        n = min(len(previous), len(current))
-        estimate = float((np.abs(current[:n] - previous[:n]) / (2**ORDER - 1) / current[:n]).max())
-        history.append((elements, estimate))
-        if estimate <= tol:
-            return MeshRule(elements, tol, estimate, tuple(history))
-        previous = current
-    raise NumericalError(f"no mesh up to {max_elements} elements per link meets the relative "
-                         f"frequency tolerance {tol:g} (last estimate {history[-1][1]:.2g})")
 
 
 def plot_error_time(levels: list[Level], reference: np.ndarray, path, title: str = "") -> None:

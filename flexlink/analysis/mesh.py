@@ -1,0 +1,113 @@
+"""Which mesh a command uses, and why: one rule for ``modes``, ``export`` and ``cycle``.
+
+In order: the command line (``-e``), else the mesh the scene pins
+(``mesh.elements_per_link``), else the coarsest of 8, 16, 32, ... elements per link whose
+Richardson error estimate |f_h - f_h/2| / (2^p - 1) / f meets a relative frequency tolerance
+at the scene's pose (for a general scene, the pose at its start crank angle).
+
+p = ORDER = 2: the axial linear element with consistent mass converges at O(h^2) in the
+eigenvalue, and every mode of a pinned frame stretches its links a little
+(``studies.convergence`` measures it).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+
+from flexlink.analysis.modal import pose_modes
+from flexlink.analysis.precision import roundoff_ratio
+from flexlink.analysis.solve import LOST_LIMIT
+from flexlink.errors import NumericalError
+
+ORDER = 2  # leading order of the frequency error in h (module docstring)
+DEFAULT_TOL = 1e-6  # relative frequency tolerance of the default mesh rule
+COMMAND_LINE, SCENE, TOLERANCE = "command line (-e)", "scene (mesh.elements_per_link)", "tolerance"
+
+
+@dataclasses.dataclass(frozen=True)
+class MeshRule:
+    """``elements`` per link and the ``rule`` that chose them (COMMAND_LINE, SCENE or
+    TOLERANCE); for TOLERANCE also the tolerance, the estimated relative error and
+    (elements, estimate) per refinement step."""
+
+    elements: int
+    rule: str = TOLERANCE
+    tol: float | None = None
+    estimate: float | None = None
+    history: tuple[tuple[int, float], ...] = ()
+
+    def as_dict(self) -> dict:
+        """For a command's JSON output."""
+        out = {"rule": self.rule, "elements_per_link": self.elements}
+        if self.rule == TOLERANCE:
+            out.update(tolerance=self.tol, estimated_relative_error=self.estimate,
+                       richardson_order=ORDER)
+        return out
+
+    def describe(self) -> str:
+        """One line for a command's text output."""
+        if self.rule != TOLERANCE:
+            return (f"mesh: {self.elements} elements/link from the {self.rule}; discretisation "
+                    "error not estimated (omit it to use --tol)")
+        return (f"mesh: {self.elements} elements/link, the coarsest meeting the relative "
+                f"frequency tolerance {self.tol:g} (estimated discretisation error "
+                f"{self.estimate:.1e}, order-{ORDER} Richardson estimate)")
+
+
+
+
+def choose_mesh(scene, n_modes: int, elements: int | None = None,
+                tol: float = DEFAULT_TOL) -> MeshRule:
+    """The mesh for ``scene``: ``elements`` if given, else the scene's pinned mesh, else
+    ``mesh_for_tolerance``; the MeshRule says which."""
+    if elements is not None:
+        return MeshRule(elements, COMMAND_LINE)
+    if scene.elements_per_link is not None:  # pinned by [mesh] elements_per_link
+        return MeshRule(scene.elements_per_link, SCENE)
+    return mesh_for_tolerance(scene, n_modes, tol)
+
+
+def mesh_for_tolerance(scene, n_modes: int, tol: float = DEFAULT_TOL, method: str = "sparse",
+                       start: int = 4, max_elements: int = 4096) -> MeshRule:
+    """Refine by doubling from ``start`` until the estimated relative error <= ``tol``.
+
+    The energy-refined frequencies do not depend on the eigen solver to 1e-12, so the fast
+    sparse one serves for the estimate whatever solver the final answer uses. A tolerance
+    below what double precision reaches for this model is refused (NumericalError) with the
+    best estimate reached."""
+    points = scene.rigid_pose().joints
+
+    def frequencies(elements):
+        topology = scene.topology(elements)
+        if roundoff_ratio(topology, points) > LOST_LIMIT:
+            return None
+        try:
+            modes = pose_modes(topology, points, n_modes, method)[1]
+        except NumericalError:  # past the precision limit: the solver's own check refused it
+            return None
+        return modes.elastic_frequencies[:n_modes]
+
+    previous = frequencies(start)
+    elements, history = start, []
+    while elements < max_elements:
+        current = frequencies(2 * elements)
+        if current is None:
+            break
+        elements *= 2
+        estimate = float((np.abs(current - previous) / (2**ORDER - 1) / current).max())
+        history.append((elements, estimate))
+        if estimate <= tol:
+            return MeshRule(elements, TOLERANCE, tol, estimate, tuple(history))
+        previous = current
+    best = min(history, key=lambda h: h[1]) if history else (start, float("nan"))
+    if elements < max_elements:
+        raise NumericalError(
+            f"the relative frequency tolerance {tol:g} is below what double precision reaches "
+            f"for this model: the best Richardson error estimate was {best[1]:.1g} at {best[0]} "
+            f"elements/link, and {2 * elements} elements/link lose the lowest modes to "
+            f"round-off in K. Ask for a tolerance of {best[1]:.1g} or more")
+    raise NumericalError(f"no mesh up to {max_elements} elements per link meets the relative "
+                         f"frequency tolerance {tol:g} (best estimate {best[1]:.2g} at {best[0]} "
+                         "elements/link)")
