@@ -8,6 +8,7 @@ from pathlib import Path
 
 import click
 
+from flexlink.commands._failures import names_scene
 from flexlink.commands._options import dumps, json_option, out_option
 
 
@@ -19,6 +20,7 @@ from flexlink.commands._options import dumps, json_option, out_option
               help="Elements per link (default: the scene's).")
 @json_option
 @out_option
+@names_scene("scene_path")
 def command(scene_path, n_modes, elements, as_json, out_dir):
     """Modes of SCENE (a scene with a [prb] table) at its start pose, where the compliant strip
     is unstressed, with the strip as a flexible beam (FE), and the first frequency of the
