@@ -167,3 +167,34 @@ def test_editor_schema_rejects_a_typo_inside_a_noted_table():
     data["links"]["crank"]["section"]["widht"] = "1 mm"
     with pytest.raises(jsonschema.ValidationError, match="widht"):
         jsonschema.validate(data, json_schema())
+
+
+def test_rigid_tilt_default_is_listed_only_where_a_family_uses_it():
+    planar = load_scene(CASE1)
+    assert "joints.Ktilt" not in {a.field for a in planar.assumptions}
+    out_of_plane = load_scene(CASE1, overrides={"model.family": "out-of-plane"})
+    note = {a.field: a.note for a in out_of_plane.assumptions}["joints.Ktilt"]
+    assert "O2, A, B, O4" in note and "rigid" in note
+    given = load_scene(CASE1, overrides={"model.family": "3d", "joints.Ktilt": "10 N*m/rad"})
+    assert "joints.Ktilt" not in {a.field for a in given.assumptions}
+    assert set(given.options.tilt.values()) == {10.0}
+
+
+def test_every_command_takes_a_general_scene_or_refuses_it_clearly(tmp_path):
+    from click.testing import CliRunner
+
+    from flexlink.cli import main
+
+    wiper = str(ROOT / "scenes" / "wiper.toml")
+    run = CliRunner().invoke(main, ["modes", wiper, "-e", "4", "--json", "--out", str(tmp_path)])
+    assert run.exit_code == 0, run.output
+    case = json.loads(run.stdout)["cases"][0]
+    assert case["pose"]["theta2_deg"] == 0.0 and len(case["modes"]) == 4
+    # the same frequencies as the library's analysis of the same scene
+    from flexlink.analysis.modal import analyze
+    expected = analyze(load_scene(wiper), 4, 4).elastic_frequencies(4)
+    assert [m["computed_Hz"] for m in case["modes"]] == pytest.approx(expected, rel=1e-12)
+    for command in (["stability"], ["calibrate", "--starts", "1"]):
+        run = CliRunner().invoke(main, [command[0], wiper, *command[1:], "--out", str(tmp_path)])
+        assert run.exit_code == 2 and "general scene" in run.stderr, run.output
+        assert run.stderr.count("\n") == 1

@@ -54,6 +54,6 @@ def build_four_bar(src: SceneSource, sf: schema.SceneFile) -> Scene:
         joints=parts.joints(src, sf, list(JOINTS), GROUND, welded_allowed=False),
         drive=parts.drive(src, sf, {n: (a, b) for n, a, b in LINKS}, GROUND),
         elements_per_link=sf.mesh.elements_per_link, reference=parts.reference(sf),
-        assumptions=parts.unique(assumptions), options=parts.options(src, sf, list(JOINTS)),
+        assumptions=parts.unique(assumptions + parts.default_assumptions(src, sf, list(JOINTS))), options=parts.options(src, sf, list(JOINTS)),
         composite=parts.composite(sf), origin=dict(src.origin))
 

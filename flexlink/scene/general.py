@@ -142,5 +142,5 @@ def build_general(src: SceneSource, sf: schema.SceneFile) -> Scene:
         links=tuple(links), joints=parts.joints(src, sf, used, set(ground)) if links else (),
         drive=parts.drive(src, sf, {l.name: (l.start, l.end) for l in links}, set(ground)),
         elements_per_link=sf.mesh.elements_per_link, reference=parts.reference(sf),
-        assumptions=parts.unique(assumptions), options=parts.options(src, sf, used),
+        assumptions=parts.unique(assumptions + parts.default_assumptions(src, sf, used)), options=parts.options(src, sf, used),
         synthesis=synthesis, composite=parts.composite(sf), origin=dict(src.origin))
