@@ -10,14 +10,15 @@ progress bar on stderr.
 from __future__ import annotations
 
 import importlib
-import logging
 import pkgutil
 import sys
 
 import click
 
 from flexlink import commands as _commands_pkg
+from flexlink import logbook
 from flexlink.errors import FlexlinkError
+from flexlink.fileio import Terminated, signals_raise
 
 
 class FlexlinkGroup(click.Group):
@@ -40,15 +41,20 @@ class FlexlinkGroup(click.Group):
         except FlexlinkError as exc:
             click.echo(f"flexlink: error: {exc}", err=True)
             sys.exit(2)
+        except Terminated as exc:  # temporary files are gone by now (fileio's finally clauses)
+            click.echo(f"flexlink: {exc}", err=True)
+            sys.exit(128 + exc.signum)
 
 
 @click.group(cls=FlexlinkGroup)
 @click.version_option(package_name="flexlink", prog_name="flexlink")  # from installed metadata
 @click.option("-v", "--verbose", is_flag=True, help="Log details to stderr.")
-def main(verbose):
+@click.pass_context
+def main(ctx, verbose):
     """flexlink: natural frequencies and mode shapes of planar linkages with flexible links."""
-    logging.basicConfig(level=logging.INFO if verbose else logging.WARNING,
-                        format="%(levelname)s %(name)s: %(message)s")
+    signals_raise()
+    once = logbook.configure(verbose)
+    ctx.call_on_close(lambda: logbook.report_repeats(once))
 
 
 if __name__ == "__main__":

@@ -1,58 +1,200 @@
-"""Atomic file output: write to a temporary file in the same folder, then rename over the
-target, so an existing result is never left half-written."""
+"""Atomic file output: nothing a run writes is ever seen half-written, and nothing it leaves
+behind outlives it.
+
+- A file goes to a temporary file in the target's folder, then is renamed over the target.
+- A folder of files (one scene's export) is written into a staging folder beside the target,
+  then swapped in whole (``staged_folder``).
+- Temporary names carry the writing process's id (``.<name>.~<pid>~<random>.tmp``), so a later
+  run can tell the leftovers of a dead process from the files of a live one
+  (``sweep_stale``).
+- ``signals_raise`` turns SIGTERM (and SIGINT) into an exception, so the ``finally`` clauses
+  here remove their temporary files when a run is stopped.
+- Final files and folders get the permissions of a plain ``open``/``mkdir`` under the user's
+  umask (``mkstemp``/``mkdtemp`` would leave them private, 0600/0700).
+"""
 
 from __future__ import annotations
 
+import contextlib
 import os
+import re
+import shutil
+import signal
 import tempfile
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from pathlib import Path
 
 from flexlink.errors import OutputError
 
+# .<target name>.~<pid>~<random>.tmp for files, .<target name>.~<pid>~<random>.stage for
+# staging folders, .<target name>.~<pid>~<random>.old for a folder being replaced
+_TEMP = re.compile(r"^\.(?P<name>.+)\.~(?P<pid>\d+)~[^.]+\.(?P<kind>tmp|stage|old)$")
+# temporary files of earlier flexlink versions (no process id): .<target name>.<8 random>.tmp
+_LEGACY_TEMP = re.compile(r"^\..+\.[a-z0-9_]{8}\.tmp$")
+SWEEP_DEPTH = 2  # out/<scene>/<scene>_mode<n>/: the deepest folder flexlink writes into
+
+
+class Terminated(BaseException):
+    """The process received SIGTERM; raised by the handler of ``signals_raise`` so cleanup
+    runs. A BaseException, like KeyboardInterrupt: no ``except Exception`` swallows it."""
+
+    def __init__(self, signum: int):
+        self.signum = signum
+        super().__init__(f"stopped by signal {signal.Signals(signum).name}")
+
+
+def _raise_terminated(signum, frame):
+    raise Terminated(signum)
+
+
+def signals_raise() -> None:
+    """Make SIGTERM raise ``Terminated`` in the main thread (SIGINT already raises
+    KeyboardInterrupt), so temporary files and staging folders are removed on the way out."""
+    signal.signal(signal.SIGTERM, _raise_terminated)
+
+
+def _umask() -> int:
+    mask = os.umask(0o022)  # the only portable way to read it is to set it
+    os.umask(mask)
+    return mask
+
+
+def _publish_mode(path: Path, directory: bool = False) -> None:
+    """Give ``path`` the permissions ``open`` (0666) or ``mkdir`` (0777) would under the umask."""
+    os.chmod(path, (0o777 if directory else 0o666) & ~_umask())
+
+
+def _temp_prefix(path: Path) -> str:
+    return f".{path.name}.~{os.getpid()}~"
+
+
+def _remove(path: Path) -> None:
+    if path.is_dir() and not path.is_symlink():
+        shutil.rmtree(path, ignore_errors=True)
+    else:
+        with contextlib.suppress(FileNotFoundError):
+            path.unlink()
+
+
+def _alive(pid: int) -> bool:
+    if pid == os.getpid():
+        return True
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:  # someone else's process: alive
+        return True
+    return True
+
+
+def sweep_stale(folder: str | Path, depth: int = SWEEP_DEPTH) -> list[Path]:
+    """Remove the temporary files and staging folders that processes no longer running left in
+    ``folder`` and its (non-hidden) subfolders down to ``depth``; put back a replaced folder
+    whose swap was cut short. Returns what was removed."""
+    folder = Path(folder)
+    removed = []
+    try:
+        entries = list(folder.iterdir())
+    except OSError:
+        return removed
+    for entry in entries:
+        match = _TEMP.match(entry.name)
+        if match and not _alive(int(match["pid"])):
+            target = entry.with_name(match["name"])
+            if match["kind"] == "old" and not target.exists():
+                entry.rename(target)  # the swap died between its two renames: undo it
+                continue
+            _remove(entry)
+            removed.append(entry)
+        elif not match and _LEGACY_TEMP.match(entry.name) and entry.is_file():
+            _remove(entry)
+            removed.append(entry)
+        elif depth > 0 and entry.is_dir() and not entry.name.startswith("."):
+            removed += sweep_stale(entry, depth - 1)
+    return removed
+
 
 def prepare_out_dir(out: str | Path) -> Path:
-    """Create ``out`` if needed and prove it is writable, before any long computation."""
+    """Create ``out`` if needed, prove it is writable before any long computation, and sweep
+    what interrupted runs left in it."""
     out = Path(out)
     try:
         out.mkdir(parents=True, exist_ok=True)
-        with tempfile.NamedTemporaryFile(dir=out, prefix=".probe-"):
+        with tempfile.NamedTemporaryFile(dir=out, prefix=_temp_prefix(Path("probe")), suffix=".tmp"):
             pass
     except OSError as exc:
         raise OutputError(f"output folder {out} is not writable: {exc.strerror or exc}") from None
+    sweep_stale(out)
     return out
 
 
-def write_atomic(path: str | Path, data: str | bytes) -> Path:
-    """Write ``data`` to ``path`` atomically (temp file + rename)."""
-    path = Path(path)
-    mode = "wb" if isinstance(data, bytes) else "w"
-    try:
-        fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-        with os.fdopen(fd, mode, **({} if mode == "wb" else {"encoding": "utf-8", "newline": ""})) as fh:
-            fh.write(data)
-        os.replace(tmp, path)
-    except OSError as exc:
-        if "tmp" in locals() and os.path.exists(tmp):
-            os.unlink(tmp)
-        raise OutputError(f"cannot write {path}: {exc.strerror or exc}") from None
-    return path
-
-
 def write_atomic_with(path: str | Path, write: Callable[[Path], None]) -> Path:
-    """Atomic output for writers that only take a file name (meshio): ``write(tmp)`` fills a
-    temporary file in the target's folder, which is then renamed over ``path``."""
+    """Atomic output for writers that take a file name (meshio): ``write(tmp)`` fills a
+    temporary file in the target's folder, which is then renamed over ``path``. Whatever
+    ``write`` raises, the old ``path`` is untouched and the temporary file removed."""
     path = Path(path)
     tmp = None
     try:
-        fd, name = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+        fd, name = tempfile.mkstemp(dir=path.parent, prefix=_temp_prefix(path), suffix=".tmp")
         os.close(fd)
         tmp = Path(name)
         write(tmp)
+        _publish_mode(tmp)
         os.replace(tmp, path)
+        tmp = None
     except OSError as exc:
         raise OutputError(f"cannot write {path}: {exc.strerror or exc}") from None
     finally:
-        if tmp is not None and tmp.exists():
-            tmp.unlink()
+        if tmp is not None:
+            _remove(tmp)
     return path
+
+
+def write_atomic(path: str | Path, data: str | bytes) -> Path:
+    """Write ``data`` (text as UTF-8, newlines as given) to ``path`` atomically."""
+    if isinstance(data, bytes):
+        return write_atomic_with(path, lambda tmp: tmp.write_bytes(data))
+    return write_atomic_with(path, lambda tmp: tmp.write_text(data, encoding="utf-8", newline=""))
+
+
+@contextlib.contextmanager
+def _signals_held() -> Iterator[None]:
+    """Hold SIGINT and SIGTERM back (they arrive when the block ends): for steps that must not
+    be cut in two."""
+    held = {signal.SIGINT, signal.SIGTERM}
+    previous = signal.pthread_sigmask(signal.SIG_BLOCK, held)
+    try:
+        yield
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, previous)
+
+
+@contextlib.contextmanager
+def staged_folder(target: str | Path) -> Iterator[Path]:
+    """Yield an empty staging folder beside ``target``; when the block ends normally, the staged
+    folder replaces ``target`` as a whole (the old one is removed), otherwise it is deleted and
+    ``target`` stays as it was. A reader sees the old folder or the new one, never a mix (except
+    missing for the instant between two renames, which ``sweep_stale`` repairs should the
+    process die right there)."""
+    target = Path(target)
+    try:
+        stage = Path(tempfile.mkdtemp(dir=target.parent, prefix=_temp_prefix(target), suffix=".stage"))
+    except OSError as exc:
+        raise OutputError(f"cannot create a folder beside {target}: {exc.strerror or exc}") from None
+    try:
+        yield stage
+        _publish_mode(stage, directory=True)
+        old = stage.with_name(stage.name[:-len(".stage")] + ".old")
+        with _signals_held():
+            try:
+                if target.exists():
+                    os.replace(target, old)
+                os.replace(stage, target)
+            except OSError as exc:
+                if old.exists() and not target.exists():
+                    os.replace(old, target)
+                raise OutputError(f"cannot replace {target}: {exc.strerror or exc}") from None
+        _remove(old)
+    finally:
+        _remove(stage)

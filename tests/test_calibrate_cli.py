@@ -16,7 +16,7 @@ def test_calibrate_writes_report_json_and_plots(tmp_path):
             "--jobs", "1", "--json", "--out", str(tmp_path)]
     result = CliRunner().invoke(main, args)
     assert result.exit_code == 0, result.output
-    doc = json.loads(result.output)
+    doc = json.loads(result.stdout)
     [study] = doc["studies"]
     assert study["family"] == "planar"
     errors = study["errors_mean_abs_pct"]

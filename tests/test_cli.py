@@ -16,7 +16,7 @@ def test_modes_json_and_files(tmp_path):
     result = CliRunner().invoke(main, ["modes", str(ROOT / "cases"), "--json", "--out",
                                        str(tmp_path), "-e", "8"])
     assert result.exit_code == 0, result.output
-    doc = json.loads(result.output)
+    doc = json.loads(result.stdout)
     assert len(doc["cases"]) == 4
     for case in doc["cases"]:
         assert len(case["modes"]) == 4
@@ -72,7 +72,7 @@ def test_modes_follows_the_scene_model_family(tmp_path):
     result = CliRunner().invoke(main, ["modes", str(scene_file), "--json", "--out", str(tmp_path),
                                        "-e", "6"])
     assert result.exit_code == 0, result.output
-    case = json.loads(result.output)["cases"][0]
+    case = json.loads(result.stdout)["cases"][0]
     assert case["family"] == "out-of-plane"
     expected, kinds = elastic_modes(load_scene(scene_file), 4, 6)
     assert [r["computed_Hz"] for r in case["modes"]] == list(expected)

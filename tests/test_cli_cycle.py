@@ -23,7 +23,7 @@ def run(*args):
 def test_synth_minimax_json_recovers_case3():
     result = run("synth", "minimax", "100 deg", "20 deg", "--json")
     assert result.exit_code == 0, result.output
-    doc = json.loads(result.output)
+    doc = json.loads(result.stdout)
     assert [round(doc["ratios"][k], 3) for k in ("R2", "R3", "R4")] == [0.141, 0.900, 0.457]
     assert abs(doc["mu_min_deg"] + doc["mu_max_deg"] - 180) < 1e-9
 
@@ -38,7 +38,7 @@ def test_kinematics_reports_synthesis_and_family(tmp_path):
     result = run("kinematics", ROOT / "scenes" / "extended_rocker.toml", "--poses", "36",
                  "--json", "--out", tmp_path)
     assert result.exit_code == 0, result.output
-    doc = json.loads(result.output)
+    doc = json.loads(result.stdout)
     assert doc["synthesis"]["lengths_m"]["rocker"] == 0.1
     assert len(doc["family"]) == 3 + 8
     rocker = doc["bodies"]["rocker"]
@@ -54,7 +54,7 @@ def test_cycle_writes_csv_png_and_checks_resonance(tmp_path):
     result = run("cycle", scene_path, "--poses", "6", "-e", "3", "-n", "2", "--speed",
                  "600 rev/min", "--harmonics", str(harmonics), "--json", "--out", tmp_path)
     assert result.exit_code == 0, result.output
-    doc = json.loads(result.output)
+    doc = json.loads(result.stdout)
     for name in ("cycle.csv", "cycle.png", "cycle.json"):
         assert (tmp_path / "kineto_aluminium" / name).stat().st_size > 0
     rows = [list(map(float, line.split(","))) for line in
@@ -90,7 +90,7 @@ def test_prb_command(tmp_path):
     result = run("prb", ROOT / "scenes" / "compliant_wiper.toml", "-e", "6", "--json",
                  "--out", tmp_path)
     assert result.exit_code == 0, result.output
-    doc = json.loads(result.output)
+    doc = json.loads(result.stdout)
     # Howell's spring by hand: K = gamma K_Theta E I / l, the strip 1 mm (in plane) x 30 mm,
     # l = |C O4| at the pose where the strip is straight
     points = doc["points_m"]

@@ -103,7 +103,7 @@ def test_converge_command(tmp_path):
                                        "--repeats", "1", "--tol", "1e-3", "--json",
                                        "--out", str(tmp_path)])
     assert result.exit_code == 0, result.output
-    doc = json.loads(result.output)
+    doc = json.loads(result.stdout)
     assert doc["reference"]["order_used"] == 2
     assert doc["reference"]["levels"] == [2, 4, 8]
     assert all(r["runs"] == 1 for r in doc["levels"])
@@ -124,7 +124,7 @@ def test_modes_states_its_mesh_rule(tmp_path):
     result = CliRunner().invoke(main, ["modes", str(CASE1), "--tol", "1e-6", "--json",
                                        "--out", str(tmp_path)])
     assert result.exit_code == 0, result.output
-    case = json.loads(result.output)["cases"][0]
+    case = json.loads(result.stdout)["cases"][0]
     assert case["mesh"]["rule"] == "tolerance" and case["mesh"]["tolerance"] == 1e-6
     # the frequencies printed meet the tolerance against a fine independent analysis
     fine = analyze(load_scene(CASE1), 4, 512, "sparse").elastic_frequencies(4)

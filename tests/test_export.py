@@ -196,7 +196,7 @@ def test_export_command_writes_and_lists_everything(tmp_path):
             "--json", "--out", str(tmp_path)]
     result = CliRunner().invoke(main, args)
     assert result.exit_code == 0, result.output
-    doc = json.loads(result.output)
+    doc = json.loads(result.stdout)
     assert json.loads((tmp_path / "export.json").read_text()) == doc
     (case,) = doc["cases"]
     files = case["files"]

@@ -73,7 +73,7 @@ def test_free_bearings_on_the_command_line(tmp_path, command):
     result = CliRunner().invoke(main, [command[0], str(kt_zero(tmp_path)), *command[1:],
                                        "--json", "--out", str(tmp_path / "out")])
     assert result.exit_code == 0, result.output
-    doc = json.loads(result.output)
+    doc = json.loads(result.stdout)
     n = 6 if "-n" in command else 4
     freqs = (doc["cases"][0]["frequencies_Hz"] if command[0] == "export"
              else [m["computed_Hz"] for m in doc["cases"][0]["modes"]])

@@ -54,7 +54,7 @@ def test_stability_command(tmp_path, monkeypatch):
     # the checks themselves are tested above; here the command's output and exit code
     monkeypatch.setattr(st, "FAST", (st.repeated, st.units))
     result = CliRunner().invoke(main, ["stability", str(CASE1), "--json", "--out", str(tmp_path)])
-    doc = json.loads(result.output)
+    doc = json.loads(result.stdout)
     assert result.exit_code == 0 and doc["passed"] == doc["total"] == 5
     assert [c["id"] for c in doc["checks"]] == ["7a", "8a", "8b", "8c", "8d"]
     assert json.loads((tmp_path / "case1" / "stability.json").read_text()) == doc

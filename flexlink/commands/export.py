@@ -40,7 +40,8 @@ def command(scenes, n_modes, elements, tol, method, subdivide, phases, amplitude
             out_dir):
     """Write, for each SCENE (a scene file or a folder of them), the first modes as a .vtu, a
     .pvd animation per mode, a PNG per mode, an overview sheet and a frequency plot, into
-    OUT/<scene file name>/, and a list of everything in OUT/export.json."""
+    OUT/<scene file name>/ (each folder replaced as a whole), and a list of everything in
+    OUT/export.json."""
     from tqdm import tqdm
 
     from flexlink.analysis.mesh import DEFAULT_TOL, choose_mesh
@@ -73,8 +74,11 @@ def command(scenes, n_modes, elements, tol, method, subdivide, phases, amplitude
                       "frequencies_Hz": [row["computed_Hz"] for row in summary["modes"]],
                       "files": written})
         meshes.append(mesh)
-    document = {"command": "export", "out": str(out), "cases": cases}
-    write_atomic(out / "export.json", dumps(document))
+        # rewritten after every scene folder is swapped in, so export.json lists exactly the
+        # folders this run has completed, even when the run is stopped half-way
+        document = {"command": "export", "out": str(out), "complete": len(cases) == len(files),
+                    "cases": cases}
+        write_atomic(out / "export.json", dumps(document))
     if as_json:
         click.echo(dumps(document))
         return

@@ -6,7 +6,9 @@
     <stem>_modes.png              overview sheet of all modes
     <stem>_frequencies.png        computed vs reference frequencies (matplotlib)
 
-``<stem>`` is the scene file's name without ``.toml``. Every file is written atomically.
+``<stem>`` is the scene file's name without ``.toml``. The folder is written as a whole: into a
+staging folder that then replaces ``<stem>/`` (``fileio.staged_folder``), so an interrupted
+export leaves the previous folder as it was, never a mix of two runs.
 """
 
 from __future__ import annotations
@@ -15,9 +17,9 @@ import dataclasses
 from pathlib import Path
 
 from flexlink.analysis.modal import CaseResult
-from flexlink.errors import InputError, OutputError
+from flexlink.errors import InputError
 from flexlink.output.export_vtk import mode_set, modes_mesh, write_animation, write_vtu
-from flexlink.fileio import write_atomic
+from flexlink.fileio import staged_folder, write_atomic
 
 
 @dataclasses.dataclass(frozen=True)
@@ -49,15 +51,19 @@ def case_stem(result: CaseResult) -> str:
 
 
 def export_case(result: CaseResult, summary: dict, out: Path, settings: ExportSettings) -> dict:
-    """Write the files of one case into ``out/<stem>/``; ``summary`` is its
-    ``report.case_summary``. Returns {"folder": ..., kind: [paths]} with kinds vtu, pvd, frames,
-    pictures, plot (paths as strings)."""
+    """Write the files of one case into ``out/<stem>/``, replacing that folder as a whole;
+    ``summary`` is its ``report.case_summary``. Returns {"folder": ..., kind: [paths]} with
+    kinds vtu, pvd, frames, pictures, plot (paths as strings, in the final folder)."""
     stem = case_stem(result)
     folder = out / stem
-    try:
-        folder.mkdir(exist_ok=True)
-    except OSError as exc:
-        raise OutputError(f"cannot create {folder}: {exc.strerror or exc}") from None
+    with staged_folder(folder) as stage:
+        files = _write_case(result, summary, stage, stem, settings)
+    return {"folder": str(folder),
+            **{k: [str(folder / p.relative_to(stage)) for p in v] for k, v in files.items()}}
+
+
+def _write_case(result: CaseResult, summary: dict, folder: Path, stem: str,
+                settings: ExportSettings) -> dict[str, list[Path]]:
     modes = mode_set(result, settings.n_modes, settings.subdivisions)
     files: dict[str, list[Path]] = {"vtu": [], "pvd": [], "frames": [], "pictures": [], "plot": []}
     files["vtu"].append(write_vtu(folder / f"{stem}.vtu",
@@ -84,4 +90,4 @@ def export_case(result: CaseResult, summary: dict, out: Path, settings: ExportSe
 
         files["plot"].append(write_atomic(folder / f"{stem}_frequencies.png",
                                           frequency_plot(summary)))
-    return {"folder": str(folder), **{k: [str(p) for p in v] for k, v in files.items()}}
+    return files

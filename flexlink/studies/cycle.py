@@ -13,6 +13,7 @@ import math
 import numpy as np
 
 from flexlink.errors import InputError, NumericalError
+from flexlink.fileio import write_atomic
 from flexlink.kinematics.linkage import Cycle, crank_angles, crossings
 from flexlink.scene import Scene
 from flexlink.scene.contract import pose_transmission_angles
@@ -148,7 +149,10 @@ def modal_map_csv(result: ModalMap) -> str:
 def plot_map(result: ModalMap, path, crank_speed: float | None = None,
              hits: list[Resonance] = ()) -> None:
     """PNG of frequency against input angle, one line per mode; vertical lines mark the poses
-    where mu = 90 deg; crank harmonics that resonate are drawn as horizontal dashes."""
+    where mu = 90 deg; crank harmonics that resonate are drawn as horizontal dashes. Written to
+    ``path`` atomically."""
+    import io
+
     import matplotlib
 
     matplotlib.use("Agg")
@@ -172,5 +176,7 @@ def plot_map(result: ModalMap, path, crank_speed: float | None = None,
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3)
     fig.tight_layout()
-    fig.savefig(path, dpi=120)
+    buffer = io.BytesIO()
+    fig.savefig(buffer, format="png", dpi=120)
     plt.close(fig)
+    write_atomic(path, buffer.getvalue())

@@ -130,7 +130,7 @@ def monte_carlo(paths, base_overrides: dict, inputs: Inputs, samples: int, seed:
                 progress: bool = False) -> MonteCarlo:
     draws = draw_samples(inputs, samples, seed)
     tasks = [(tuple(paths), base_overrides, inputs, d, n_modes, elements) for d in draws]
-    results = run_tasks(evaluate, tasks, n_jobs=n_jobs, progress=progress, label="Monte Carlo")
+    results = run_tasks(evaluate, tasks, n_jobs=n_jobs, progress=progress, label="Monte Carlo samples")
     return MonteCarlo(samples=np.array(results), seed=seed)
 
 
@@ -158,7 +158,7 @@ def sensitivities(paths, base_overrides: dict, inputs: Inputs, n_modes: int = 4,
             values = dict(inputs.nominal)
             values[name] = float(inputs.nominal[name] * (1.0 + sign * REL_STEP))
             tasks.append((tuple(paths), base_overrides, inputs, values, n_modes, elements))
-    results = run_tasks(evaluate, tasks, n_jobs=n_jobs, progress=progress, label="sensitivities")
+    results = run_tasks(evaluate, tasks, n_jobs=n_jobs, progress=progress, label="sensitivity evaluations")
     step = np.log1p(REL_STEP) - np.log1p(-REL_STEP)
     values = {n: (np.log(results[2 * k]) - np.log(results[2 * k + 1])) / step
               for k, n in enumerate(names)}
