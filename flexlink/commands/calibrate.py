@@ -46,7 +46,7 @@ def command(scenes, free_specs, families, starts, seed, samples, vf_sd, thicknes
     propagate Table I scatter by Monte Carlo; writes calibrate.json, report.md and PNG plots
     to OUT/<scene names>/ (e.g. OUT/cases/ for the folder cases/)."""
     from flexlink.studies.calibration import parse_free
-    from flexlink.output.calibration_report import PLOTS, best_family, report_markdown
+    from flexlink.output.calibration_report import PLOTS, best_family, mean_text, report_markdown
     from flexlink.studies.comparison import StudySettings, run_study
     from flexlink.analysis.families import scene_family
     from flexlink.fileio import prepare_out_dir, write_atomic
@@ -85,17 +85,18 @@ def command(scenes, free_specs, families, starts, seed, samples, vf_sd, thicknes
     written.append(out / "calibrate.json")
     document = {"command": "calibrate", "studies": studies, "files": [str(p) for p in written]}
     if len(studies) > 1:
-        document["best_family_by_cross_validation"] = best_family(studies)["family"]
+        best = best_family(studies)
+        document["best_family_by_cross_validation"] = best and best["family"]
     write_atomic(out / "calibrate.json", dumps(document))
     if as_json:
         click.echo(dumps(document))
         return
     for s in studies:
-        e = s["errors_mean_abs_pct"]
         click.echo(f"family {s['family']}: mean |error| vs Ex: assumed inputs "
-                   f"{e['assumed_inputs_vs_Ex']:.1f} %, calibrated {e['calibrated_to_Ex_in_sample']:.1f} %"
-                   f" (in sample), cross-validated {e['cross_validated_vs_Ex']:.1f} %; "
-                   f"paper FE vs Ex {e['paper_FE_vs_Ex']:.1f} %")
+                   f"{mean_text(s, 'assumed_inputs_vs_Ex')} %, calibrated "
+                   f"{mean_text(s, 'calibrated_to_Ex_in_sample')} % (in sample), cross-validated "
+                   f"{mean_text(s, 'cross_validated_vs_Ex')} %; paper FE vs Ex "
+                   f"{mean_text(s, 'paper_FE_vs_Ex')} %")
         click.echo("  fitted to Ex: " + ", ".join(
             f"{p['name']} = {p['value']:.4g} {p['unit']}" for p in s["fit_Ex"]["parameters"]))
         u = s["uncertainty_calibrated"]

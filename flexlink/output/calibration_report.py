@@ -11,7 +11,17 @@ import numpy as np
 
 
 def _f(x, fmt="{:.1f}"):
-    return "n/a" if x is None else fmt.format(x)
+    """None (JSON's stand-in for NaN) and NaN read "n/a": a failed evaluation."""
+    return "n/a" if x is None or x != x else fmt.format(x)
+
+
+def mean_text(s: dict, key: str) -> str:
+    """A mean |error| [%], or "n/a (K of M failed)": ``comparison`` gives no mean when any case
+    or mode failed (``calibration.mean_abs`` says why)."""
+    failed = len(s["errors_failed"][key])
+    if not failed:
+        return _f(s["errors_mean_abs_pct"][key])
+    return f"n/a ({failed} of {s['errors_count'][key]} failed)"
 
 
 def _table(header: list[str], rows: list[list[str]]) -> str:
@@ -35,41 +45,57 @@ def _se_text(p):
     return f"×/÷ {np.exp(se):.3g}" if se < 5 else "not determined"
 
 
-def best_family(studies: list[dict]) -> dict:
-    """The family with the lowest cross-validated mean |error| vs Ex."""
-    return min(studies, key=lambda s: s["errors_mean_abs_pct"]["cross_validated_vs_Ex"])
+def best_family(studies: list[dict]) -> dict | None:
+    """The family with the lowest cross-validated mean |error| vs Ex, among those whose every
+    case and mode was evaluated (None if no family was)."""
+    complete = [s for s in studies if s["errors_mean_abs_pct"]["cross_validated_vs_Ex"] is not None]
+    return min(complete, key=lambda s: s["errors_mean_abs_pct"]["cross_validated_vs_Ex"],
+               default=None)
 
 
 def summary_lines(studies: list[dict]) -> list[str]:
     rows = []
+    keys = ("assumed_inputs_vs_Ex", "calibrated_to_Ex_in_sample", "cross_validated_vs_Ex",
+            "per_case_fit_in_sample", "calibrated_to_FE_vs_FE", "paper_FE_vs_Ex")
     for s in studies:
-        e = s["errors_mean_abs_pct"]
-        rows.append([s["family"], _f(e["assumed_inputs_vs_Ex"]), _f(e["calibrated_to_Ex_in_sample"]),
-                     _f(e["cross_validated_vs_Ex"]), _f(e["per_case_fit_in_sample"]),
-                     _f(e["calibrated_to_FE_vs_FE"]), _f(e["paper_FE_vs_Ex"])])
+        rows.append([s["family"]] + [mean_text(s, k) for k in keys])
     lines = [_table(["family", "assumed inputs vs Ex", "calibrated to Ex (in sample)",
                      "cross-validated vs Ex", "each case fitted alone", "calibrated to FE vs FE",
                      "paper FE vs Ex"], rows)]
-    if len(studies) > 1:
-        best = best_family(studies)
+    best = best_family(studies)
+    if len(studies) > 1 and best is not None:
         lines.append(f"\nBy the cross-validated error the **{best['family']}** family explains "
                      f"Table III best ({best['errors_mean_abs_pct']['cross_validated_vs_Ex']:.1f} % "
                      "mean |error| predicting a case it was not fitted to).")
     return lines
 
 
+def _failure_lines(s: dict) -> list[str]:
+    """Which case and mode failed in which comparison, and why; nothing if none did."""
+    rows = [[key.replace("_", " "), f["case"], str(f["mode"]), f["reason"]]
+            for key, failed in s["errors_failed"].items() for f in failed]
+    if not rows:
+        return []
+    return ["### Failed evaluations", "",
+            f"{len(rows)} case/mode evaluations failed; a mean |error| that would include them "
+            "is given as n/a rather than as the mean of the others:", "",
+            _table(["comparison", "case", "mode", "why"], rows), ""]
+
+
 def family_section(s: dict, plots: dict[str, str]) -> str:
     fam, cases = s["family"], s["cases"]
     e = s["errors_mean_abs_pct"]
     out = [f"## Family: {fam}", ""]
-    out.append(f"Mean |error| vs Ex: assumed inputs {e['assumed_inputs_vs_Ex']:.1f} %, calibrated "
-               f"{e['calibrated_to_Ex_in_sample']:.1f} % (in sample), cross-validated "
-               f"{e['cross_validated_vs_Ex']:.1f} %. The paper's own FE is "
-               f"{e['paper_FE_vs_Ex']:.1f} % from Ex.")
-    if e["cross_validated_vs_Ex"] > 1.5 * max(e["calibrated_to_Ex_in_sample"], 1e-9):
+    out.append(f"Mean |error| vs Ex: assumed inputs {mean_text(s, 'assumed_inputs_vs_Ex')} %, "
+               f"calibrated {mean_text(s, 'calibrated_to_Ex_in_sample')} % (in sample), "
+               f"cross-validated {mean_text(s, 'cross_validated_vs_Ex')} %. The paper's own FE is "
+               f"{mean_text(s, 'paper_FE_vs_Ex')} % from Ex.")
+    cv_mean, in_sample = e["cross_validated_vs_Ex"], e["calibrated_to_Ex_in_sample"]
+    if cv_mean is not None and in_sample is not None and cv_mean > 1.5 * max(in_sample, 1e-9):
         out.append("The calibration looks better in sample than it predicts: cross-validated "
                    "errors are the ones to quote.")
     out.append("")
+    out += _failure_lines(s)
     for key, title in (("fit_Ex", "Calibrated to Ex"), ("fit_FE", "Calibrated to the paper's FE")):
         fit = s[key]
         rows = []
@@ -96,15 +122,15 @@ def family_section(s: dict, plots: dict[str, str]) -> str:
     for i, case in enumerate(cases):
         for k in range(len(s["Ex_Hz"][i])):
             rows.append([case, str(k + 1), f"{s['Ex_Hz'][i][k]:g}", f"{s['paper_FE_Hz'][i][k]:g}",
-                         f"{s['nominal_Hz'][i][k]:.1f}", f"{s['nominal_errors_pct'][i][k]:+.1f}",
-                         f"{s['fit_Ex']['predicted_Hz'][i][k]:.1f}",
-                         f"{s['fit_Ex']['errors_pct'][i][k]:+.1f}",
-                         f"{cv['predicted_Hz'][i][k]:.1f}", f"{cv['errors_pct'][i][k]:+.1f}"])
+                         _f(s['nominal_Hz'][i][k]), _f(s['nominal_errors_pct'][i][k], "{:+.1f}"),
+                         _f(s['fit_Ex']['predicted_Hz'][i][k]),
+                         _f(s['fit_Ex']['errors_pct'][i][k], "{:+.1f}"),
+                         _f(cv['predicted_Hz'][i][k]), _f(cv['errors_pct'][i][k], "{:+.1f}")])
     out += ["### Per-mode residuals (pairing by mode order)", "",
             _table(["case", "mode", "Ex Hz", "paper FE Hz", "assumed Hz", "err %", "calibrated Hz",
                     "err %", "cross-validated Hz", "err %"], rows), "",
             f"![frequencies]({plots['frequencies']})", ""]
-    rows = [[c, f"{a:.1f}", f"{b:.1f}"] for c, a, b in
+    rows = [[c, _f(a), _f(b)] for c, a, b in
             zip(cases, cv["fold_fitted_mean_abs_pct"], cv["fold_predicted_mean_abs_pct"])]
     out += ["### Leave-one-case-out cross-validation", "",
             _table(["held-out case", "mean |err| on the 3 fitted cases %",
@@ -118,14 +144,15 @@ def family_section(s: dict, plots: dict[str, str]) -> str:
                      " : ".join(_f(v, "{:.2f}") for v in r["nominal_model"][i]),
                      " : ".join(_f(v, "{:.2f}") for v in r["best_model"][i]),
                      ", ".join(_f(v, "{:+.1f}") for v in r["best_errors_pct"][i]),
-                     f"{s['per_case_fits'][i]['mean_abs_pct']:.1f}"])
-    worst = float(np.nanmax(np.abs(np.array(r["best_errors_pct"], dtype=float))))
+                     _f(s['per_case_fits'][i]['mean_abs_pct'])])
+    # NaN (a failed case) propagates: the worst over the others would understate it
+    worst = float(np.max(np.abs(np.array(r["best_errors_pct"], dtype=float))))
     c2c = np.array(r["case_to_case_measured"], dtype=float)
     model = np.array(s["fit_Ex"]["predicted_Hz"], dtype=float)
     model_c2c = model / model[:1]
-    spread = lambda m: 100 * (np.nanmax(m, axis=1) / np.nanmin(m, axis=1) - 1)  # noqa: E731
-    rows_c2c = [[c, ", ".join(f"{v:.2f}" for v in a), f"{sa:.1f}",
-                 ", ".join(_f(v, "{:.2f}") for v in b), f"{sb:.1f}"]
+    spread = lambda m: 100 * (np.max(m, axis=1) / np.min(m, axis=1) - 1)  # noqa: E731
+    rows_c2c = [[c, ", ".join(f"{v:.2f}" for v in a), _f(sa),
+                 ", ".join(_f(v, "{:.2f}") for v in b), _f(sb)]
                 for c, a, sa, b, sb in zip(cases, c2c, spread(c2c), model_c2c, spread(model_c2c))]
     out += ["### Proportionality test (mode ratios f_k / f_1)", "",
             f"Case-to-case ratios per mode (case / {cases[0]}), measured and from the model "
@@ -138,11 +165,14 @@ def family_section(s: dict, plots: dict[str, str]) -> str:
             _table(["case", "measured", "model, assumed inputs", "model, best inputs for this case",
                     "best ratio error % (modes 2..4)", "abs. fit of this case alone, mean |err| %"],
                    rows), "",
-            f"Over all cases the closest any input set of this family comes to the measured "
-            f"ratios is {worst:.1f} % (worst mode). "
-            + ("The family can reproduce every case's ratios within 5 %."
-               if worst <= 5 else "The family cannot reproduce the measured mode ratios of every "
-               "case: a shared or per-case choice of inputs moves frequencies, not this pattern."),
+            (f"Over all cases the closest any input set of this family comes to the measured "
+             f"ratios is {worst:.1f} % (worst mode). "
+             + ("The family can reproduce every case's ratios within 5 %."
+                if worst <= 5 else "The family cannot reproduce the measured mode ratios of "
+                "every case: a shared or per-case choice of inputs moves frequencies, not this "
+                "pattern.")) if worst == worst else
+            "A ratio fit failed (see Failed evaluations), so the closest this family comes to "
+            "the measured ratios over all cases is not known.",
             "", f"![ratios]({plots['ratios']})", ""]
 
     for key, title in (("uncertainty_nominal", "assumed inputs"),
@@ -151,10 +181,10 @@ def family_section(s: dict, plots: dict[str, str]) -> str:
         rows = []
         for i, case in enumerate(cases):
             for k in range(len(s["Ex_Hz"][i])):
-                rows.append([case, str(k + 1), f"{s['Ex_Hz'][i][k]:g}", f"{u['mean_Hz'][i][k]:.1f}",
-                             f"{u['low95_Hz'][i][k]:.1f} .. {u['high95_Hz'][i][k]:.1f}",
-                             f"{u['first_order_low95_Hz'][i][k]:.1f} .. "
-                             f"{u['first_order_high95_Hz'][i][k]:.1f}",
+                rows.append([case, str(k + 1), f"{s['Ex_Hz'][i][k]:g}", _f(u['mean_Hz'][i][k]),
+                             f"{_f(u['low95_Hz'][i][k])} .. {_f(u['high95_Hz'][i][k])}",
+                             f"{_f(u['first_order_low95_Hz'][i][k])} .. "
+                             f"{_f(u['first_order_high95_Hz'][i][k])}",
                              "yes" if u["Ex_inside"][i][k] else "no"])
         ranked = ", ".join(f"{x['input']} {x['max_abs']:.3f}" for x in u["ranked"])
         sd = u["inputs"]["sd"]
@@ -230,8 +260,11 @@ def plot_cross_validation(s: dict) -> bytes:
     cases = s["cases"]
     x = np.arange(len(cases))
     cv = s["cross_validation"]
-    ax.bar(x - 0.2, cv["fold_fitted_mean_abs_pct"], 0.4, label="fitted cases (in sample)")
-    ax.bar(x + 0.2, cv["fold_predicted_mean_abs_pct"], 0.4, label="held-out case (predicted)")
+    # a failed fold (None) is drawn as no bar
+    ax.bar(x - 0.2, np.array(cv["fold_fitted_mean_abs_pct"], dtype=float), 0.4,
+           label="fitted cases (in sample)")
+    ax.bar(x + 0.2, np.array(cv["fold_predicted_mean_abs_pct"], dtype=float), 0.4,
+           label="held-out case (predicted)")
     ax.set(xticks=x, xticklabels=cases, ylabel="mean |error| vs Ex [%]",
            title=f"leave-one-case-out ({s['family']})")
     ax.legend(fontsize=8)

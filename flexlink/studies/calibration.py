@@ -140,16 +140,45 @@ class Problem:
         return load_scene(path, overrides=over)
 
 
-def predict(problem: Problem, values=None, scenes=None) -> np.ndarray:
-    """Frequencies [Hz], shape (cases, n_modes), at ``values`` of the free inputs (None: the
-    scenes' own assumed inputs). NaN where the model has fewer modes or fails its checks."""
-    out = np.full((len(scenes or problem.scenes), problem.n_modes), np.nan)
-    for i, path in enumerate(scenes or problem.scenes):
+def predict_with_failures(problem: Problem, values=None, scenes=None) -> tuple[np.ndarray, dict]:
+    """``predict``, and why rows failed: {case index: the error's message}."""
+    scenes = scenes or problem.scenes
+    out = np.full((len(scenes), problem.n_modes), np.nan)
+    reasons = {}
+    for i, path in enumerate(scenes):
         try:
             out[i] = elastic_modes(problem.scene(path, values), problem.n_modes, problem.elements)[0]
         except FlexlinkError as exc:  # e.g. a bound combination the solver refuses
             log.info("%s at %s: %s", path, values, exc)
-    return out
+            reasons[i] = str(exc)
+    return out, reasons
+
+
+def predict(problem: Problem, values=None, scenes=None) -> np.ndarray:
+    """Frequencies [Hz], shape (cases, n_modes), at ``values`` of the free inputs (None: the
+    scenes' own assumed inputs). NaN where the model has fewer modes or fails its checks."""
+    return predict_with_failures(problem, values, scenes)[0]
+
+
+def mean_abs(errors) -> float | None:
+    """Mean |error| over every case and mode, or None (reported as "n/a") if any failed.
+
+    Not the mean of the others: failures are not random, they come where the model or its
+    inputs go wrong, i.e. where the error would be largest, so the survivors' mean is biased
+    low; and it would sit in one table with means over all cases of other fits and families,
+    which is then not like with like. The failed cases and modes are listed beside it."""
+    e = np.abs(np.asarray(errors, dtype=float))
+    return None if np.isnan(e).any() else float(e.mean())
+
+
+def failures(errors, labels, reasons: dict | None = None) -> list[dict]:
+    """Every case and mode (1-based) whose error is NaN, with why when known: the error the
+    case raised, else that the model found fewer elastic modes than the table has."""
+    e = np.asarray(errors, dtype=float)
+    return [{"case": labels[i], "mode": k + 1,
+             "reason": (reasons or {}).get(i, "no elastic mode of this number (the model found "
+                                              "fewer, or the reference is missing)")}
+            for i, k in zip(*np.nonzero(np.isnan(e)))]
 
 
 def measured(problem: Problem, scenes=None) -> np.ndarray:
@@ -192,15 +221,19 @@ def _solve_from(problem: Problem, reference: np.ndarray, x0: np.ndarray):
 
 
 class _PredictionErrors:
-    """Errors of ``predicted`` against ``reference`` [Hz], shared by fits and cross-validation."""
+    """Errors of ``predicted`` against ``reference`` [Hz], shared by fits and cross-validation;
+    ``reasons``: {case index: message} for cases whose evaluation raised."""
 
     @property
     def errors_pct(self) -> np.ndarray:
         return 100.0 * (self.predicted / self.reference - 1.0)
 
     @property
-    def mean_abs_error_pct(self) -> float:
-        return float(np.nanmean(np.abs(self.errors_pct)))
+    def mean_abs_error_pct(self) -> float | None:
+        return mean_abs(self.errors_pct)
+
+    def failures(self, labels) -> list[dict]:
+        return failures(self.errors_pct, labels, dict(self.reasons))
 
 
 @dataclasses.dataclass(frozen=True)
@@ -218,6 +251,7 @@ class FitResult(_PredictionErrors):
     predicted: np.ndarray
     reference: np.ndarray
     evaluations: int
+    reasons: tuple[tuple[int, str], ...] = ()
 
     def as_dict(self) -> dict:
         """JSON-ready (NaN and inf become None)."""
@@ -235,6 +269,7 @@ class FitResult(_PredictionErrors):
             "start_costs": self.start_costs, "evaluations": self.evaluations,
             "predicted_Hz": self.predicted, "reference_Hz": self.reference,
             "errors_pct": self.errors_pct, "mean_abs_error_pct": self.mean_abs_error_pct,
+            "failed": self.failures([case_label(p) for p in self.problem.scenes]),
         })
 
 
@@ -279,10 +314,11 @@ def _summarise(problem: Problem, reference: np.ndarray, runs) -> FitResult:
         correlation[blind, :] = np.nan
         correlation[:, blind] = np.nan
     values = np.exp(x)
+    predicted, reasons = predict_with_failures(problem, values)
     return FitResult(problem=problem, values=values, rel_se=rel_se, correlation=correlation,
-                     at_bound=at_bound, cost=cost, start_costs=costs,
-                     predicted=predict(problem, values), reference=reference,
-                     evaluations=int(sum(r[3] for r in runs)))
+                     at_bound=at_bound, cost=cost, start_costs=costs, predicted=predicted,
+                     reference=reference, evaluations=int(sum(r[3] for r in runs)),
+                     reasons=tuple(reasons.items()))
 
 
 def fit_many(problems: list[Problem], starts: int = 8, seed: int = 0, n_jobs: int = -1,
@@ -309,6 +345,7 @@ class CrossValidation(_PredictionErrors):
     held_out: tuple[str, ...]
     predicted: np.ndarray  # (cases, n_modes) [Hz], each row from the fold that left it out
     reference: np.ndarray
+    reasons: tuple[tuple[int, str], ...] = ()
 
 
 def leave_one_out_problems(problem: Problem) -> list[Problem]:
@@ -318,10 +355,13 @@ def leave_one_out_problems(problem: Problem) -> list[Problem]:
 
 def cross_validation(problem: Problem, folds: list[FitResult]) -> CrossValidation:
     """Assemble the held-out predictions of ``folds`` (fitted on ``leave_one_out_problems``)."""
-    rows = [predict(problem, fold.values, scenes=(held,))[0]
-            for fold, held in zip(folds, problem.scenes)]
+    rows, reasons = [], []
+    for i, (fold, held) in enumerate(zip(folds, problem.scenes)):
+        row, why = predict_with_failures(problem, fold.values, scenes=(held,))
+        rows.append(row[0])
+        reasons += [(i, message) for message in why.values()]
     return CrossValidation(folds=tuple(folds), held_out=problem.scenes, predicted=np.array(rows),
-                           reference=measured(problem))
+                           reference=measured(problem), reasons=tuple(reasons))
 
 
 def single_case_problems(problem: Problem, target: str) -> list[Problem]:

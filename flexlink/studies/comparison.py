@@ -9,9 +9,11 @@ import dataclasses
 
 import numpy as np
 
-from flexlink.studies.calibration import (DEFAULT_FREE, FreeParameter, Problem, case_label, cross_validation,
-                          fit_many, json_ready, leave_one_out_problems, measured, parse_free,
-                          predict, ratios, single_case_problems)
+from flexlink import logbook
+from flexlink.studies.calibration import (DEFAULT_FREE, FreeParameter, Problem, case_label,
+                                          cross_validation, failures, fit_many, json_ready,
+                                          leave_one_out_problems, mean_abs, measured, parse_free,
+                                          predict_with_failures, ratios, single_case_problems)
 from flexlink.studies.uncertainty import monte_carlo, scene_inputs, sensitivities
 
 # inputs with no effect on a family are left out of its default free set (they could not be
@@ -35,10 +37,6 @@ class StudySettings:
     elements: int | None = 8
     n_jobs: int = -1
     progress: bool = False
-
-
-def _mean_abs(errors) -> float:
-    return float(np.nanmean(np.abs(errors)))
 
 
 def _pct(predicted, reference):
@@ -67,9 +65,21 @@ def _uncertainty(paths, overrides, s: StudySettings, reference):
 
 def run_study(paths, family: str, free: tuple[FreeParameter, ...] | None,
               settings: StudySettings) -> dict:
-    """Everything the report needs for one family (see the module docstring)."""
-    s = settings
-    paths = tuple(str(p) for p in paths)
+    """Everything the report needs for one family (see the module docstring). The model's
+    warnings over the study's thousands of evaluations are summarised in one line at its end."""
+    with logbook.quiet(f"the {family} calibration study"):
+        return _study(tuple(str(p) for p in paths), family, free, settings)
+
+
+def _errors(named: dict, labels: list[str]) -> dict:
+    """{name: (errors [%], {case index: reason})} -> the mean |error| per name (None if any case
+    or mode failed: ``calibration.mean_abs``) and the failures per name."""
+    return {"errors_mean_abs_pct": {k: mean_abs(e) for k, (e, _) in named.items()},
+            "errors_failed": {k: failures(e, labels, why) for k, (e, why) in named.items()},
+            "errors_count": {k: int(np.size(e)) for k, (e, _) in named.items()}}
+
+
+def _study(paths: tuple[str, ...], family: str, free, s: StudySettings) -> dict:
     free = free or default_free(family)
     base = Problem(scenes=paths, parameters=free, reference="Ex", elements=s.elements,
                    fixed=(("model.family", family),))
@@ -78,43 +88,46 @@ def run_study(paths, family: str, free: tuple[FreeParameter, ...] | None,
                 + single_case_problems(base, "ratios"))
     fits = fit_many(problems, s.starts, s.seed, s.n_jobs, s.progress)
     n = len(paths)
+    labels = [case_label(p) for p in paths]
     ex_fit, fe_fit = fits[0], fits[1]
     cv = cross_validation(base, fits[2:2 + n])
     per_case, ratio_fits = fits[2 + n:2 + 2 * n], fits[2 + 2 * n:]
 
     ex, fe_ref = measured(base), measured(fe)
-    nominal = predict(base)
+    nominal, nominal_why = predict_with_failures(base)
     ratio_best = np.array([f.predicted[0] / f.predicted[0, 0] for f in ratio_fits])
     calibrated = base.overrides(ex_fit.values)
+    errors = _errors({
+        "assumed_inputs_vs_Ex": (_pct(nominal, ex), nominal_why),
+        "calibrated_to_Ex_in_sample": (ex_fit.errors_pct, dict(ex_fit.reasons)),
+        "cross_validated_vs_Ex": (cv.errors_pct, dict(cv.reasons)),
+        "calibrated_to_FE_vs_FE": (fe_fit.errors_pct, dict(fe_fit.reasons)),
+        "calibrated_to_FE_vs_Ex": (_pct(fe_fit.predicted, ex), dict(fe_fit.reasons)),
+        "paper_FE_vs_Ex": (_pct(fe_ref, ex), {}),
+        "per_case_fit_in_sample": (np.array([f.errors_pct[0] for f in per_case]),
+                                   {i: why for i, f in enumerate(per_case) for _, why in f.reasons}),
+    }, labels)
     return json_ready({
         "family": family,
-        "cases": [case_label(p) for p in paths], "files": list(paths),
+        "cases": labels, "files": list(paths),
         "settings": dataclasses.asdict(s),
         "free": [{"name": p.name, "unit": p.unit, "low": p.low, "high": p.high,
                   "nominal": p.nominal(base.scene(paths[0]))} for p in free],
         "Ex_Hz": ex, "paper_FE_Hz": fe_ref,
         "nominal_Hz": nominal, "nominal_errors_pct": _pct(nominal, ex),
-        "errors_mean_abs_pct": {
-            "assumed_inputs_vs_Ex": _mean_abs(_pct(nominal, ex)),
-            "calibrated_to_Ex_in_sample": ex_fit.mean_abs_error_pct,
-            "cross_validated_vs_Ex": cv.mean_abs_error_pct,
-            "calibrated_to_FE_vs_FE": fe_fit.mean_abs_error_pct,
-            "calibrated_to_FE_vs_Ex": _mean_abs(_pct(fe_fit.predicted, ex)),
-            "paper_FE_vs_Ex": _mean_abs(_pct(fe_ref, ex)),
-            "per_case_fit_in_sample": _mean_abs([f.errors_pct for f in per_case]),
-        },
+        **errors,
         "fit_Ex": ex_fit.as_dict(), "fit_FE": fe_fit.as_dict(),
         "cross_validation": {
-            "held_out": [case_label(p) for p in paths],
+            "held_out": labels,
             "predicted_Hz": cv.predicted, "errors_pct": cv.errors_pct,
             "fold_fitted_mean_abs_pct": [f.mean_abs_error_pct for f in cv.folds],
-            "fold_predicted_mean_abs_pct": [_mean_abs(e) for e in cv.errors_pct],
+            "fold_predicted_mean_abs_pct": [mean_abs(e) for e in cv.errors_pct],
             "fold_values": [f.values for f in cv.folds],
         },
-        "per_case_fits": [{"case": case_label(p), "values": f.values,
+        "per_case_fits": [{"case": label, "values": f.values,
                            "predicted_Hz": f.predicted[0], "errors_pct": f.errors_pct[0],
                            "mean_abs_pct": f.mean_abs_error_pct}
-                          for p, f in zip(paths, per_case)],
+                          for label, f in zip(labels, per_case)],
         "ratios": {
             "measured": ratios(ex), "nominal_model": ratios(nominal), "best_model": ratio_best,
             "best_errors_pct": _pct(ratio_best[:, 1:], ratios(ex)[:, 1:]),
