@@ -1,0 +1,117 @@
+"""Atomic output: a failed write keeps the old file and leaves no temporary file; final files
+get a plain file's permissions under the umask; a staged folder replaces its target whole or
+not at all; leftovers of dead processes are swept."""
+
+import os
+import stat
+import subprocess
+import sys
+
+import pytest
+
+from flexlink.errors import OutputError
+from flexlink.fileio import prepare_out_dir, staged_folder, sweep_stale, write_atomic, write_atomic_with
+
+
+class WriterDied(Exception):
+    pass
+
+
+def test_a_write_that_dies_part_way_keeps_the_old_file(tmp_path):
+    target = tmp_path / "result.vtu"
+    target.write_bytes(b"old complete result")
+
+    def half_then_die(tmp):
+        with open(tmp, "wb") as fh:
+            fh.write(b"new, half writ")
+            fh.flush()
+        raise WriterDied("the writer failed half-way")
+
+    with pytest.raises(WriterDied):
+        write_atomic_with(target, half_then_die)
+    assert target.read_bytes() == b"old complete result"
+
+
+def test_no_temporary_file_is_left_after_a_failure(tmp_path):
+    target = tmp_path / "result.vtu"
+    target.write_bytes(b"old")
+
+    def half_then_die(tmp):
+        tmp.write_bytes(b"half")
+        raise WriterDied
+
+    with pytest.raises(WriterDied):
+        write_atomic_with(target, half_then_die)
+
+    def half_then_disk_full(tmp):
+        tmp.write_bytes(b"half")
+        raise OSError(28, "No space left on device")
+
+    with pytest.raises(OutputError, match="No space left"):
+        write_atomic_with(target, half_then_disk_full)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["result.vtu"]
+
+
+@pytest.mark.parametrize("umask, file_mode, folder_mode", [(0o022, 0o644, 0o755),
+                                                           (0o077, 0o600, 0o700)])
+def test_outputs_get_the_permissions_of_the_umask(tmp_path, umask, file_mode, folder_mode):
+    previous = os.umask(umask)
+    try:
+        text = write_atomic(tmp_path / "a.json", "{}")
+        data = write_atomic(tmp_path / "b.png", b"\x89PNG")
+        with staged_folder(tmp_path / "case") as stage:
+            inner = write_atomic(stage / "c.vtu", "x")
+    finally:
+        os.umask(previous)
+    for path in (text, data, tmp_path / "case" / inner.name):
+        assert stat.S_IMODE(path.stat().st_mode) == file_mode, path
+    assert stat.S_IMODE((tmp_path / "case").stat().st_mode) == folder_mode
+
+
+def test_a_staged_folder_replaces_the_old_one_whole_or_not_at_all(tmp_path):
+    target = tmp_path / "case1"
+    target.mkdir()
+    (target / "old.png").write_text("old")
+    with pytest.raises(WriterDied):
+        with staged_folder(target) as stage:
+            write_atomic(stage / "new.vtu", "new")
+            raise WriterDied
+    assert sorted(p.name for p in tmp_path.rglob("*")) == ["case1", "old.png"]
+    with staged_folder(target) as stage:
+        write_atomic(stage / "new.vtu", "new")
+    assert sorted(p.name for p in tmp_path.rglob("*")) == ["case1", "new.vtu"]
+
+
+def dead_pid() -> int:
+    child = subprocess.Popen([sys.executable, "-c", "pass"])
+    child.wait()
+    return child.pid
+
+
+def test_leftovers_of_dead_processes_are_swept_and_live_ones_kept(tmp_path):
+    pid = dead_pid()
+    frames = tmp_path / "case1" / "case1_mode1"
+    frames.mkdir(parents=True)
+    stale = [frames / f".phase03.vtu.~{pid}~k2j4h5g6.tmp",
+             frames / ".phase00.vtu.a1b2c3d4.tmp",  # flexlink before process ids in names
+             tmp_path / f".export.json.~{pid}~abcdefgh.tmp"]
+    for p in stale:
+        p.write_bytes(b"")
+    stage = tmp_path / f".case2.~{pid}~qwertyui.stage"
+    (stage / "sub").mkdir(parents=True)
+    live = tmp_path / f".modes.json.~{os.getpid()}~zxcvbnma.tmp"
+    live.write_bytes(b"being written")
+    kept = [tmp_path / "case1" / "case1.vtu", tmp_path / "notes.tmp"]
+    for p in kept:
+        p.write_text("x")
+    prepare_out_dir(tmp_path)
+    assert not any(p.exists() for p in stale) and not stage.exists()
+    assert live.exists() and all(p.exists() for p in kept)
+
+
+def test_a_swap_cut_between_its_renames_is_undone(tmp_path):
+    old = tmp_path / f".case1.~{dead_pid()}~asdfghjk.old"
+    old.mkdir()
+    (old / "case1.vtu").write_text("previous")
+    sweep_stale(tmp_path)
+    assert (tmp_path / "case1" / "case1.vtu").read_text() == "previous" and not old.exists()
