@@ -1,0 +1,75 @@
+"""An export stopped by SIGTERM while it writes leaves the previous complete output as it was,
+and no temporary file; the next run sweeps what a killed run left."""
+
+import hashlib
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+from click.testing import CliRunner
+
+from flexlink.cli import main
+
+ROOT = Path(__file__).resolve().parent.parent
+CASE3 = ROOT / "cases" / "case3.toml"
+QUICK = ["-e", "2", "--no-pictures", "--phases", "2", "-n", "1"]
+# thousands of larger frames: seconds of writing, so the signal comes while files are written
+SLOW = ["-e", "8", "--subdivide", "16", "--no-pictures", "--phases", "1000", "-n", "4"]
+
+
+def snapshot(out: Path) -> dict[str, str]:
+    return {str(p.relative_to(out)): hashlib.sha256(p.read_bytes()).hexdigest()
+            for p in sorted(out.rglob("*")) if p.is_file()}
+
+
+def wait_until_writing(out: Path, child: subprocess.Popen, files_before: int,
+                       timeout: float = 120) -> None:
+    """Return once the running export has written 20 files more than ``out`` held before."""
+    end = time.monotonic() + timeout
+    while time.monotonic() < end:
+        assert child.poll() is None, "the export ended before it was stopped"
+        if sum(1 for p in out.rglob("*") if p.is_file()) >= files_before + 20:
+            return
+        time.sleep(0.01)
+    raise AssertionError("the export did not start writing")
+
+
+def test_sigterm_while_writing_keeps_the_previous_output_and_no_temp_files(tmp_path):
+    out = tmp_path / "out"
+    first = CliRunner().invoke(main, ["export", str(CASE3), *QUICK, "--out", str(out)])
+    assert first.exit_code == 0, first.output
+    before = snapshot(out)
+    env = {**os.environ, "PYTHONPATH": str(ROOT)}
+    child = subprocess.Popen([sys.executable, "-m", "flexlink.cli", "export", str(CASE3), *SLOW,
+                              "--out", str(out)], env=env, stdout=subprocess.PIPE,
+                             stderr=subprocess.PIPE, text=True)
+    try:
+        wait_until_writing(out, child, len(before))
+        child.send_signal(signal.SIGTERM)
+        _, err = child.communicate(timeout=60)
+    finally:
+        child.kill()
+    assert child.returncode == 128 + signal.SIGTERM, err
+    assert "stopped by signal SIGTERM" in err
+    assert snapshot(out) == before  # also: no temporary or staging file anywhere
+    assert json.loads((out / "export.json").read_text())["complete"] is True
+
+
+def test_the_next_export_sweeps_what_a_killed_run_left(tmp_path):
+    out = tmp_path / "out"
+    child = subprocess.Popen([sys.executable, "-c", "pass"])
+    child.wait()  # its process id now names no running process
+    frames = out / "case3" / "case3_mode1"
+    frames.mkdir(parents=True)
+    planted = [frames / f".phase07.vtu.~{child.pid}~x1y2z3w4.tmp", frames / ".phase00.vtu.a1b2c3d4.tmp",
+               out / f".case3.~{child.pid}~q1w2e3r4.stage" / "case3.vtu"]
+    planted[-1].parent.mkdir()
+    for p in planted:
+        p.write_bytes(b"")
+    result = CliRunner().invoke(main, ["export", str(CASE3), *QUICK, "--out", str(out)])
+    assert result.exit_code == 0, result.output
+    assert not any(p.name.startswith(".") for p in out.rglob("*"))
