@@ -366,6 +366,9 @@ def main() -> int:
     if args.scaling_point:
         print(json.dumps(scaling_point(args.scaling_point)))
         return 0
+    from flexlink import logbook
+
+    once = logbook.configure()  # each kind of warning once, repeats counted at the end
     print(f"flexlink benchmark: {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}, "
           f"{os.cpu_count()} cores, load average {os.getloadavg()[0]:.2f} at start")
     agree = per_pose(args.repeats)
@@ -376,6 +379,7 @@ def main() -> int:
     parallel(max(3, args.repeats // 2))
     print(f"load average {os.getloadavg()[0]:.2f} at the end; frequencies agree with OpenSees "
           f"to {TOLERANCE:g}: {'yes' if agree else 'NO'}")
+    logbook.report_repeats(once)
     return 0 if agree else 1
 
 
