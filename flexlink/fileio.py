@@ -21,6 +21,7 @@ import re
 import shutil
 import signal
 import tempfile
+import threading
 from collections.abc import Callable, Iterator
 from pathlib import Path
 
@@ -49,8 +50,10 @@ def _raise_terminated(signum, frame):
 
 def signals_raise() -> None:
     """Make SIGTERM raise ``Terminated`` in the main thread (SIGINT already raises
-    KeyboardInterrupt), so temporary files and staging folders are removed on the way out."""
-    signal.signal(signal.SIGTERM, _raise_terminated)
+    KeyboardInterrupt), so temporary files and staging folders are removed on the way out.
+    Does nothing outside the main thread, where Python allows no signal handler."""
+    if threading.current_thread() is threading.main_thread():
+        signal.signal(signal.SIGTERM, _raise_terminated)
 
 
 def _umask() -> int:
@@ -162,6 +165,9 @@ def write_atomic(path: str | Path, data: str | bytes) -> Path:
 def _signals_held() -> Iterator[None]:
     """Hold SIGINT and SIGTERM back (they arrive when the block ends): for steps that must not
     be cut in two."""
+    if not hasattr(signal, "pthread_sigmask"):  # not on Windows: the renames stay unguarded
+        yield
+        return
     held = {signal.SIGINT, signal.SIGTERM}
     previous = signal.pthread_sigmask(signal.SIG_BLOCK, held)
     try:
