@@ -176,13 +176,36 @@ def _signals_held() -> Iterator[None]:
         signal.pthread_sigmask(signal.SIG_SETMASK, previous)
 
 
+def _carry_over(target: Path, stage: Path, keep: Callable[[str], bool]) -> None:
+    """Link (or, where the file system has no hard links, copy) into ``stage`` every entry of
+    ``target`` that ``keep`` names and the stage does not have: other commands' files."""
+    for entry in target.iterdir():
+        if entry.name.startswith(".") or not keep(entry.name) or (stage / entry.name).exists():
+            continue
+        if entry.is_dir() and not entry.is_symlink():
+            shutil.copytree(entry, stage / entry.name, symlinks=True, copy_function=_link_or_copy)
+        else:
+            _link_or_copy(entry, stage / entry.name)
+
+
+def _link_or_copy(source, destination) -> None:
+    try:
+        os.link(source, destination, follow_symlinks=False)
+    except OSError:
+        shutil.copy2(source, destination, follow_symlinks=False)
+
+
 @contextlib.contextmanager
-def staged_folder(target: str | Path) -> Iterator[Path]:
+def staged_folder(target: str | Path, keep: Callable[[str], bool] | None = None) -> Iterator[Path]:
     """Yield an empty staging folder beside ``target``; when the block ends normally, the staged
     folder replaces ``target`` as a whole (the old one is removed), otherwise it is deleted and
     ``target`` stays as it was. A reader sees the old folder or the new one, never a mix (except
     missing for the instant between two renames, which ``sweep_stale`` repairs should the
-    process die right there)."""
+    process die right there).
+
+    ``keep(name)``: which entries of the old ``target`` that the block did not write are carried
+    into the new one (files other commands put in the same folder); the rest are dropped, so a
+    writer's files from an earlier run with other settings do not linger."""
     target = Path(target)
     try:
         stage = Path(tempfile.mkdtemp(dir=target.parent, prefix=_temp_prefix(target), suffix=".stage"))
@@ -192,15 +215,17 @@ def staged_folder(target: str | Path) -> Iterator[Path]:
         yield stage
         _publish_mode(stage, directory=True)
         old = stage.with_name(stage.name[:-len(".stage")] + ".old")
-        with _signals_held():
-            try:
+        try:
+            if keep is not None and target.is_dir():
+                _carry_over(target, stage, keep)
+            with _signals_held():
                 if target.exists():
                     os.replace(target, old)
                 os.replace(stage, target)
-            except OSError as exc:
-                if old.exists() and not target.exists():
-                    os.replace(old, target)
-                raise OutputError(f"cannot replace {target}: {exc.strerror or exc}") from None
+        except OSError as exc:
+            if old.exists() and not target.exists():
+                os.replace(old, target)
+            raise OutputError(f"cannot replace {target}: {exc.strerror or exc}") from None
         _remove(old)
     finally:
         _remove(stage)

@@ -57,7 +57,7 @@ def test_calibrate_command_reports_the_failed_case(case2_fails, tmp_path):
         ("case2", k) for k in (1, 2, 3, 4)]
     assert study["errors_count"]["assumed_inputs_vs_Ex"] == 8
     assert means["paper_FE_vs_Ex"] is not None and failed["paper_FE_vs_Ex"] == []
-    report = (tmp_path / "report.md").read_text()
+    report = (tmp_path / "case1+case2" / "report.md").read_text()  # the run's folder
     assert "n/a (4 of 8 failed)" in report
     assert "### Failed evaluations" in report and FORCED in report
     # the model's warnings over the study's evaluations: one summary line at most, nothing

@@ -73,3 +73,17 @@ def test_the_next_export_sweeps_what_a_killed_run_left(tmp_path):
     result = CliRunner().invoke(main, ["export", str(CASE3), *QUICK, "--out", str(out)])
     assert result.exit_code == 0, result.output
     assert not any(p.name.startswith(".") for p in out.rglob("*"))
+
+
+def test_export_keeps_other_commands_files_and_drops_its_own_old_ones(tmp_path):
+    out = tmp_path / "out"
+    modes = CliRunner().invoke(main, ["modes", str(CASE3), "-e", "2", "--out", str(out)])
+    assert modes.exit_code == 0, modes.output
+    two = CliRunner().invoke(main, ["export", str(CASE3), *QUICK[:-1], "2", "--out", str(out)])
+    assert two.exit_code == 0, two.output
+    assert (out / "case3" / "case3_mode2.pvd").is_file()
+    one = CliRunner().invoke(main, ["export", str(CASE3), *QUICK, "--out", str(out)])
+    assert one.exit_code == 0, one.output
+    names = sorted(p.name for p in (out / "case3").iterdir())
+    assert "modes.json" in names and "modes.csv" in names  # the modes command's
+    assert not any(n.startswith("case3_mode2") for n in names)  # the 2-mode export's

@@ -8,12 +8,14 @@
 
 ``<stem>`` is the scene file's name without ``.toml``. The folder is written as a whole: into a
 staging folder that then replaces ``<stem>/`` (``fileio.staged_folder``), so an interrupted
-export leaves the previous folder as it was, never a mix of two runs.
+export leaves the previous folder as it was, never a mix of two runs. Other commands' files in
+the folder are carried over; export's own files from an earlier run are not.
 """
 
 from __future__ import annotations
 
 import dataclasses
+import re
 from pathlib import Path
 
 from flexlink.analysis.modal import CaseResult
@@ -56,10 +58,17 @@ def export_case(result: CaseResult, summary: dict, out: Path, settings: ExportSe
     kinds vtu, pvd, frames, pictures, plot (paths as strings, in the final folder)."""
     stem = case_stem(result)
     folder = out / stem
-    with staged_folder(folder) as stage:
+    with staged_folder(folder, keep=lambda name: not _is_export_file(stem, name)) as stage:
         files = _write_case(result, summary, stage, stem, settings)
     return {"folder": str(folder),
             **{k: [str(folder / p.relative_to(stage)) for p in v] for k, v in files.items()}}
+
+
+def _is_export_file(stem: str, name: str) -> bool:
+    """Whether ``name`` in a scene's folder is one of export's files (any number of modes);
+    other commands (``modes``, ``cycle``...) write into the same folder."""
+    return (name in (f"{stem}.vtu", f"{stem}_modes.png", f"{stem}_frequencies.png")
+            or re.fullmatch(rf"{re.escape(stem)}_mode\d+(\.pvd|\.png)?", name) is not None)
 
 
 def _write_case(result: CaseResult, summary: dict, folder: Path, stem: str,
