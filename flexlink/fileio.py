@@ -72,10 +72,12 @@ def _temp_prefix(path: Path) -> str:
 
 
 def _remove(path: Path) -> None:
+    """Delete a file or folder if it is there and we may; cleanup never raises over the error
+    that made it necessary."""
     if path.is_dir() and not path.is_symlink():
         shutil.rmtree(path, ignore_errors=True)
     else:
-        with contextlib.suppress(FileNotFoundError):
+        with contextlib.suppress(OSError):
             path.unlink()
 
 
@@ -106,7 +108,8 @@ def sweep_stale(folder: str | Path, depth: int = SWEEP_DEPTH) -> list[Path]:
         if match and not _alive(int(match["pid"])):
             target = entry.with_name(match["name"])
             if match["kind"] == "old" and not target.exists():
-                entry.rename(target)  # the swap died between its two renames: undo it
+                with contextlib.suppress(OSError):  # the swap died between its renames: undo
+                    entry.rename(target)
                 continue
             _remove(entry)
             removed.append(entry)
