@@ -90,3 +90,21 @@ def test_an_analysis_error_names_the_scene_too(tmp_path):
     assert result.stderr.startswith(f"flexlink: error: {scene}: 50 elastic modes asked for"), \
         result.stderr
     assert not (tmp_path / "out" / "coarse" / "cycle.json").exists()  # nothing half-written
+
+
+def test_folder_export_keeps_the_good_scenes(tmp_path):
+    folder = tmp_path / "scenes"
+    folder.mkdir()
+    for name in ("_table2.toml", "case2.toml"):
+        (folder / name).write_text((ROOT / "cases" / name).read_text())
+    bad = folder / "bad.toml"
+    bad.write_text('base = "_table2.toml"\n' + RATIOS + '[secton]\nwidth = "1 mm"\n')
+    out = tmp_path / "out"
+    result = CliRunner().invoke(main, ["export", str(folder), "-e", "2", "-n", "2",
+                                       "--no-pictures", "--out", str(out)])
+    assert result.exit_code == 2, result.output
+    listed = json.loads((out / "export.json").read_text())
+    assert [Path(c["file"]).name for c in listed["cases"]] == ["case2.toml"]
+    assert listed["failures"][0]["file"] == str(bad) and not listed["complete"]
+    assert (out / "case2" / "case2.vtu").is_file()
+    assert "[secton]: unknown table" in result.stderr and "1 of 2 scene(s) failed" in result.stderr

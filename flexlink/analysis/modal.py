@@ -23,7 +23,6 @@ from flexlink.scene.plausibility import model_warnings, pose_warnings
 
 log = logging.getLogger(__name__)
 
-_WARNED: set[tuple[str, str]] = set()
 MASSES = ("consistent", "lumped")
 
 
@@ -80,10 +79,8 @@ def analyze(scene: Scene, n_modes: int = 4, elements_per_link: int | None = None
     topology = scene.topology(elements_per_link)
     model, modes, seconds = pose_modes(topology, pose.joints, n_modes, method, mass, refine)
     warnings = tuple(pose_warnings(scene.four_bar, pose) + model_warnings(model))
-    for w in warnings:
-        if (scene.path, w) not in _WARNED:  # once per process: sweeps call this many times
-            _WARNED.add((scene.path, w))
-            log.warning("%s: %s", scene.path, w)
+    for w in warnings:  # once per kind and run: the CLI's logbook filter counts the repeats
+        log.warning("%s: %s", scene.path, w)
     return CaseResult(scene=scene, pose=pose, model=model, modes=modes,
                       elements_per_link=topology.links[0].elements, seconds=seconds,
                       warnings=warnings)

@@ -46,7 +46,8 @@ def command(scenes, n_modes, elements, tol, method, subdivide, phases, amplitude
 
     from flexlink.analysis.mesh import DEFAULT_TOL, choose_mesh
     from flexlink.analysis.modal import analyze
-    from flexlink.errors import InputError
+    from flexlink.errors import FlexlinkError, InputError
+    from ._failures import finish, scene_failure
     from flexlink.output.export import ExportSettings, export_case
     from flexlink.fileio import prepare_out_dir, write_atomic
     from flexlink.output.report import case_summary
@@ -61,30 +62,38 @@ def command(scenes, n_modes, elements, tol, method, subdivide, phases, amplitude
     if clash:
         raise InputError(f"two scene files would write to the same folder {clash[0]!r}",
                          source="command line", expected="scene files with different names")
-    cases, meshes = [], []
+    cases, meshes, failures = [], [], []
+    document = {"command": "export", "out": str(out), "complete": False, "cases": cases,
+                "failures": failures}
     bar = tqdm(files, desc="export", unit="scene", file=sys.stderr,
                disable=as_json or not sys.stderr.isatty())
     for path in bar:
-        scene = load_scene(path)
-        mesh = choose_mesh(scene, n_modes, elements, DEFAULT_TOL if tol is None else tol)
-        result = analyze(scene, n_modes, mesh.elements, method)
-        summary = case_summary(result, n_modes)
-        written = export_case(result, summary, out, settings)
+        try:
+            scene = load_scene(path)
+            mesh = choose_mesh(scene, n_modes, elements, DEFAULT_TOL if tol is None else tol)
+            result = analyze(scene, n_modes, mesh.elements, method)
+            summary = case_summary(result, n_modes)
+            written = export_case(result, summary, out, settings)
+        except FlexlinkError as exc:  # the other scenes go on
+            failures.append(scene_failure(path, exc))
+            continue
         cases.append({"scene": scene.name, "file": str(path), "mesh": mesh.as_dict(),
                       "frequencies_Hz": [row["computed_Hz"] for row in summary["modes"]],
                       "files": written})
         meshes.append(mesh)
         # rewritten after every scene folder is swapped in, so export.json lists exactly the
         # folders this run has completed, even when the run is stopped half-way
-        document = {"command": "export", "out": str(out), "complete": len(cases) == len(files),
-                    "cases": cases}
+        document["complete"] = len(cases) == len(files)
         write_atomic(out / "export.json", dumps(document))
     if as_json:
         click.echo(dumps(document))
+        finish(failures, len(files))
         return
     for case, mesh in zip(cases, meshes):
         f = case["files"]
         click.echo(f"{case['scene']}: {len(case['frequencies_Hz'])} modes -> {f['folder']}/  "
                    f"({len(f['vtu'])} .vtu, {len(f['pvd'])} .pvd with {len(f['frames'])} frames, "
                    f"{len(f['pictures'])} pictures, {len(f['plot'])} plot)\n  {mesh.describe()}")
-    click.echo(f"written: {out / 'export.json'}")
+    if cases:
+        click.echo(f"written: {out / 'export.json'}")
+    finish(failures, len(files))
