@@ -97,6 +97,6 @@ def test_cycle_lines_are_continuous_shapes():
 
 def test_close_frequencies_without_a_shape_change_are_no_veering():
     t = np.linspace(0, 1, 41)
-    freqs = np.sqrt(np.stack([1.45 + 0.2 * (t - 0.5)**2, 1.55 - 0.2 * (t - 0.5)**2], 1)) / (2 * np.pi)
+    freqs = np.sqrt(np.stack([1.45 - 0.2 * (t - 0.5)**2, 1.55 + 0.2 * (t - 0.5)**2], 1)) / (2 * np.pi)
     shapes = [np.eye(2)] * len(t)  # uncoupled: each mode keeps its shape, 3.4 % apart at t = 0.5
     assert track(freqs, shapes, 2).events == ()
