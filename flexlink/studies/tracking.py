@@ -21,6 +21,7 @@ import math
 
 import numpy as np
 
+from flexlink.analysis.identity import mode_identity
 from flexlink.analysis.mac import link_frame, link_frame_mass, mac_matrix, pair_modes
 from flexlink.analysis.modal import pose_modes
 from flexlink.fe.model import layout
@@ -120,6 +121,7 @@ class TrackedMap:
     frequencies: np.ndarray
     tracks: Tracks
     mu90: dict[str, np.ndarray]
+    labels: tuple[str, ...] = ()  # each line's identity label at the first pose
 
 
 def tracked_map(scene: Scene, n_poses: int = 360, n_modes: int = 3,
@@ -142,11 +144,12 @@ def tracked_map(scene: Scene, n_poses: int = 360, n_modes: int = 3,
         shapes.append(U)
         if W is None:
             W = link_frame_mass(model)
+            labels = tuple(d["label"] for d in mode_identity(model, modes.shapes[:, elastic[:n_modes]]))
     tracks = track(freqs, shapes, n_modes, W)
     mu90 = {key: crossings(cycle.q, mu, math.pi / 2)
             for key, mu in transmission_angles(scene, cycle).items()}
     return TrackedMap(scene=scene.name, q=cycle.q, frequencies=tracks.frequencies,
-                      tracks=tracks, mu90=mu90)
+                      tracks=tracks, mu90=mu90, labels=labels)
 
 
 def events_json(result: TrackedMap) -> list[dict]:
