@@ -100,3 +100,21 @@ def test_close_frequencies_without_a_shape_change_are_no_veering():
     freqs = np.sqrt(np.stack([1.45 - 0.2 * (t - 0.5)**2, 1.55 + 0.2 * (t - 0.5)**2], 1)) / (2 * np.pi)
     shapes = [np.eye(2)] * len(t)  # uncoupled: each mode keeps its shape, 3.4 % apart at t = 0.5
     assert track(freqs, shapes, 2).events == ()
+
+
+def test_mac_command_pairs_two_meshes_of_one_scene(tmp_path):
+    import json
+
+    from click.testing import CliRunner
+
+    from flexlink.cli import main
+
+    result = CliRunner().invoke(main, ["mac", "cases/case1.toml", "cases/case1.toml", "-e", "8",
+                                       "--elements-b", "16", "-n", "3", "--json", "--out",
+                                       str(tmp_path)])
+    assert result.exit_code == 0, result.output
+    doc = json.loads(result.output)
+    assert [(p["a"], p["b"]) for p in doc["pairs"]] == [(1, 1), (2, 2), (3, 3)]
+    assert min(p["mac"] for p in doc["pairs"]) > 0.99
+    assert np.array(doc["mac"]).shape == (3, 3)
+    assert (tmp_path / "case1+case1" / "mac.csv").exists()
