@@ -118,3 +118,22 @@ def test_mac_command_pairs_two_meshes_of_one_scene(tmp_path):
     assert min(p["mac"] for p in doc["pairs"]) > 0.99
     assert np.array(doc["mac"]).shape == (3, 3)
     assert (tmp_path / "case1+case1" / "mac.csv").exists()
+
+
+def test_cycle_command_tracks_by_mac_and_reports_the_nearest_harmonic(tmp_path):
+    import json
+
+    from click.testing import CliRunner
+
+    from flexlink.cli import main
+
+    args = ["cycle", "cases/case1.toml", "-e", "6", "--poses", "36", "-n", "2", "--speed",
+            "100 rev/min", "--harmonics", "2", "--json", "--out", str(tmp_path)]
+    doc = json.loads(CliRunner().invoke(main, args).output)
+    assert doc["tracking"]["by"] == "MAC" and len(doc["tracking"]["labels"]) == 2
+    # 2 x 100 rev/min = 3.33 Hz, far below mode 1: gap = 1 - 3.33 / f1_min
+    near = doc["nearest_harmonic"]
+    assert (near["mode"], near["harmonic"]) == (1, 2)
+    assert near["relative_gap"] == pytest.approx(1 - (200 / 60) / doc["modes"][0]["min_Hz"])
+    header = (tmp_path / "case1" / "cycle.csv").read_text().splitlines()[0]
+    assert header.endswith("mac1,mac2,events")

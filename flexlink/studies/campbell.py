@@ -108,6 +108,18 @@ def nearest_margin(found: list[Band], speeds: tuple[float, float],
     return best
 
 
+def nearest_harmonic(frequencies: np.ndarray, crank_speed: float,
+                     harmonics: int = 10) -> tuple[float, int, int]:
+    """(smallest relative gap |f - f_n| / f over the cycle, mode, harmonic) of harmonics
+    n = 1 ... ``harmonics`` of ``crank_speed`` [rad/s] to the lines ``frequencies`` (poses,
+    modes) [Hz]: how far the nearest one is when none is within the margin."""
+    f = np.asarray(frequencies, dtype=float)
+    n = np.arange(1, harmonics + 1)[:, None, None]
+    gap = np.abs(f[None] - n * crank_speed / (2 * math.pi)) / f[None]
+    h, _, j = np.unravel_index(np.nanargmin(gap), gap.shape)
+    return float(np.nanmin(gap)), int(j) + 1, int(h) + 1
+
+
 def campbell_json(found: list[Band], critical: list[CriticalSpeed],
                   nearest: NearestMargin | None, labels=None) -> dict:
     """JSON-ready bands [Hz], ``critical_speeds`` [rev/min] and the nearest margin."""

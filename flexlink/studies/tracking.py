@@ -122,6 +122,7 @@ class TrackedMap:
     tracks: Tracks
     mu90: dict[str, np.ndarray]
     labels: tuple[str, ...] = ()  # each line's identity label at the first pose
+    mechanism_counts: np.ndarray | None = None  # rigid-body/mechanism modes found per pose
 
 
 def tracked_map(scene: Scene, n_poses: int = 360, n_modes: int = 3,
@@ -133,11 +134,13 @@ def tracked_map(scene: Scene, n_poses: int = 360, n_modes: int = 3,
     k = n_modes + SPARE
     freqs = np.full((len(cycle.states), k), np.nan)
     shapes, W = [], None
+    mechanism = np.zeros(len(cycle.states), dtype=int)
     states = progress(cycle.states) if progress else cycle.states
     layout(topology)  # warm the cache once
     for i, state in enumerate(states):
         model, modes, _ = pose_modes(topology, state.points, k)
         elastic = modes.elastic[:k]
+        mechanism[i] = len(modes.kinds) - len(modes.elastic)
         freqs[i, :len(elastic)] = modes.frequencies[elastic]
         U = np.zeros((model.n_dofs, k))
         U[:, :len(elastic)] = link_frame(model, modes.shapes[:, elastic])
@@ -149,7 +152,8 @@ def tracked_map(scene: Scene, n_poses: int = 360, n_modes: int = 3,
     mu90 = {key: crossings(cycle.q, mu, math.pi / 2)
             for key, mu in transmission_angles(scene, cycle).items()}
     return TrackedMap(scene=scene.name, q=cycle.q, frequencies=tracks.frequencies,
-                      tracks=tracks, mu90=mu90, labels=labels)
+                      tracks=tracks, mu90=mu90, labels=labels,
+                      mechanism_counts=mechanism)
 
 
 def events_json(result: TrackedMap) -> list[dict]:
@@ -173,3 +177,43 @@ def tracked_csv(result: TrackedMap) -> str:
                      + ",".join(f"{v:.6f}" for v in result.tracks.mac[i]) + ","
                      + "; ".join(at.get(i, [])))
     return "\n".join(lines) + "\n"
+
+
+def plot_tracked(result: TrackedMap, path, crank_speed: float | None = None, hits=()) -> None:
+    """PNG of the tracked lines against crank angle (as ``cycle.plot_map``), with each line's
+    label, crossings marked x and veerings o, the poses where mu = 90 deg and the resonating
+    harmonics (``hits``: ``cycle.Resonance``) as dashes."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(8, 4.8))
+    deg = np.degrees(result.q)
+    f = result.frequencies
+    for j in range(f.shape[1]):
+        label = f"mode {j + 1}" + (f": {result.labels[j]}" if j < len(result.labels) else "")
+        ax.plot(deg, f[:, j], label=label)
+    for kind, marker in (("crossing", "x"), ("veering", "o")):
+        events = [e for e in result.tracks.events if e.kind == kind]
+        if events:
+            x = [deg[e.pose] for e in events]
+            y = [f[e.pose, [e.lines[0] - 1, e.lines[1] - 1]].mean() for e in events]
+            ax.scatter(x, y, marker=marker, s=60, color="k", facecolors="none" if marker == "o"
+                       else None, zorder=3, label=kind)
+    for k, (pair, angles) in enumerate(result.mu90.items()):
+        for i, a in enumerate(angles):
+            ax.axvline(math.degrees(a), color="0.4", ls=":" if k else "--", lw=1,
+                       label=f"mu = 90 deg ({pair})" if i == 0 else None)
+    for h in sorted({h.frequency for h in hits}):
+        ax.axhline(h, color="red", ls="-.", lw=0.8)
+    ax.set_xlabel("crank angle [deg]")
+    ax.set_ylabel("natural frequency [Hz]")
+    ax.set_xlim(deg[0], deg[0] + 360)
+    ax.set_title(result.scene + " (modes tracked by MAC)" + (
+        f", crank {crank_speed * 60 / (2 * math.pi):g} rev/min" if crank_speed else ""))
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
