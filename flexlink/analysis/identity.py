@@ -31,10 +31,10 @@ NAMED_JOINT = 0.2  # a joint named in a joint-spring label holds at least this m
 
 @dataclasses.dataclass(frozen=True)
 class EnergyParts:
-    """Per part (``names``) and mode: twice the strain energy and twice the kinetic energy
-    per omega^2 (u^T K u [J], u^T M u [kg m^2 per s^2 ... i.e. the mass-weighted norm]), and the
-    split of each link's strain into axial and bending, and of each joint's into translational
-    (Kt, axial) and rotational (Kr, drive)."""
+    """Per part (``names``) and mode: the part's share of u^T K u (twice the strain energy) and
+    of u^T M u (twice the kinetic energy over omega^2), in the units of the shapes given; and
+    the axial share of each link's strain (the rest is bending), or the translational (Kt)
+    share of each joint's (the rest is Kr and the drive)."""
 
     names: tuple[str, ...]
     is_link: tuple[bool, ...]
