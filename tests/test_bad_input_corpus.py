@@ -22,7 +22,8 @@ CORPUS = {
 }
 COMMANDS = (["modes"], ["export", "--no-pictures"], ["stability"], ["converge"],
             ["cycle", "--poses", "8"], ["kinematics", "--poses", "8"], ["prb"],
-            ["calibrate", "--starts", "1", "--samples", "2"])
+            ["calibrate", "--starts", "1", "--samples", "2"],
+            ["campbell", "--speeds", "0:3000 rev/min", "--poses", "8"])
 
 
 @pytest.fixture(scope="module")
@@ -87,8 +88,13 @@ def test_an_analysis_error_names_the_scene_too(tmp_path):
     result = CliRunner().invoke(main, ["cycle", str(scene), "-n", "50", "-e", "1", "--poses", "4",
                                        "--out", str(tmp_path / "out")])
     assert result.exit_code == 2, result.output
-    assert result.stderr.startswith(f"flexlink: error: {scene}: 50 elastic modes asked for"), \
+    assert result.stderr.startswith(f"flexlink: error: {scene}: ") and \
+        "50 elastic modes asked for" in result.stderr and result.stderr.count("\n") == 1, \
         result.stderr
+    # the frequency-sorted map (the Craig-Bampton sweep) refuses the same way
+    result = CliRunner().invoke(main, ["cycle", str(scene), "-n", "50", "-e", "1", "--poses", "4",
+                                       "--sorted", "--out", str(tmp_path / "out")])
+    assert result.exit_code == 2 and "50 elastic modes asked for" in result.stderr
     assert not (tmp_path / "out" / "coarse" / "cycle.json").exists()  # nothing half-written
 
 

@@ -52,7 +52,8 @@ def test_cycle_writes_csv_png_and_checks_resonance(tmp_path):
     scene_path = ROOT / "scenes" / "kineto_aluminium.toml"
     margin, harmonics = 0.05, 100
     result = run("cycle", scene_path, "--poses", "6", "-e", "3", "-n", "2", "--speed",
-                 "600 rev/min", "--harmonics", str(harmonics), "--json", "--out", tmp_path)
+                 "600 rev/min", "--harmonics", str(harmonics), "--sorted", "--json",
+                 "--out", tmp_path)
     assert result.exit_code == 0, result.output
     doc = json.loads(result.stdout)
     for name in ("cycle.csv", "cycle.png", "cycle.json"):

@@ -29,16 +29,22 @@ from flexlink.commands._options import dumps, json_option, out_option
               help="Relative distance that counts as near a natural frequency.")
 @click.option("--harmonics", default=10, show_default=True, type=click.IntRange(1, 10000),
               help="Crank harmonics n = 1 ... this number.")
+@click.option("--track/--sorted", default=True, show_default=True,
+              help="Follow each mode's shape from pose to pose by MAC (crossings and veerings "
+                   "marked), or list the n-th lowest frequency at each pose (faster).")
 @json_option
 @out_option
 @names_scene("scene_path")
-def command(scene_path, n_modes, poses, elements, tol, speed, margin, harmonics, as_json, out_dir):
+def command(scene_path, n_modes, poses, elements, tol, speed, margin, harmonics, track, as_json,
+            out_dir):
     """Natural frequencies of the first modes at every crank angle of SCENE (CSV and PNG in
     --out), the poses where the transmission angle is 90 deg, and the crank harmonics that
     come within --margin of a natural frequency anywhere in the cycle. Writes cycle.csv,
     cycle.png and cycle.json to OUT/<scene>/."""
     from flexlink.studies.cycle import (modal_map, modal_map_csv, plot_map, resonance_speed,
                                         resonances, runs)
+    from flexlink.studies.campbell import nearest_harmonic
+    from flexlink.studies.tracking import events_json, plot_tracked, tracked_csv, tracked_map
     from flexlink.analysis.mesh import DEFAULT_TOL, choose_mesh
     from flexlink.fileio import prepare_out_dir, write_atomic
     from flexlink.scene import load_scene
@@ -52,12 +58,16 @@ def command(scene_path, n_modes, poses, elements, tol, speed, margin, harmonics,
              parse_quantity(speed, "angular speed", source="command line", field="--speed"))
     check_speed, check_note = resonance_speed(omega)
     mesh = choose_mesh(scene, n_modes, elements, DEFAULT_TOL if tol is None else tol)
-    result = modal_map(scene, poses, n_modes, mesh.elements,
-                       progress=progress_bar("modal map", as_json))
+    if track:
+        result = tracked_map(scene, poses, n_modes, mesh.elements,
+                             progress=progress_bar("tracked modes", as_json))
+    else:
+        result = modal_map(scene, poses, n_modes, mesh.elements,
+                           progress=progress_bar("modal map", as_json))
     hits = resonances(result, check_speed, margin, harmonics) if check_speed else []
     paths = [folder / "cycle.csv", folder / "cycle.png", folder / "cycle.json"]
-    write_atomic(paths[0], modal_map_csv(result))
-    plot_map(result, paths[1], check_speed, hits)
+    write_atomic(paths[0], tracked_csv(result) if track else modal_map_csv(result))
+    (plot_tracked if track else plot_map)(result, paths[1], check_speed, hits)
     f = result.frequencies
     document = {
         "command": "cycle", "scene": scene.name, "poses": poses,
@@ -80,6 +90,11 @@ def command(scene_path, n_modes, poses, elements, tol, speed, margin, harmonics,
                         "crank_deg_ranges": [[round(math.degrees(a), 2), round(math.degrees(b), 2)]
                                              for a, b in runs(h.angles, 2 * math.pi / poses)]}
                        for h in hits],
+        "tracking": {"by": "MAC", "labels": list(result.labels),
+                     "events": events_json(result)} if track else {"by": "frequency order"},
+        "nearest_harmonic": None if not check_speed else dict(zip(
+            ("relative_gap", "mode", "harmonic"),
+            nearest_harmonic(result.frequencies, check_speed, harmonics))),
         "files": [str(p) for p in paths],
         "assumptions": [f"{a.field}: {a.note}" for a in scene.assumptions],
     }
@@ -93,18 +108,25 @@ def command(scene_path, n_modes, poses, elements, tol, speed, margin, harmonics,
         click.echo(f"synthesis {scene.synthesis['method']}: " + ", ".join(
             f"{k} {1e3 * v:.3f} mm" for k, v in scene.synthesis["lengths_m"].items()))
     click.echo(f"{'mode':>4} {'min [Hz]':>10} {'at [deg]':>9} {'max [Hz]':>10} {'at [deg]':>9}")
+    labels = document["tracking"].get("labels", [])
     for m in document["modes"]:
         click.echo(f"{m['mode']:>4} {m['min_Hz']:>10.2f} {m['at_crank_deg']:>9.1f} "
-                   f"{m['max_Hz']:>10.2f} {m['at_crank_deg_max']:>9.1f}")
+                   f"{m['max_Hz']:>10.2f} {m['at_crank_deg_max']:>9.1f}"
+                   + (f"  {labels[m['mode'] - 1]}" if m["mode"] <= len(labels) else ""))
     for pair, angles in document["mu90_crank_deg"].items():
         where = (", ".join(f"{a:.2f}" for a in angles) + " deg") if angles else "never in the cycle"
         click.echo(f"mu = 90 deg ({pair}) at crank {where}")
     if check_note:
         click.echo(check_note)
     if check_speed and not hits:
+        near = document["nearest_harmonic"]
         click.echo(f"resonance check at {document['resonance_check']['speed_rev_per_min']:g} "
                    f"rev/min: no harmonic 1..{harmonics} within {100 * margin:g} % of a natural "
-                   "frequency")
+                   f"frequency; nearest: harmonic {near['harmonic']} at "
+                   f"{100 * near['relative_gap']:.1f} % from mode {near['mode']}")
+    for e in document.get("tracking", {}).get("events", []):
+        click.echo(f"{e['kind']} of modes {e['lines'][0]} and {e['lines'][1]} at crank "
+                   f"{e['crank_deg']:.1f} deg (gap {100 * e['gap']:.1f} %)")
     for h in document["resonances"]:
         ranges = ", ".join(f"{a:.1f}-{b:.1f}" for a, b in h["crank_deg_ranges"])
         click.echo(f"resonance: harmonic {h['harmonic']} ({h['harmonic_Hz']:.2f} Hz) within "

@@ -9,9 +9,10 @@ curve draws the computed shape itself. VTK orders a Lagrange curve's points: bot
 interior points in order.
 
 Arrays of the ``.vtu`` (2D model padded with z = 0, as VTK wants 3D points):
-- point data ``mode<n>_<f>Hz_displacement`` (3 components [m/sqrt(kg)], z = 0) and
-  ``mode<n>_<f>Hz_rotation`` [rad/sqrt(kg)]: the mass-normalised shapes exactly as solved, for the
-  elastic modes numbered as in the ``modes`` table;
+- point data ``mode<n>_displacement`` (3 components [m/sqrt(kg)], z = 0) and
+  ``mode<n>_rotation`` [rad/sqrt(kg)]: the mass-normalised shapes exactly as solved, for the
+  elastic modes numbered as in the ``modes`` table; the names hold no frequency, so a ParaView
+  state file survives a change of input (the frequency is field data ``mode<n>_frequency_Hz``);
 - cell data ``link_id`` (index of the link), ``element_id`` (global element number);
 - field data ``frequencies_Hz``, ``mode_numbers``, ``warp_scale`` (per mode, the factor for
   ParaView's Warp By Vector that gives the animation's amplitude), ``theta2_deg``, ``mu_deg``,
@@ -55,7 +56,8 @@ class ModeSet:
         return fraction * self.size / peak if peak > 0 else 0.0
 
     def label(self, i: int) -> str:
-        return f"mode{self.numbers[i]}_{self.frequencies[i]:.5g}Hz"
+        """The stable array name stem of mode i: ``mode<n>``, no frequency in it."""
+        return f"mode{self.numbers[i]}"
 
 
 def mode_set(result: CaseResult, n_modes: int, subdivisions: int = 4) -> ModeSet:
@@ -97,6 +99,8 @@ def modes_mesh(result: CaseResult, modes: ModeSet, fraction: float) -> meshio.Me
         "warp_scale": np.array([modes.scale(i, fraction) for i in range(len(modes.numbers))]),
         "theta2_deg": np.array([math.degrees(result.pose.theta2)]),
         "mu_deg": np.array([math.degrees(result.pose.mu)]),
+        **{f"{modes.label(i)}_frequency_Hz": np.array([float(modes.frequencies[i])])
+           for i in range(len(modes.numbers))},
         **_link_fields(s),
     }
     return meshio.Mesh(_pad(s.points), [(CELL_TYPE, _lagrange_order(s.cells))],

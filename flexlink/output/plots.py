@@ -1,5 +1,6 @@
 """Frequency comparison plot with matplotlib: per case, computed vs the reference columns
-(measured Ex, the paper's FE) as grouped bars on a log axis, each computed bar annotated with
+(measured Ex, the paper's FE) as points on a log axis (a bar on a log axis has no
+meaningful base), each computed bar annotated with
 its % error against every reference. Returns PNG bytes; the caller writes them."""
 
 from __future__ import annotations
@@ -13,7 +14,8 @@ LABELS = {"computed": "computed (flexlink)", "FE": "paper FE", "Ex": "measured (
 
 
 def frequency_plot(summary: dict, size: tuple[float, float] = (8.0, 5.0), dpi: int = 120) -> bytes:
-    """PNG of one case's ``report.case_summary``: bars per mode, log frequency axis.
+    """PNG of one case's ``report.case_summary``: a point per mode and series, log frequency
+    axis.
 
     ``size`` [in] and ``dpi`` give the picture size in pixels (size * dpi)."""
     from matplotlib.backends.backend_agg import FigureCanvasAgg
@@ -29,8 +31,9 @@ def frequency_plot(summary: dict, size: tuple[float, float] = (8.0, 5.0), dpi: i
     ax = fig.add_subplot()
     for j, name in enumerate(series):
         values = np.array([r.get(f"{name}_Hz", np.nan) for r in rows], dtype=float)
-        ax.bar(modes + (j - (len(series) - 1) / 2) * width, values, width,
-               color=COLOURS.get(name, f"C{j}"), label=LABELS.get(name, name))
+        ax.plot(modes + (j - (len(series) - 1) / 2) * width, values, ls="none",
+                marker="os^Dv"[j % 5], markersize=7, color=COLOURS.get(name, f"C{j}"),
+                label=LABELS.get(name, name))
     top = max(r["computed_Hz"] for r in rows) if rows else 1.0
     for r, x in zip(rows, modes - (len(series) - 1) / 2 * width):
         notes = [f"{r[f'error_vs_{ref}_pct']:+.0f} % vs {ref}" for ref in refs

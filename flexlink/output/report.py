@@ -10,6 +10,7 @@ import math
 
 import numpy as np
 
+from flexlink.analysis.identity import DIRECTIONS, mode_identity, participating_mass, total_mass
 from flexlink.analysis.modal import CaseResult
 
 
@@ -19,9 +20,12 @@ def percent_error(computed: float, reference: float) -> float:
 
 def comparison_rows(result: CaseResult, n_modes: int, computed=None, kinds=None) -> list[dict]:
     """One dict per elastic mode: mode, computed [Hz], and for each reference column its value
-    [Hz] and % error (computed vs reference)."""
+    [Hz] and % error (computed vs reference); for the planar model's own modes also its
+    identity (``identity.mode_identity``: label, energy fractions, effective masses)."""
+    identity = [{}] * n_modes
     if computed is None:
         computed = result.elastic_frequencies(n_modes)
+        identity = mode_identity(result.model, result.modes.shapes[:, result.modes.elastic[:n_modes]])
     columns = result.scene.reference.columns if result.scene.reference else {}
     rows = []
     for i, f in enumerate(computed):
@@ -32,7 +36,7 @@ def comparison_rows(result: CaseResult, n_modes: int, computed=None, kinds=None)
             if i < len(values):
                 row[f"{name}_Hz"] = values[i]
                 row[f"error_vs_{name}_pct"] = percent_error(float(f), values[i])
-        rows.append(row)
+        rows.append({**row, **identity[i]})
     return rows
 
 
@@ -75,6 +79,8 @@ def case_summary(result: CaseResult, n_modes: int, family: str = "planar", compu
         "solver": modes.solver,
         "modes": rows,
         "mechanism_modes_Hz": mechanism,
+        "mass_kg": {"total": total_mass(result.model),
+                    "participating": dict(zip(DIRECTIONS, map(float, participating_mass(result.model))))},
         "mean_abs_error_pct": mean_abs_errors(rows),
         "max_residual": float(np.nanmax(modes.residuals[modes.elastic])),
         "max_backward_error": float(modes.backward_errors.max()),
@@ -110,6 +116,8 @@ def format_case(summary: dict) -> str:
     header = f"{'mode':>4} {'computed Hz':>12}" + "".join(f" {r + ' Hz':>9} {'err %':>8}" for r in refs)
     if rows and "kind" in rows[0]:
         header += "  kind"
+    if rows and "label" in rows[0]:
+        header += f" {'m_x g':>7} {'m_y g':>7}  label"
     lines.append(header)
     for row in rows:
         line = f"{row['mode']:>4} {row['computed_Hz']:>12.2f}"
@@ -118,6 +126,9 @@ def format_case(summary: dict) -> str:
                 line += f" {row[f'{r}_Hz']:>9.1f} {row[f'error_vs_{r}_pct']:>+8.1f}"
         if "kind" in row:
             line += f"  {row['kind']}"
+        if "label" in row:
+            mass = row["effective_mass_kg"]
+            line += f" {1e3 * mass['x']:>7.3f} {1e3 * mass['y']:>7.3f}  {row['label']}"
         lines.append(line)
     if summary["mean_abs_error_pct"]:
         lines.append("mean |error|: " + ", ".join(
@@ -130,15 +141,27 @@ def format_case(summary: dict) -> str:
 
 def comparison_csv(summaries: list[dict]) -> str:
     """CSV of the comparison: one row per scene and elastic mode, computed [Hz] and every
-    reference column [Hz] with its % error (the keys of ``comparison_rows``)."""
+    reference column [Hz] with its % error (the keys of ``comparison_rows``), and the mode's
+    identity flattened: label, strain_<part> and kinetic_<part> fractions, effective mass
+    m_eff_x_kg and m_eff_y_kg."""
+    rows = [{"scene": s["scene"], **_flat(row)} for s in summaries for row in s["modes"]]
     keys = ["scene", "mode", "computed_Hz"]
-    for s in summaries:
-        for row in s["modes"]:
-            keys += [k for k in row if k not in keys]
+    for row in rows:
+        keys += [k for k in row if k not in keys]
     buf = io.StringIO()
     writer = csv.DictWriter(buf, fieldnames=keys, lineterminator="\n")
     writer.writeheader()
-    for s in summaries:
-        for row in s["modes"]:
-            writer.writerow({"scene": s["scene"], **row})
+    writer.writerows(rows)
     return buf.getvalue()
+
+
+def _flat(row: dict) -> dict:
+    """A ``comparison_rows`` row with its nested identity dicts as flat CSV columns."""
+    out = {k: v for k, v in row.items() if not isinstance(v, dict)}
+    for part, value in row.get("strain_energy", {}).items():
+        out[f"strain_{part}"] = value
+    for part, value in row.get("kinetic_energy", {}).items():
+        out[f"kinetic_{part}"] = value
+    for axis, value in row.get("effective_mass_kg", {}).items():
+        out[f"m_eff_{axis}_kg"] = value
+    return out

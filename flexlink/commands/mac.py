@@ -1,0 +1,59 @@
+"""``flexlink mac A B``: the MAC matrix of two scenes' (or meshes') modes and their pairing."""
+
+from __future__ import annotations
+
+import click
+
+from flexlink.commands._options import dumps, json_option, out_option
+
+
+@click.command("mac")
+@click.argument("scene_a", metavar="A", type=click.Path())
+@click.argument("scene_b", metavar="B", type=click.Path())
+@click.option("-n", "--modes", "n_modes", default=4, show_default=True,
+              type=click.IntRange(1, 200), help="Elastic modes of each side.")
+@click.option("-e", "--elements", default=None, type=click.IntRange(1, 100000),
+              help="Elements per link of A (and of B unless --elements-b) [default: as in "
+                   "`flexlink modes`].")
+@click.option("--elements-b", default=None, type=click.IntRange(1, 100000),
+              help="Elements per link of B, to compare two meshes of one scene.")
+@json_option
+@out_option
+def command(scene_a, scene_b, n_modes, elements, elements_b, as_json, out_dir):
+    """MAC between the lowest elastic modes of scenes A and B at their poses (in-plane
+    modes), compared link by link at stations along each link, so two meshes, sections or
+    poses of one linkage can be compared; the scenes must name the same links. Prints the MAC
+    matrix and pairs the modes; writes mac.json and mac.csv to OUT/<A>+<B>/."""
+    from flexlink.analysis.mesh import DEFAULT_TOL, choose_mesh
+    from flexlink.fileio import prepare_out_dir, write_atomic
+    from flexlink.scene import load_scene
+    from flexlink.studies.shapes import comparison_json, compare_scenes, mac_csv
+    from ._written import announce, run_folder
+
+    folder = run_folder(prepare_out_dir(out_dir), [scene_a, scene_b])
+    a, b = load_scene(scene_a), load_scene(scene_b)
+    mesh_a = choose_mesh(a, n_modes, elements, DEFAULT_TOL)
+    mesh_b = choose_mesh(b, n_modes, elements if elements_b is None else elements_b, DEFAULT_TOL)
+    result = compare_scenes(a, b, n_modes, mesh_a.elements, mesh_b.elements)
+    paths = [folder / "mac.json", folder / "mac.csv"]
+    document = {"command": "mac", **comparison_json(result, n_modes),
+                "files": [str(p) for p in paths]}
+    write_atomic(paths[0], dumps(document))
+    write_atomic(paths[1], mac_csv(result))
+    if as_json:
+        click.echo(dumps(document))
+        return
+    for side in ("a", "b"):
+        s = document[side]
+        click.echo(f"{side.upper()}: {s['scene']} ({s['file']}), {s['elements_per_link']} "
+                   "elements/link: " + ", ".join(f"{m['mode']}) {m['Hz']:.2f} Hz {m['label']}"
+                                                for m in s["modes"]))
+    n_b = result.mac.shape[1]
+    click.echo("MAC  " + "".join(f"{'B' + str(j + 1):>7}" for j in range(n_b)))
+    for i, row in enumerate(result.mac):
+        click.echo(f"A{i + 1:<4}" + "".join(f"{v:>7.3f}" for v in row))
+    click.echo("pairs:")
+    for p in document["pairs"]:
+        click.echo(f"  A{p['a']} - B{p['b']}: MAC {p['mac']:.3f}, frequency "
+                   f"{p['difference_pct']:+.2f} %")
+    announce(paths, as_json)

@@ -1,0 +1,188 @@
+"""Campbell diagram of a linkage: each tracked mode's frequency band over the crank cycle
+against crank speed, the crank harmonics n x speed, and the speeds where a harmonic comes near
+a band.
+
+A linkage's natural frequencies change with the pose, not with the speed (the model has no
+centrifugal or Coriolis terms), so a mode is a horizontal band [f_min, f_max] over the cycle.
+Harmonic n at crank speed Omega [rad/s] is f_n = n Omega / (2 pi). With the relative margin m
+of the resonance check (|f - f_n| <= m f, ``cycle.resonances``), harmonic n is critical for a
+mode wherever f_n lies in [f_min (1 - m), f_max (1 + m)], i.e. for
+    Omega in [2 pi f_min (1 - m) / n, 2 pi f_max (1 + m) / n],
+cut to the speed range asked for. When nothing is critical, the nearest margin is the smallest
+relative gap |f - f_n| / f between a harmonic line and a band edge over the speed range.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+
+from flexlink.errors import InputError
+
+RPM = 2 * math.pi / 60.0  # rad/s per rev/min
+
+
+@dataclasses.dataclass(frozen=True)
+class Band:
+    """Tracked mode ``mode`` (1-based) spans [low, high] [Hz] over the cycle."""
+
+    mode: int
+    low: float
+    high: float
+
+
+@dataclasses.dataclass(frozen=True)
+class CriticalSpeed:
+    """Harmonic ``harmonic`` is within the margin of mode ``mode``'s band for crank speeds
+    [low, high] [rad/s]."""
+
+    mode: int
+    harmonic: int
+    low: float
+    high: float
+
+
+@dataclasses.dataclass(frozen=True)
+class NearestMargin:
+    """The smallest relative gap ``gap`` between harmonic ``harmonic`` and mode ``mode``'s band,
+    reached at crank speed ``speed`` [rad/s]."""
+
+    mode: int
+    harmonic: int
+    gap: float
+    speed: float
+
+
+def bands(frequencies: np.ndarray) -> list[Band]:
+    """One band per column of ``frequencies`` (poses, lines) [Hz]."""
+    f = np.asarray(frequencies, dtype=float)
+    if not np.isfinite(f).all():
+        raise InputError("a tracked mode is missing at some pose: its band is not known",
+                         field="modes", expected="fewer modes (-n) or a finer mesh")
+    return [Band(j + 1, float(f[:, j].min()), float(f[:, j].max())) for j in range(f.shape[1])]
+
+
+def _check_speeds(speeds: tuple[float, float]) -> tuple[float, float]:
+    low, high = speeds
+    if not (0 <= low < high and math.isfinite(high)):
+        raise InputError(f"speed range {low / RPM:g}:{high / RPM:g} rev/min", field="--speeds",
+                         expected="0 <= low < high, finite")
+    return low, high
+
+
+def critical_speeds(found: list[Band], speeds: tuple[float, float], margin: float = 0.05,
+                    harmonics: int = 10) -> list[CriticalSpeed]:
+    """Crank speed ranges [rad/s] within ``speeds`` (low, high) where harmonic n = 1 ...
+    ``harmonics`` is within ``margin`` (relative) of a mode's band, by mode then harmonic."""
+    low, high = _check_speeds(speeds)
+    out = []
+    for band in found:
+        for n in range(1, harmonics + 1):
+            a = 2 * math.pi * band.low * (1 - margin) / n
+            b = 2 * math.pi * band.high * (1 + margin) / n
+            if a <= high and b >= low:
+                out.append(CriticalSpeed(band.mode, n, max(a, low), min(b, high)))
+    return out
+
+
+def nearest_margin(found: list[Band], speeds: tuple[float, float],
+                   harmonics: int = 10) -> NearestMargin | None:
+    """The smallest relative gap |f - f_n| / f (f the nearer band edge) between a harmonic
+    line and a band over ``speeds`` [rad/s]; 0 where a line enters a band."""
+    low, high = _check_speeds(speeds)
+    best = None
+    for band in found:
+        for n in range(1, harmonics + 1):
+            f_low, f_high = n * low / (2 * math.pi), n * high / (2 * math.pi)
+            if f_high < band.low:
+                gap, speed = (band.low - f_high) / band.low, high
+            elif f_low > band.high:
+                gap, speed = (f_low - band.high) / band.high, low
+            else:
+                gap = 0.0
+                speed = max(low, 2 * math.pi * band.low / n)
+            if best is None or gap < best.gap:
+                best = NearestMargin(band.mode, n, gap, speed)
+    return best
+
+
+def nearest_harmonic(frequencies: np.ndarray, crank_speed: float,
+                     harmonics: int = 10) -> tuple[float, int, int]:
+    """(smallest relative gap |f - f_n| / f over the cycle, mode, harmonic) of harmonics
+    n = 1 ... ``harmonics`` of ``crank_speed`` [rad/s] to the lines ``frequencies`` (poses,
+    modes) [Hz]: how far the nearest one is when none is within the margin."""
+    f = np.asarray(frequencies, dtype=float)
+    n = np.arange(1, harmonics + 1)[:, None, None]
+    gap = np.abs(f[None] - n * crank_speed / (2 * math.pi)) / f[None]
+    h, _, j = np.unravel_index(np.nanargmin(gap), gap.shape)
+    return float(np.nanmin(gap)), int(j) + 1, int(h) + 1
+
+
+def campbell_json(found: list[Band], critical: list[CriticalSpeed],
+                  nearest: NearestMargin | None, labels=None) -> dict:
+    """JSON-ready bands [Hz], ``critical_speeds`` [rev/min] and the nearest margin."""
+    labels = labels or {}
+    return {
+        "bands": [{"mode": b.mode, "label": labels.get(b.mode), "min_Hz": b.low,
+                   "max_Hz": b.high} for b in found],
+        "critical_speeds": [{"mode": c.mode, "harmonic": c.harmonic,
+                             "from_rev_per_min": c.low / RPM, "to_rev_per_min": c.high / RPM}
+                            for c in critical],
+        "nearest_margin": None if nearest is None else {
+            "mode": nearest.mode, "harmonic": nearest.harmonic, "relative_gap": nearest.gap,
+            "at_rev_per_min": nearest.speed / RPM},
+    }
+
+
+def critical_csv(critical: list[CriticalSpeed], found: list[Band]) -> str:
+    """One row per critical range: mode, its band [Hz], harmonic, speed range [rev/min]."""
+    by_mode = {b.mode: b for b in found}
+    lines = ["mode,band_min_Hz,band_max_Hz,harmonic,from_rev_per_min,to_rev_per_min"]
+    for c in critical:
+        b = by_mode[c.mode]
+        lines.append(f"{c.mode},{b.low:.8g},{b.high:.8g},{c.harmonic},{c.low / RPM:.6g},"
+                     f"{c.high / RPM:.6g}")
+    return "\n".join(lines) + "\n"
+
+
+def plot_campbell(found: list[Band], speeds: tuple[float, float], margin: float,
+                  harmonics: int, critical: list[CriticalSpeed], path, title: str = "",
+                  labels=None) -> None:
+    """PNG: bands (and their margin bands, lighter) against crank speed [rev/min], harmonic
+    lines n x speed, and the critical speed ranges shaded along the speed axis."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    labels = labels or {}
+    low, high = speeds[0] / RPM, speeds[1] / RPM
+    fig, ax = plt.subplots(figsize=(8, 5))
+    top = max(b.high for b in found) * (1 + margin) * 1.1
+    for b in found:
+        colour = f"C{b.mode - 1}"
+        ax.axhspan(b.low * (1 - margin), b.high * (1 + margin), color=colour, alpha=0.12, lw=0)
+        ax.axhspan(b.low, b.high, color=colour, alpha=0.45, lw=0,
+                   label=f"mode {b.mode}" + (f": {labels[b.mode]}" if labels.get(b.mode) else ""))
+    rpm = np.array([low, high])
+    for n in range(1, harmonics + 1):
+        f = n * rpm / 60.0
+        ax.plot(rpm, f, color="0.3", lw=0.8)
+        if f[-1] <= top:
+            ax.annotate(f"{n}x", (rpm[-1], f[-1]), fontsize=7, ha="right", va="bottom")
+        else:
+            ax.annotate(f"{n}x", (60.0 * top / n, top), fontsize=7, ha="right", va="top")
+    for c in critical:
+        ax.axvspan(c.low / RPM, c.high / RPM, color="red", alpha=0.08, lw=0)
+    ax.set_xlim(low, high)
+    ax.set_ylim(0, top)
+    ax.set_xlabel("crank speed [rev/min]")
+    ax.set_ylabel("frequency [Hz]")
+    ax.set_title(title + f" (margin {100 * margin:g} %)")
+    ax.legend(fontsize=8, loc="upper left")
+    ax.grid(alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
