@@ -19,6 +19,7 @@ from __future__ import annotations
 import html
 import json
 import math
+import re
 
 from flexlink.output.html_assets import SCRIPT, STYLE
 
@@ -226,7 +227,10 @@ def render_page(pages: list[dict], plotly_js: str, title: str = "flexlink report
     nav = "".join(f'<a href="#scene-{_e(p["id"])}">{_e(p["summary"]["scene"])}</a>' for p in pages)
     data = {"figures": figures,
             "animations": {p["id"]: p["shapes"] for p in pages if p["shapes"]["modes"]}}
+    # "</script" inside a script would end it early; "<\/" means "</" in JSON and in
+    # JavaScript strings, the only places a script can hold it
     payload = json.dumps(data, separators=(",", ":"), allow_nan=False).replace("</", "<\\/")
+    plotly_js = re.sub(r"</(script)", r"<\\/\1", plotly_js, flags=re.I)
     return ("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
             "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">"
             f"<title>{_e(title)}</title><style>{STYLE}</style></head><body>"
