@@ -160,6 +160,7 @@ def test_report_command_writes_the_page_and_the_files_it_links(tmp_path):
     assert all(s["cycle_map"] for s in document["scenes"])
 
 
+@pytest.mark.slow
 def test_scene_data_leave_room_for_four_cases_under_15_MB(tmp_path):
     """The page is plotly's bundle once plus each scene's data; at the mesh the shipped cases
     get (64 elements/link, the tolerance rule's answer for case 1) and the default cycle map,
@@ -171,3 +172,16 @@ def test_scene_data_leave_room_for_four_cases_under_15_MB(tmp_path):
     bundle = len(plotly.offline.get_plotlyjs().encode())
     per_scene = json.loads(result.stdout)["bytes"] - bundle
     assert bundle + 4 * per_scene < 15e6, (bundle, per_scene)
+
+
+def test_scene_without_reference_or_assumptions_shows_no_such_columns_or_section():
+    result = analyze(load_scene(ROOT / "scenes" / "wiper.toml"), 2, 4)
+    assert result.scene.reference is None
+    summary = {**case_summary(result, 2), "warnings": [], "assumptions": []}
+    mesh = {"rule": "command line (-e)", "elements_per_link": 4, "describe": "mesh: 4 elements"}
+    page = render_page([scene_page(result, summary, mesh, mode_set(result, 2), None, {}, Path("/o"))],
+                       FAKE_JS)
+    assert "<h3>Natural frequencies</h3>" in page and "<th>error</th>" not in page
+    assert "<h3>Assumptions</h3>" not in page and "<h3>Files for ParaView</h3>" not in page
+    data = json.loads(parsed(page).scripts[0])
+    assert len(data["animations"]["wiper"]["modes"]) == 2

@@ -52,8 +52,7 @@ def mode_shapes(modes: ModeSet) -> dict:
     broken line) [mm] and, per mode, the displacement along them normalised to a largest
     magnitude of 1; ``size_mm`` is the mechanism size the page's amplitude fraction refers to."""
     sampled = modes.sampled
-    x, y, order = [], [], []
-    start = 0
+    order, start = [], 0
     for link_index in range(len(sampled.link_names)):
         count = int((sampled.cell_link == link_index).sum()) * sampled.subdivisions + 1
         order.extend(range(start, start + count))
