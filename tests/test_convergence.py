@@ -87,12 +87,15 @@ def test_discretisation_error_reaches_1e_minus_8(scene):
 def test_mesh_rule_meets_its_tolerance(scene):
     tol = 1e-5
     rule = cv.mesh_for_tolerance(scene, 4, tol)
-    assert rule.estimate <= tol
-    assert all(est > tol for _, est in rule.history[:-1])  # nothing coarser qualified
-    fine = [cv.run_level(scene, cv.CHOICES[0], e, 4, 1) for e in (64, 128, 256)]
-    ref = cv.richardson(fine).reference
-    chosen = analyze(scene, 4, rule.elements, "sparse").elastic_frequencies(4)
-    assert np.max(np.abs(chosen - ref) / ref) <= tol
+    # the true error against a mesh 16 times finer than needed (its own error is ~1e-9 here,
+    # test_discretisation_error_reaches_1e_minus_8), not against the rule's own estimate
+    fine = analyze(scene, 4, 512, "sparse").elastic_frequencies(4)
+    def true_error(elements):
+        return np.max(np.abs(analyze(scene, 4, elements, "sparse").elastic_frequencies(4) - fine)
+                      / fine)
+    assert true_error(rule.elements) <= tol
+    # and the rule does not over-refine: half its mesh misses the tolerance
+    assert true_error(rule.elements // 2) > tol
 
 
 def test_converge_command(tmp_path):
@@ -106,19 +109,24 @@ def test_converge_command(tmp_path):
     assert all(r["runs"] == 1 for r in doc["levels"])
     choices = {r["choice"] for r in doc["levels"]}
     assert {"sparse/consistent", "dense/consistent", "sparse/lumped"} <= choices
+    # the cheapest setting's frequencies really are within 1e-3 of a fine independent analysis
     best = doc["cheapest"]
-    assert best["max_relative_error"] <= 1e-3
-    meeting = [r for r in doc["levels"] if r["max_relative_error"] <= 1e-3]
-    assert best["seconds"] == pytest.approx(min(r["assembly_s"] + r["solve_s"] for r in meeting))
+    fine = analyze(load_scene(CASE1), 4, 256, "sparse").elastic_frequencies(4)
+    [level] = [r for r in doc["levels"] if r["choice"] == best["choice"]
+               and r["elements_per_link"] == best["elements_per_link"]]
+    assert np.max(np.abs(np.array(level["frequencies_Hz"]) - fine) / fine) <= 1e-3
     assert len(doc["model_error"]["error_pct"]) == 4
     assert (tmp_path / "case1" / "converge.png").read_bytes()[:4] == b"\x89PNG"
     assert json.loads((tmp_path / "case1" / "converge.json").read_text()) == doc
 
 
 def test_modes_states_its_mesh_rule(tmp_path):
-    result = CliRunner().invoke(main, ["modes", str(CASE1), "--tol", "1e-4", "--json",
+    result = CliRunner().invoke(main, ["modes", str(CASE1), "--tol", "1e-6", "--json",
                                        "--out", str(tmp_path)])
     assert result.exit_code == 0, result.output
-    mesh = json.loads(result.output)["cases"][0]["mesh"]
-    assert mesh["rule"] == "tolerance" and mesh["tolerance"] == 1e-4
-    assert mesh["estimated_relative_error"] <= 1e-4
+    case = json.loads(result.output)["cases"][0]
+    assert case["mesh"]["rule"] == "tolerance" and case["mesh"]["tolerance"] == 1e-6
+    # the frequencies printed meet the tolerance against a fine independent analysis
+    fine = analyze(load_scene(CASE1), 4, 512, "sparse").elastic_frequencies(4)
+    computed = np.array([m["computed_Hz"] for m in case["modes"]])
+    assert np.max(np.abs(computed - fine) / fine) <= 1e-6

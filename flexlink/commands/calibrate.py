@@ -8,6 +8,7 @@ import sys
 
 import click
 
+from flexlink.commands._failures import names_scene
 from flexlink.commands._options import dumps, json_option, out_option
 
 
@@ -37,6 +38,7 @@ from flexlink.commands._options import dumps, json_option, out_option
               help="Parallel workers (joblib; -1 = all cores).")
 @json_option
 @out_option
+@names_scene("scenes")
 def command(scenes, free_specs, families, starts, seed, samples, vf_sd, thickness_sd, elements,
             jobs, as_json, out_dir):
     """Calibrate each model family against the scenes' Ex column (and, separately, the paper's

@@ -6,6 +6,7 @@ import sys
 
 import click
 
+from flexlink.commands._failures import names_scene
 from flexlink.commands._options import dumps, json_option, out_option
 
 
@@ -22,6 +23,7 @@ from flexlink.commands._options import dumps, json_option, out_option
                    "[default: 1e-6].")
 @json_option
 @out_option
+@names_scene("scene_path")
 def command(scene_path, n_modes, max_elements, repeats, tol, as_json, out_dir):
     """Refine the mesh of SCENE (1, 2, 4, ... elements per link) with every solver and mass
     choice; report frequencies, their discretisation error against a Richardson-extrapolated

@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 import click
 
+from flexlink.commands._failures import names_scene
 from flexlink.commands._options import dumps, json_option, out_option
 
 
@@ -30,6 +31,7 @@ from flexlink.commands._options import dumps, json_option, out_option
               help="Crank harmonics n = 1 ... this number.")
 @json_option
 @out_option
+@names_scene("scene_path")
 def command(scene_path, n_modes, poses, elements, tol, speed, margin, harmonics, as_json, out_dir):
     """Natural frequencies of the first modes at every crank angle of SCENE (CSV and PNG in
     --out), the poses where the transmission angle is 90 deg, and the crank harmonics that

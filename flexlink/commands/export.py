@@ -7,6 +7,7 @@ import sys
 
 import click
 
+from flexlink.commands._failures import names_scene
 from flexlink.commands._options import dumps, json_option, out_option
 
 
@@ -34,6 +35,7 @@ from flexlink.commands._options import dumps, json_option, out_option
                    "plot (matplotlib) is drawn either way.")
 @json_option
 @out_option
+@names_scene("scenes")
 def command(scenes, n_modes, elements, tol, method, subdivide, phases, amplitude, pictures, as_json,
             out_dir):
     """Write, for each SCENE (a scene file or a folder of them), the first modes as a .vtu, a

@@ -6,6 +6,7 @@ import math
 
 import click
 
+from flexlink.commands._failures import names_scene
 from flexlink.commands._options import dumps, json_option, out_option
 
 
@@ -18,6 +19,7 @@ from flexlink.commands._options import dumps, json_option, out_option
                    "operation.crank_speed, if any), for angular velocity and acceleration.")
 @json_option
 @out_option
+@names_scene("scene_path")
 def command(scene_path, poses, speed, as_json, out_dir):
     """Angular positions, velocity coefficients K = dtheta/dq and their derivatives
     L = dK/dq of every body of SCENE over one crank revolution: extremes and where they occur,

@@ -35,6 +35,8 @@ def command(scenes, n_modes, elements, method, tol, as_json, out_dir):
     from flexlink.fileio import prepare_out_dir, write_atomic
     from flexlink.output.report import case_summary, comparison_csv, format_case
     from flexlink.scene import load_scene, scene_files
+    from flexlink.errors import FlexlinkError
+    from ._failures import finish, scene_failure
     from ._written import announce, scene_folders
 
     # analysis warnings come back in result.warnings and are printed with their case below;
@@ -42,24 +44,29 @@ def command(scenes, n_modes, elements, method, tol, as_json, out_dir):
     logging.getLogger("flexlink.analysis.modal").setLevel(logging.ERROR)
     out = prepare_out_dir(out_dir)
     files = scene_files(scenes)
-    folders = scene_folders(out, files)
-    summaries, meshes = [], []
+    all_folders = dict(zip(files, scene_folders(out, files)))
+    summaries, meshes, folders, failures = [], [], [], []
     for path in files:
-        scene = load_scene(path)
-        mesh = choose_mesh(scene, n_modes, elements, DEFAULT_TOL if tol is None else tol)
-        result = analyze(scene, n_modes, mesh.elements, method)
-        family = scene_family(scene)
-        other = {} if family == "planar" else dict(
-            zip(("computed", "kinds"), elastic_modes(scene, n_modes, mesh.elements, method)))
+        try:
+            scene = load_scene(path)
+            mesh = choose_mesh(scene, n_modes, elements, DEFAULT_TOL if tol is None else tol)
+            result = analyze(scene, n_modes, mesh.elements, method)
+            family = scene_family(scene)
+            other = {} if family == "planar" else dict(
+                zip(("computed", "kinds"), elastic_modes(scene, n_modes, mesh.elements, method)))
+        except FlexlinkError as exc:  # the other scenes still get their results
+            failures.append(scene_failure(path, exc))
+            continue
         summaries.append({**case_summary(result, n_modes, family, **other),
                           "mesh": mesh.as_dict(), "warnings": list(result.warnings)})
         meshes.append(mesh)
+        folders.append(all_folders[path])
     parts = [(folder / "modes.json", folder / "modes.csv", [s])
              for folder, s in zip(folders, summaries)]
-    if len(summaries) > 1:  # the combined table of a multi-scene run
+    if len(files) > 1 and summaries:  # the combined table of a multi-scene run
         parts.append((out / "modes.json", out / "modes.csv", summaries))
     written = [p for j, c, _ in parts for p in (j, c)]
-    document = _document(summaries, written)
+    document = {**_document(summaries, written), "failures": failures}
     for json_path, csv_path, part in parts:
         # the combined file is the printed document; a scene's file lists its own two files
         own = document if part is summaries else _document(part, [json_path, csv_path])
@@ -67,6 +74,7 @@ def command(scenes, n_modes, elements, method, tol, as_json, out_dir):
         write_atomic(csv_path, comparison_csv(part))
     if as_json:
         click.echo(dumps(document))
+        finish(failures, len(files))
         return
     for s, mesh in zip(summaries, meshes):
         click.echo(format_case(s) + "\n" + mesh.describe() + "".join(
@@ -76,6 +84,7 @@ def command(scenes, n_modes, elements, method, tol, as_json, out_dir):
         click.echo("overall mean |error|: " + ", ".join(
             f"vs {k} {v:.1f} %" for k, v in sorted(overall.items())))
     announce(written, as_json)
+    finish(failures, len(files))
 
 
 def _document(summaries: list[dict], files) -> dict:

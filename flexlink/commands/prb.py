@@ -4,10 +4,10 @@ first frequency."""
 from __future__ import annotations
 
 import math
-from pathlib import Path
 
 import click
 
+from flexlink.commands._failures import names_scene
 from flexlink.commands._options import dumps, json_option, out_option
 
 
@@ -19,37 +19,33 @@ from flexlink.commands._options import dumps, json_option, out_option
               help="Elements per link (default: the scene's).")
 @json_option
 @out_option
+@names_scene("scene_path")
 def command(scene_path, n_modes, elements, as_json, out_dir):
     """Modes of SCENE (a scene with a [prb] table) at its start pose, where the compliant strip
     is unstressed, with the strip as a flexible beam (FE), and the first frequency of the
     pseudo-rigid-body model (rigid link + torsional spring K = gamma K_Theta E I / l)."""
-    from flexlink.analysis.modal import pose_modes
     from flexlink.fileio import prepare_out_dir, write_atomic
-    from flexlink.errors import InputError
-    from flexlink.studies.prb import prb_frequency
     from flexlink.scene import load_scene
+    from flexlink.studies.prb import compare_prb
+    from ._written import announce, scene_folders
 
-    out = prepare_out_dir(out_dir)
+    [folder] = scene_folders(prepare_out_dir(out_dir), [scene_path])
     scene = load_scene(scene_path)
-    p = scene.options.prb
-    if p is None:
-        raise InputError("no [prb] table: nothing to compare", source=scene.path, field="prb")
-    state = scene.linkage.solve(scene.start, scene.guess)
-    prb = prb_frequency(scene, state, p.strip, p.pivot, p.link, p.clamp, p.gamma, p.K_theta)
-    modes = pose_modes(scene.topology(elements), state.points, n_modes)[1]
-    fe = [float(f) for f in modes.elastic_frequencies[:n_modes]]
+    result = compare_prb(scene, n_modes, elements)
+    prb, fe = result.prb, list(result.fe)
     document = {
         "command": "prb", "scene": scene.name, "synthesis": scene.synthesis,
-        "pose_crank_deg": math.degrees(scene.start),
-        "points_m": state.points,
+        "pose_crank_deg": math.degrees(result.crank_angle),
+        "points_m": result.points,
         "fe_Hz": fe,
         "prb": {"spring_N_m_per_rad": prb.spring, "generalized_stiffness_N_m": prb.stiffness,
                 "generalized_mass_kg_m2": prb.mass, "first_Hz": prb.frequency},
-        "prb_vs_fe_pct": 100 * (prb.frequency - fe[0]) / fe[0],
+        "prb_vs_fe_pct": result.prb_vs_fe_pct,
         "assumptions": [f"{a.field}: {a.note}" for a in scene.assumptions],
     }
-    stem = Path(scene_path).stem
-    write_atomic(out / f"{stem}-prb.json", dumps(document))
+    path = folder / "prb.json"
+    document["files"] = [str(path)]
+    write_atomic(path, dumps(document))
     if as_json:
         click.echo(dumps(document))
         return
@@ -63,4 +59,4 @@ def command(scene_path, n_modes, elements, as_json, out_dir):
     click.echo(f"  PRB: K = {prb.spring:.4f} N m/rad, k_q = {prb.stiffness:.4f} N m, m_q = "
                f"{prb.mass:.5g} kg m^2, first frequency {prb.frequency:.3f} Hz "
                f"({document['prb_vs_fe_pct']:+.1f} % vs FE {fe[0]:.3f} Hz)")
-    click.echo(f"written: {out / (stem + '-prb.json')}")
+    announce([path], as_json)

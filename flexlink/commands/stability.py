@@ -6,6 +6,7 @@ import sys
 
 import click
 
+from flexlink.commands._failures import names_scene
 from flexlink.commands._options import dumps, json_option, out_option
 
 
@@ -14,6 +15,7 @@ from flexlink.commands._options import dumps, json_option, out_option
 @click.option("--slow", is_flag=True, help="Also run the slow checks (1e5 DOFs; about a minute).")
 @json_option
 @out_option
+@names_scene("scene_path")
 def command(scene_path, slow, as_json, out_dir):
     """Run the stability checks on variants of SCENE (default cases/case1.toml): bearing
     stiffness 0 .. 1e30, free crank, slender to stubby links, toggle and unreachable poses,

@@ -3,7 +3,7 @@ pose (a transmission angle or a crank angle), with the links crank, coupler and 
 
 from __future__ import annotations
 
-from flexlink.errors import InputError
+from flexlink.errors import InputError, KinematicsError
 from flexlink.fe.model import LinkSpec
 from flexlink.kinematics import FourBar
 from flexlink.kinematics.linkage import four_bar_linkage
@@ -33,8 +33,14 @@ def build_four_bar(src: SceneSource, sf: schema.SceneFile) -> Scene:
                                        source=src.file_of(f"links.{name}.{key}"),
                                        field=f"links.{name}.{key}")
     pose = sf.pose
-    start = (pose.crank_angle if pose.crank_angle is not None
-             else fb.crank_angles_for_mu(pose.transmission_angle)[0])
+    if pose.crank_angle is not None:
+        start = pose.crank_angle
+    else:
+        try:
+            start = fb.crank_angles_for_mu(pose.transmission_angle)[0]
+        except KinematicsError as exc:  # the linkage cannot take this pose: say where it is asked
+            raise KinematicsError(f"{src.file_of('pose.transmission_angle')}: "
+                                  f"pose.transmission_angle: {exc}") from None
     guess = {k: v for k, v in fb.pose(start, pose.branch).joints.items() if k in ("A", "B")}
     assumptions = list(src.assumptions)
     lengths = dict(zip(("crank", "coupler", "rocker"), fb.lengths[1:]))
@@ -48,6 +54,6 @@ def build_four_bar(src: SceneSource, sf: schema.SceneFile) -> Scene:
         joints=parts.joints(src, sf, list(JOINTS), GROUND, welded_allowed=False),
         drive=parts.drive(src, sf, {n: (a, b) for n, a, b in LINKS}, GROUND),
         elements_per_link=sf.mesh.elements_per_link, reference=parts.reference(sf),
-        assumptions=parts.unique(assumptions), options=parts.options(src, sf, list(JOINTS)),
+        assumptions=parts.unique(assumptions + parts.default_assumptions(src, sf, list(JOINTS))), options=parts.options(src, sf, list(JOINTS)),
         composite=parts.composite(sf), origin=dict(src.origin))
 

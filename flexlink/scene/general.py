@@ -16,7 +16,7 @@ import math
 
 import numpy as np
 
-from flexlink.errors import InputError
+from flexlink.errors import InputError, KinematicsError
 from flexlink.fe.model import LinkSpec
 from flexlink.kinematics import Body, FourBar, Linkage
 from flexlink.kinematics.synthesis import brodell_soni, extended_rocker, minimax
@@ -54,7 +54,11 @@ def _kinematics(src: SceneSource, lk: schema.GeneralLinkage):
             fb, synthesis = _synthesised(lk.synthesis)
         if lk.start_transmission_angle is not None:
             # start where the transmission angle has this value (crank in [0, 180] deg)
-            start = fb.crank_angles_for_mu(lk.start_transmission_angle)[0]
+            try:
+                start = fb.crank_angles_for_mu(lk.start_transmission_angle)[0]
+            except KinematicsError as exc:
+                field = "linkage.start_transmission_angle"
+                raise KinematicsError(f"{src.file_of(field)}: {field}: {exc}") from None
         ground = {"O2": (0.0, 0.0), "O4": (fb.ground, 0.0)}
         lengths = dict(zip(("crank", "coupler", "rocker"), fb.lengths[1:]))
         bodies = [Body.bar(n, a, b, lengths[n]) for n, a, b in FOUR_BAR_BODIES]
@@ -138,5 +142,5 @@ def build_general(src: SceneSource, sf: schema.SceneFile) -> Scene:
         links=tuple(links), joints=parts.joints(src, sf, used, set(ground)) if links else (),
         drive=parts.drive(src, sf, {l.name: (l.start, l.end) for l in links}, set(ground)),
         elements_per_link=sf.mesh.elements_per_link, reference=parts.reference(sf),
-        assumptions=parts.unique(assumptions), options=parts.options(src, sf, used),
+        assumptions=parts.unique(assumptions + parts.default_assumptions(src, sf, used)), options=parts.options(src, sf, used),
         synthesis=synthesis, composite=parts.composite(sf), origin=dict(src.origin))

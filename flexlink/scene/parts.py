@@ -190,6 +190,21 @@ def reference(sf: schema.SceneFile) -> Reference | None:
     return Reference(source=sf.reference.source, columns=columns)
 
 
+def default_assumptions(src: SceneSource, sf: schema.SceneFile,
+                        joint_names: list[str]) -> list[Assumption]:
+    """Defaults that are modelling choices, listed like written assumptions: a rigid tilt
+    stiffness where an out-of-plane family needs one and the scene gives none."""
+    table = sf.joints or schema.JointsTable()
+    own = table.__pydantic_extra__ or {}
+    untilted = [j for j in joint_names
+                if table.Ktilt is None and (j not in own or own[j].Ktilt is None)]
+    if sf.model.family == "planar" or not untilted:
+        return []
+    return [Assumption("joints.Ktilt", "rigid", "assumed (default): joints " + ", ".join(untilted)
+                       + " hold both out-of-plane bending moments (Ktilt rigid); Ktilt is not "
+                       "given", src.file_of("model.family"))]
+
+
 def options(src: SceneSource, sf: schema.SceneFile, joint_names: list[str]) -> Options:
     prb = None
     if sf.prb is not None:

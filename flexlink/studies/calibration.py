@@ -157,6 +157,10 @@ def measured(problem: Problem, scenes=None) -> np.ndarray:
     rows = []
     for path in scenes or problem.scenes:
         scene = load_scene(path)
+        if scene.kind != "four-bar":  # KNOWN's inputs (L1, the crank's section, O2..O4) are its
+            raise InputError("calibration fits the inputs of four-bar scenes (L1, section, "
+                             "joints O2, A, B, O4); this is a general scene", source=str(path),
+                             field="linkage.type", expected="a four-bar scene")
         columns = scene.reference.columns if scene.reference else {}
         values = columns.get(problem.reference)
         if values is None or len(values) < problem.n_modes:

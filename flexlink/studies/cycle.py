@@ -12,7 +12,7 @@ import math
 
 import numpy as np
 
-from flexlink.errors import InputError
+from flexlink.errors import InputError, NumericalError
 from flexlink.kinematics.linkage import Cycle, crank_angles, crossings
 from flexlink.scene import Scene
 from flexlink.scene.contract import pose_transmission_angles
@@ -55,6 +55,13 @@ def modal_map(scene: Scene, n_poses: int = 360, n_modes: int = 3,
     cycle = kinematic_cycle(scene, n_poses)
     sweep = modal_sweep(scene.topology(elements_per_link), [s.points for s in cycle.states],
                         n_modes, progress=progress, reduction=reduction)
+    missing = ~np.isfinite(sweep.frequencies).all(axis=1)
+    if missing.any():  # never a silent gap in the map: the model has fewer modes than asked
+        found = int(np.isfinite(sweep.frequencies[missing][0]).sum())
+        raise NumericalError(
+            f"{n_modes} elastic modes asked for (-n), but at {int(missing.sum())} of {n_poses} "
+            f"crank angles (first {math.degrees(cycle.q[missing][0]):.1f} deg) the model has "
+            f"only {found}: ask for fewer modes or use more elements per link")
     mu90 = {k: crossings(cycle.q, mu, math.pi / 2)
             for k, mu in transmission_angles(scene, cycle).items()}
     return ModalMap(scene=scene.name, q=cycle.q, frequencies=sweep.frequencies,

@@ -23,6 +23,7 @@ import math
 
 import numpy as np
 
+from flexlink.errors import InputError
 from flexlink.kinematics.linkage import State
 
 
@@ -68,3 +69,32 @@ def prb_frequency(scene, state: State, strip: str, pivot: str, link_body: str, c
     stiffness = spring * k_rel**2
     return PRBResult(spring=spring, stiffness=stiffness, mass=mass,
                      frequency=math.sqrt(stiffness / mass) / (2 * math.pi))
+
+
+@dataclasses.dataclass(frozen=True)
+class PrbComparison:
+    """The scene's FE modes [Hz] at its start pose (strip unstressed) beside the PRB model's
+    first frequency; ``points`` [m] are the joints of that pose."""
+
+    crank_angle: float  # [rad]
+    points: dict[str, tuple[float, float]]
+    fe: tuple[float, ...]
+    prb: PRBResult
+
+    @property
+    def prb_vs_fe_pct(self) -> float:
+        return 100 * (self.prb.frequency - self.fe[0]) / self.fe[0]
+
+
+def compare_prb(scene, n_modes: int, elements: int | None = None) -> PrbComparison:
+    """FE and PRB first frequencies of a scene with a [prb] table (InputError without one)."""
+    from flexlink.analysis.modal import pose_modes  # studies sit above analysis
+
+    p = scene.options.prb
+    if p is None:
+        raise InputError("no [prb] table: nothing to compare", source=scene.path, field="prb")
+    state = scene.linkage.solve(scene.start, scene.guess)
+    prb = prb_frequency(scene, state, p.strip, p.pivot, p.link, p.clamp, p.gamma, p.K_theta)
+    modes = pose_modes(scene.topology(elements), state.points, n_modes)[1]
+    fe = tuple(float(f) for f in modes.elastic_frequencies[:n_modes])
+    return PrbComparison(scene.start, dict(state.points), fe, prb)

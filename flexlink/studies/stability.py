@@ -491,6 +491,10 @@ SLOW = (large_sparse,)
 def run_checks(scene: Scene, slow: bool = False, progress=None) -> list[Check]:
     """Every fast check (and the slow ones if ``slow``), in issue order; a check that raises
     unexpectedly is reported as failed, never hides the others."""
+    if scene.kind != "four-bar":  # every check varies a four-bar's inputs one at a time
+        raise InputError("the stability checks vary the inputs of a four-bar scene; this is a "
+                         "general scene", source=scene.path, field="linkage.type",
+                         expected='a four-bar scene (linkage.type = "four-bar")')
     checks = FAST + (SLOW if slow else ())
     out = []
     for fn in (progress(checks) if progress else checks):
