@@ -185,3 +185,23 @@ def test_scene_without_reference_or_assumptions_shows_no_such_columns_or_section
     assert "<h3>Assumptions</h3>" not in page and "<h3>Files for ParaView</h3>" not in page
     data = json.loads(parsed(page).scripts[0])
     assert len(data["animations"]["wiper"]["modes"]) == 2
+
+
+def test_a_failing_scene_is_listed_and_the_others_reported(tmp_path):
+    folder = tmp_path / "scenes"
+    folder.mkdir()
+    for name in ("_table2.toml", "case1.toml"):
+        (folder / name).write_text((ROOT / "cases" / name).read_text())
+    bad = folder / "case9.toml"
+    bad.write_text('base = "_table2.toml"\n[linkage]\nR2 = 0.267\nR3 = 0.800\nR4 = 0.667\n'
+                   '[pose]\ntransmission_angle = "20 deg"\n')
+    result = run("report", folder, "-e", "4", "-n", "2", "--cycle-poses", "0", "--json",
+                 "--out", tmp_path / "out")
+    assert result.exit_code == 2
+    document = json.loads(result.stdout)
+    assert [s["file"] for s in document["scenes"]] == [str(folder / "case1.toml")]
+    assert [f["file"] for f in document["failures"]] == [str(bad)]
+    page = (tmp_path / "out" / "report.html").read_text()
+    assert "Scenes not in this report" in page and str(bad) in page
+    assert '<section class="scene" id="scene-case1">' in page
+    assert str(bad) in result.stderr.splitlines()[0]

@@ -7,6 +7,7 @@ import logging
 
 import click
 
+from flexlink.commands._failures import names_scene
 from flexlink.commands._options import dumps, json_option, out_option
 
 
@@ -26,11 +27,13 @@ from flexlink.commands._options import dumps, json_option, out_option
               help="Crank angles of each scene's cycle map (0: no cycle map).")
 @json_option
 @out_option
+@names_scene("scenes")
 def command(scenes, n_modes, elements, tol, method, cycle_poses, as_json, out_dir):
     """Write OUT/report.html: for each SCENE (a scene file or a folder of them) its pose and
     drawing, frequencies against the reference columns, assumptions, mesh, animated mode
     shapes, cycle map, and links to the .vtu/.pvd files written beside it in OUT/<scene>/.
-    The page is self-contained: it needs no network to be viewed."""
+    The page is self-contained: it needs no network to be viewed. A scene that fails is
+    listed on the page and on stderr; the others are still reported (exit status 2)."""
     import importlib.metadata
     import sys
 
@@ -48,6 +51,7 @@ def command(scenes, n_modes, elements, tol, method, cycle_poses, as_json, out_di
     from flexlink.output.report_data import cycle_data, scene_page
     from flexlink.scene import load_scene, scene_files
     from flexlink.studies.cycle import modal_map
+    from ._failures import finish, scene_failure
     from ._written import announce, scene_folders
 
     logging.getLogger("flexlink.analysis.modal").setLevel(logging.ERROR)  # shown on the page
@@ -58,10 +62,15 @@ def command(scenes, n_modes, elements, tol, method, cycle_poses, as_json, out_di
     pages, written = [], []
     bar = tqdm(files, desc="report", unit="scene", file=sys.stderr,
                disable=as_json or not sys.stderr.isatty())
+    failures = []
     for path in bar:
-        scene = load_scene(path)
-        mesh = choose_mesh(scene, n_modes, elements, DEFAULT_TOL if tol is None else tol)
-        result = analyze(scene, n_modes, mesh.elements, method)
+        try:
+            scene = load_scene(path)
+            mesh = choose_mesh(scene, n_modes, elements, DEFAULT_TOL if tol is None else tol)
+            result = analyze(scene, n_modes, mesh.elements, method)
+        except FlexlinkError as exc:  # the other scenes still get their report
+            failures.append(scene_failure(path, exc))
+            continue
         summary = {**case_summary(result, n_modes), "warnings": list(result.warnings)}
         exported = export_case(result, summary, out, settings)
         written += exported["vtu"] + exported["pvd"]
@@ -74,11 +83,14 @@ def command(scenes, n_modes, elements, tol, method, cycle_poses, as_json, out_di
         mesh_info = {**mesh.as_dict(), "describe": mesh.describe(), "history": list(mesh.history)}
         pages.append(scene_page(result, summary, mesh_info, mode_set(result, n_modes),
                                 cycle_data(cycle, result.pose.crank_angle, reason), exported, out))
+    if not pages:  # nothing to show: no page, only the reasons
+        finish(failures, len(files))
     stamp = datetime.datetime.now().astimezone().strftime("%Y-%m-%d %H:%M %Z")
     version = importlib.metadata.version("flexlink")
     subtitle = (f"flexlink {version}, {stamp}: {len(pages)} scene"
                 f"{'s' if len(pages) != 1 else ''}, first {n_modes} elastic modes")
-    page = render_page(pages, plotly.offline.get_plotlyjs(), subtitle=subtitle)
+    page = render_page(pages, plotly.offline.get_plotlyjs(), subtitle=subtitle,
+                       failures=[f["error"] for f in failures])
     report = write_atomic(out / "report.html", page)
     document = {"command": "report", "report": str(report), "bytes": len(page.encode()),
                 "scenes": [{"scene": p["summary"]["scene"], "file": p["summary"]["file"],
@@ -86,9 +98,11 @@ def command(scenes, n_modes, elements, tol, method, cycle_poses, as_json, out_di
                             "frequencies_Hz": [r["computed_Hz"] for r in p["summary"]["modes"]],
                             "cycle_map": p["cycle"] is not None and "unavailable" not in p["cycle"]}
                            for p in pages],
-                "files": [str(report)] + [str(f) for f in written]}
+                "files": [str(report)] + [str(f) for f in written], "failures": failures}
     if as_json:
         click.echo(dumps(document))
+        finish(failures, len(files))
         return
     click.echo(f"report: {len(pages)} scenes, {document['bytes'] / 1e6:.1f} MB -> {report}")
     announce([report], as_json)
+    finish(failures, len(files))

@@ -207,14 +207,22 @@ def files_section(page: dict, figures: list) -> str:
             "press play in ParaView).</p><ul class=\"files\">" + "".join(links) + "</ul>")
 
 
+def _failures(messages) -> str:
+    if not messages:
+        return ""
+    return ('<div class="warnings"><strong>Scenes not in this report</strong><ul>'
+            + "".join(f"<li>{_e(m)}</li>" for m in messages) + "</ul></div>")
+
+
 SECTIONS = (pose_section, frequency_section, assumptions_section, mesh_section, modes_section,
             cycle_section, files_section)
 
 
 def render_page(pages: list[dict], plotly_js: str, title: str = "flexlink report",
-                subtitle: str = "") -> str:
+                subtitle: str = "", failures: tuple[str, ...] = ()) -> str:
     """The whole page for ``pages`` (``report_data.scene_page`` each); ``plotly_js``: the
-    plotly.js bundle, inlined."""
+    plotly.js bundle, inlined; ``failures``: one message per scene that could not be
+    analysed, listed at the top."""
     figures: list = []
     scenes = []
     for page in pages:
@@ -235,6 +243,6 @@ def render_page(pages: list[dict], plotly_js: str, title: str = "flexlink report
             "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">"
             f"<title>{_e(title)}</title><style>{STYLE}</style></head><body>"
             f"<header><h1>{_e(title)}</h1><p>{_e(subtitle)}</p><nav>{nav}</nav></header>"
-            f"<main>{''.join(scenes)}</main>"
+            f"<main>{_failures(failures)}{''.join(scenes)}</main>"
             f'<script type="application/json" id="flexlink-data">{payload}</script>'
             f"<script>{plotly_js}</script><script>{SCRIPT}</script></body></html>\n")
