@@ -52,6 +52,7 @@ class Section:
     name: str = ""
     beam: str = "euler-bernoulli"
     shear_factor: float = 5.0 / 6.0
+    bending: str = "edgewise"  # a flat bar's orientation (``rectangle``); edgewise otherwise
 
     def __post_init__(self):
         for field in ("E", "G", "density", "area", "second_moment", "depth", "shear_factor"):
@@ -76,7 +77,8 @@ class Section:
                              field="section.bending", expected=" or ".join(map(repr, BENDINGS)))
         depth, across = (width, thickness) if bending == "edgewise" else (thickness, width)
         return cls(E=E, G=G, density=density, area=width * thickness,
-                   second_moment=across * depth**3 / 12.0, depth=depth, name=name, beam=beam)
+                   second_moment=across * depth**3 / 12.0, depth=depth, name=name, beam=beam,
+                   bending=bending)
 
     @classmethod
     def tube(cls, E, G, density, outer_radius, inner_radius, name=""):
@@ -100,6 +102,12 @@ class Section:
     @property
     def mass_per_length(self) -> float:
         return self.density * self.area
+
+    @property
+    def strip(self) -> tuple[float, float]:
+        """(width, thickness) [m] of a flat bar, whichever way it lies."""
+        across = self.area / self.depth
+        return (self.depth, across) if self.bending == "edgewise" else (across, self.depth)
 
     @property
     def kGA(self) -> float:
