@@ -220,4 +220,5 @@ def unique(assumptions) -> tuple[Assumption, ...]:
 
 def composite(sf: schema.SceneFile) -> Composite | None:
     c = sf.material.composite if sf.material is not None else None
-    return None if c is None else Composite(c.fiber, c.matrix, c.fiber_volume_fraction)
+    return None if c is None else Composite(c.fiber, c.matrix, c.fiber_volume_fraction,
+                                            c.shear_modulus)
