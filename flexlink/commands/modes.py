@@ -62,7 +62,7 @@ def command(scenes, n_modes, elements, method, tol, sensitivity, samples, seed, 
             zip(("computed", "kinds"), elastic_modes(scene, n_modes, mesh.elements, method)))
         summary = {**case_summary(result, n_modes, family, **other),
                    "mesh": mesh.as_dict(), "warnings": list(result.warnings)}
-        summary.update(_alternatives(scene, n_modes, mesh.elements))
+        summary.update(_alternatives(scene, n_modes, mesh.elements, result.warnings))
         if sensitivity:
             summary["sensitivity"] = _sensitivity(scene, n_modes, samples, seed, jobs, as_json)
         summaries.append(summary)
@@ -91,11 +91,15 @@ def command(scenes, n_modes, elements, method, tol, sensitivity, samples, seed, 
     announce(written, as_json)
 
 
-def _alternatives(scene, n_modes, elements) -> dict:
-    """The other orientation and, for Timoshenko composites, the other shear source."""
-    from flexlink.studies.alternatives import other_orientation, other_shear_source
+def _alternatives(scene, n_modes, elements, warnings) -> dict:
+    """The other orientation; for Timoshenko composites the other shear source; and where a
+    link is outside Euler-Bernoulli theory, the scene computed with Timoshenko links."""
+    from flexlink.studies.alternatives import (other_orientation, other_shear_source,
+                                               timoshenko_alternative)
 
     out = {"other_orientation": other_orientation(scene, n_modes, elements)}
+    if any("Euler-Bernoulli" in w for w in warnings):
+        out["timoshenko"] = timoshenko_alternative(scene, n_modes, elements)
     shear = other_shear_source(scene, n_modes, elements)
     if shear is not None:
         out["other_shear_source"] = shear
@@ -119,6 +123,9 @@ def _extra_lines(summary: dict) -> str:
     lines = []
     if summary.get("other_orientation"):
         lines.append(alternative_line("other orientation", summary["other_orientation"]))
+    if summary.get("timoshenko"):
+        lines.append(alternative_line("Timoshenko links (computed, shear and rotary inertia)",
+                                      summary["timoshenko"]))
     if summary.get("other_shear_source"):
         lines.append(alternative_line("shear modulus source", summary["other_shear_source"]))
     if summary.get("sensitivity"):

@@ -57,3 +57,13 @@ def other_shear_source(scene: Scene, n_modes: int, elements: int | None,
     out = _alternative(scene, "material.composite.shear_modulus", OTHER_SHEAR[used], n_modes,
                        elements, overrides)
     return {**out, "used": used}
+
+
+def timoshenko_alternative(scene: Scene, n_modes: int, elements: int | None,
+                           overrides: dict | None = None) -> dict | None:
+    """The scene's frequencies with Timoshenko links (shear and rotary inertia), for scenes
+    built with Euler-Bernoulli links; None otherwise. The computed difference a
+    slenderness warning points to."""
+    if all(link.section.beam == "timoshenko" for link in scene.links):
+        return None
+    return _alternative(scene, "model.beam", "timoshenko", n_modes, elements, overrides)

@@ -149,3 +149,40 @@ def plane_stress_first_bending(length: float, depth: float, E: float, G: float, 
             return ContinuumMode(math.sqrt(lam[k]) / (2 * math.pi), nx, ny, basis.N)
     raise RuntimeError(f"no flexural mode among the lowest {n_search} of the strip "
                        f"(L = {length} m, h = {depth} m)")
+
+
+@dataclasses.dataclass(frozen=True)
+class Row:
+    """One strip: slenderness L/h, first flexural frequency [Hz] of the continuum on two
+    meshes (coarse, fine) and of the two beam theories (closed forms, pinned-pinned)."""
+
+    slenderness: float
+    continuum_coarse: float
+    continuum: float
+    timoshenko: float
+    euler_bernoulli: float
+
+    @property
+    def mesh_change(self) -> float:
+        return abs(self.continuum_coarse / self.continuum - 1.0)
+
+    def error(self, beam: str) -> float:
+        """Relative error of a beam theory against the (fine) continuum."""
+        return getattr(self, beam.replace("-", "_")) / self.continuum - 1.0
+
+
+def compare(E: float, G: float, nu: float, density: float, slenderness, depth: float = 0.01,
+            per_depth: int = 4, depth_elements: int = 4) -> list[Row]:
+    """The continuum against both beam theories for each L/h in ``slenderness``; the coarse
+    mesh has ``per_depth`` elements per depth along the strip and ``depth_elements`` across
+    it, the fine mesh twice both."""
+    rows = []
+    for ratio in slenderness:
+        L = ratio * depth
+        section = Section(E, G, density, depth, depth**3 / 12.0, depth, beam="timoshenko")
+        nx = max(4, int(round(per_depth * ratio)))
+        coarse = plane_stress_first_bending(L, depth, E, G, nu, density, nx, depth_elements)
+        fine = plane_stress_first_bending(L, depth, E, G, nu, density, 2 * nx, 2 * depth_elements)
+        rows.append(Row(ratio, coarse.frequency, fine.frequency, timoshenko_pinned(section, L),
+                        euler_bernoulli_pinned(section, L)))
+    return rows
