@@ -88,7 +88,9 @@ def spans(path) -> tuple[Span, ...]:
 
 def frequencies(path, overrides: dict, n_modes: int, elements: int | None) -> np.ndarray:
     """Elastic frequencies [Hz] of ``path`` with ``overrides``; NaN where the model fails
-    (logged, and counted by the callers)."""
+    (logged, and counted by the callers). The model's range warnings are kept quiet here, in
+    worker processes too: each variant would repeat them, and the nominal run reports them."""
+    logging.getLogger("flexlink.analysis.modal").setLevel(logging.ERROR)
     try:
         return elastic_modes(load_scene(path, overrides=overrides), n_modes, elements)[0]
     except FlexlinkError as exc:
