@@ -103,7 +103,7 @@ def test_width_override_is_written_in_metres(scenes):
     width = FreeParameter("width", 5e-3, 60e-3)
     problem = Problem(scenes[:1], (width,))
     scene = problem.scene(scenes[0], [0.025])
-    assert scene.sections["crank"].depth == pytest.approx(0.025, rel=1e-15)
+    assert scene.sections["crank"].strip[0] == pytest.approx(0.025, rel=1e-15)
 
 
 def test_comparison_study_errors_are_against_ex(scenes):

@@ -22,7 +22,10 @@ CASE1 = ROOT / "cases" / "case1.toml"
 
 @pytest.fixture(scope="module")
 def scene():
-    return load_scene(CASE1)
+    # edgewise strips (stubby in the plane): the axial P1 error then leads, which the order
+    # test below relies on; flatwise (the Table II default) the bending h^4 error still
+    # dominates at these meshes
+    return load_scene(CASE1, overrides={"section.bending": "edgewise"})
 
 
 def model_of(scene, elements):

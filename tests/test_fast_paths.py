@@ -101,7 +101,9 @@ def test_sweep_finds_elastic_modes_past_a_mechanism():
     scene = load_scene(CASES / "case2.toml", overrides={"drive.stiffness": "0 N*m/rad"})
     sweep = modal_sweep(scene.topology(6), [scene.rigid_pose().joints] * 2, 4)
     single = analyze(scene, 4, 6).elastic_frequencies(4)
-    np.testing.assert_allclose(sweep.frequencies[0], single, rtol=1e-12)
+    # the sweep's raw eigenvalues against analyze's energy quotients: round-off only, 9e-12
+    # measured with the flatwise strips (their stiffness spread is wider than edgewise)
+    np.testing.assert_allclose(sweep.frequencies[0], single, rtol=1e-10)
     assert list(sweep.mechanism_counts) == [1, 1]
 
 
@@ -133,4 +135,5 @@ def test_sweep_takes_the_sparse_path_above_the_dense_limit(monkeypatch):
     monkeypatch.setattr(sweep, "DENSE_LIMIT", 50)
     monkeypatch.setattr(sweep, "_DensePlan", no_plan)
     sparse = modal_sweep(scene.topology(8), poses, 4)
-    np.testing.assert_allclose(sparse.frequencies, dense.frequencies, rtol=1e-11)  # ARPACK vs LAPACK: 3e-13 measured
+    # ARPACK vs LAPACK: 3e-13 measured edgewise, 2.7e-11 with the flatwise strips (wider stiffness spread)
+    np.testing.assert_allclose(sparse.frequencies, dense.frequencies, rtol=1e-10)

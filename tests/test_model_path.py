@@ -35,8 +35,9 @@ def test_stiff_springs_give_the_same_frequencies_on_every_path():
     full = modal_sweep(topology, [points], 4).frequencies[0]
     cb = modal_sweep(topology, [points], 4, reduction="craig-bampton").frequencies[0]
     # full: the sweep's unrefined dense eigenvalues against analyze's energy-refined ones
-    # differ by K's round-off, eps lambda_max / lambda_1 ~ 1e-12 here (measured 8e-13)
-    np.testing.assert_allclose(full, f, rtol=1e-11)
+    # differ by K's round-off, eps lambda_max / lambda_1: measured 8e-13 with edgewise strips,
+    # 4e-11 with the flatwise default (a wider stiffness spread)
+    np.testing.assert_allclose(full, f, rtol=2e-10)
     # Craig-Bampton: truncated fixed-interface basis with its static correction, measured 3e-10
     np.testing.assert_allclose(cb, f, rtol=1e-8)
 
@@ -54,7 +55,10 @@ def test_stiff_springs_are_exact_in_the_out_of_plane_family_too():
 
 def kt_zero(tmp_path):
     path = tmp_path / "kt0.toml"
-    path.write_text(f'base = "{CASE1}"\n[joints]\nKt = "0 N/m"\n')
+    # edgewise strips: with the flatwise default and 2 elements/link the dense solve's highest
+    # mode (26) has a backward error of 1.8e-9, over solve.py's 1e-10 limit (a NumericalError,
+    # reported, not this test's subject: the refusal of too many modes)
+    path.write_text(f'base = "{CASE1}"\n[joints]\nKt = "0 N/m"\n[section]\nbending = "edgewise"\n')
     return path
 
 

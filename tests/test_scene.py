@@ -66,7 +66,7 @@ def test_negative_length_rejected(tmp_path):
 
 def test_overrides_go_through_the_same_validation():
     scene = load_scene(CASES / "case1.toml", overrides={"section.width": "25 mm"})
-    assert math.isclose(scene.sections["crank"].depth, 0.025)
+    assert math.isclose(scene.sections["crank"].strip[0], 0.025)
     with pytest.raises(InputError) as info:
         load_scene(CASES / "case1.toml", overrides={"joints.Kt": "5"})
     assert "overrides" in str(info.value) and "joints.Kt" in str(info.value)

@@ -23,7 +23,8 @@ from flexlink.fe.pose import in_plane_eigen_scale
 from flexlink.fe.assembly import assemble, placed_link_entries, point_mass_entries, spring_entries
 from flexlink.fe.assembly import reduction as rigid_reduction
 from flexlink.fe.craig_bampton import CUTOFF, CraigBamptonPlan, lowest_fixed_interface
-from flexlink.fe.link import chain_entries
+from flexlink.errors import InputError
+from flexlink.fe.beams import link_entries
 from flexlink.fe.model import FrameModel, Topology, layout
 from flexlink.fe.pose import pose_model
 from flexlink.analysis.solve import DENSE_LIMIT, DENSE_REFUSE, ELASTIC, lowest_elastic, solve_modes
@@ -98,7 +99,7 @@ class _DensePlan:
     @staticmethod
     def _local(link):
         s = link.section
-        return chain_entries(link.length, link.elements, s.EA, s.EI, s.mass_per_length)
+        return link_entries(link.length, link.elements, s)
 
     def slots(self, rows, cols) -> np.ndarray:
         r, c = self.column[rows], self.column[cols]
@@ -206,6 +207,9 @@ def _craig_bampton_sweep(topology: Topology, poses, n_modes: int, freqs: np.ndar
     elastic modes than requested are found), the plan is rebuilt with room to spare (a factor
     1.2 in frequency, so a slowly growing spectrum does not rebuild at every pose) and the pose
     is solved again."""
+    if any(spec.section.beam != "euler-bernoulli" for spec in topology.links):
+        raise InputError("the Craig-Bampton reduction is built for Euler-Bernoulli links only",
+                         field="model.beam", expected="'euler-bernoulli', or no reduction")
     fixed = layout(topology)
     plan, expected = None, 0
     for i, points in enumerate(poses):

@@ -22,9 +22,18 @@ from flexlink.commands._options import dumps, json_option, out_option
                    "[default: 1e-6].")
 @click.option("--method", type=click.Choice(["auto", "dense", "sparse"]), default="auto",
               show_default=True, help="Eigen solver.")
+@click.option("--sensitivity", is_flag=True,
+              help="Also evaluate every assumed input at both ends of its range and a Monte "
+                   "Carlo 95 % interval over them with the Table I spreads.")
+@click.option("--samples", default=200, show_default=True, type=click.IntRange(10, 100000),
+              help="Monte Carlo samples per scene (with --sensitivity).")
+@click.option("--seed", default=1, show_default=True, type=int, help="Monte Carlo seed.")
+@click.option("-j", "--jobs", default=-1, show_default=True, type=int,
+              help="Worker processes for --sensitivity (-1: one per core).")
 @json_option
 @out_option
-def command(scenes, n_modes, elements, method, tol, as_json, out_dir):
+def command(scenes, n_modes, elements, method, tol, sensitivity, samples, seed, jobs, as_json,
+            out_dir):
     """Natural frequencies of each SCENE (a scene file or a folder of them) at its pose,
     compared with the scene's reference columns (measured Ex, published FE). Writes
     OUT/<scene>/modes.json and modes.csv per scene, and OUT/modes.json and modes.csv with
@@ -54,11 +63,16 @@ def command(scenes, n_modes, elements, method, tol, as_json, out_dir):
             family = scene_family(scene)
             other = {} if family == "planar" else dict(
                 zip(("computed", "kinds"), elastic_modes(scene, n_modes, mesh.elements, method)))
+            summary = {**case_summary(result, n_modes, family, **other),
+                       "mesh": mesh.as_dict(), "warnings": list(result.warnings)}
+            summary.update(_alternatives(scene, n_modes, mesh.elements, result.warnings))
+            if sensitivity:
+                summary["sensitivity"] = _sensitivity(scene, n_modes, samples, seed, jobs,
+                                                      as_json)
         except FlexlinkError as exc:  # the other scenes still get their results
             failures.append(scene_failure(path, exc))
             continue
-        summaries.append({**case_summary(result, n_modes, family, **other),
-                          "mesh": mesh.as_dict(), "warnings": list(result.warnings)})
+        summaries.append(summary)
         meshes.append(mesh)
         folders.append(all_folders[path])
     parts = [(folder / "modes.json", folder / "modes.csv", [s])
@@ -78,13 +92,55 @@ def command(scenes, n_modes, elements, method, tol, as_json, out_dir):
         return
     for s, mesh in zip(summaries, meshes):
         click.echo(format_case(s) + "\n" + mesh.describe() + "".join(
-            f"\nwarning: {w}" for w in s["warnings"]) + "\n")
+            f"\nwarning: {w}" for w in s["warnings"]) + _extra_lines(s) + "\n")
     overall = document["overall_mean_abs_error_pct"]
     if overall:
         click.echo("overall mean |error|: " + ", ".join(
             f"vs {k} {v:.1f} %" for k, v in sorted(overall.items())))
     announce(written, as_json)
     finish(failures, len(files))
+
+
+def _alternatives(scene, n_modes, elements, warnings) -> dict:
+    """The other orientation; for Timoshenko composites the other shear source; and where a
+    link is outside Euler-Bernoulli theory, the scene computed with Timoshenko links."""
+    from flexlink.studies.alternatives import (other_orientation, other_shear_source,
+                                               timoshenko_alternative)
+
+    out = {"other_orientation": other_orientation(scene, n_modes, elements)}
+    if any("Euler-Bernoulli" in w for w in warnings):
+        out["timoshenko"] = timoshenko_alternative(scene, n_modes, elements)
+    shear = other_shear_source(scene, n_modes, elements)
+    if shear is not None:
+        out["other_shear_source"] = shear
+    return out
+
+
+def _sensitivity(scene, n_modes, samples, seed, jobs, as_json) -> dict:
+    from flexlink.output.sensitivity_report import sensitivity_dict
+    from flexlink.studies.sensitivity import STUDY_ELEMENTS, end_points, interval
+
+    progress = not as_json
+    points = end_points(scene.path, n_modes, STUDY_ELEMENTS, jobs, progress)
+    spread = interval(scene.path, samples, seed, n_modes, STUDY_ELEMENTS, jobs, progress)
+    reference = dict(scene.reference.columns) if scene.reference else {}
+    return sensitivity_dict(points, spread, reference, STUDY_ELEMENTS)
+
+
+def _extra_lines(summary: dict) -> str:
+    from flexlink.output.sensitivity_report import alternative_line, format_sensitivity
+
+    lines = []
+    if summary.get("other_orientation"):
+        lines.append(alternative_line("other orientation", summary["other_orientation"]))
+    if summary.get("timoshenko"):
+        lines.append(alternative_line("Timoshenko links (computed, shear and rotary inertia)",
+                                      summary["timoshenko"]))
+    if summary.get("other_shear_source"):
+        lines.append(alternative_line("shear modulus source", summary["other_shear_source"]))
+    if summary.get("sensitivity"):
+        lines.append(format_sensitivity(summary["sensitivity"]))
+    return "".join("\n" + line for line in lines)
 
 
 def _document(summaries: list[dict], files) -> dict:

@@ -16,7 +16,7 @@ import math
 import numpy as np
 import scipy.sparse as sp
 
-from flexlink.fe.link import chain_entries
+from flexlink.fe.beams import link_entries
 from flexlink.fe.model import GROUND, FrameModel
 
 
@@ -66,8 +66,7 @@ def placed_link_entries(model: FrameModel):
         if link.first_node != next_node:  # build_model numbers links contiguously
             raise AssertionError("links must own consecutive node ranges")
         s = link.section
-        rows, cols, k, m = chain_entries(link.length, link.elements, s.EA, s.EI,
-                                         s.mass_per_length)
+        rows, cols, k, m = link_entries(link.length, link.elements, s)
         offset = 3 * link.first_node
         parts.append((rows + offset, cols + offset, k, m,
                       np.full(len(rows), math.cos(link.angle)),

@@ -20,6 +20,15 @@ import numpy as np
 import scipy.sparse as sp
 
 from flexlink.fe.model import GROUND, FrameModel
+from flexlink.fe.timoshenko import twice_bending_energy
+
+
+def bending_energy(section, h: float, a, b):
+    """Twice the bending strain energy of elements of length h [m] with end rotations a, b
+    [rad] relative to their chords, in the section's beam theory."""
+    if section.beam == "timoshenko":
+        return twice_bending_energy(section.EI, section.kGA, h, a, b)
+    return 4 * section.EI / h * (a * a + a * b + b * b)
 
 
 def twice_strain_energy(model: FrameModel, shapes: np.ndarray) -> np.ndarray:
@@ -35,7 +44,8 @@ def twice_strain_energy(model: FrameModel, shapes: np.ndarray) -> np.ndarray:
         stretch = c * dx + sn * dy
         chord = (-sn * dx + c * dy) / h  # chord rotation of each element [rad]
         a, b = rz[:-1] - chord, rz[1:] - chord
-        total += s.EA / h * (stretch**2).sum(axis=0) + 4 * s.EI / h * (a * a + a * b + b * b).sum(axis=0)
+        total += (s.EA / h * (stretch**2).sum(axis=0)
+                  + bending_energy(s, h, a, b).sum(axis=0))
     springs = model.springs
     finite = np.isfinite(springs.stiffness)  # rigid springs carry no energy: u satisfies them
     da = U[springs.dof_a[finite]]

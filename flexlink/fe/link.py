@@ -78,7 +78,7 @@ def _unit_chain(elements: int):
             tiled(_bending_stiffness.assemble(bending), bending_map),
             tiled(_mass.assemble(bending), bending_map))
 
-def _check(length, elements, EA, EI, mass_per_length):
+def check_link_inputs(length, elements, EA, EI, mass_per_length):
     if not (isinstance(elements, (int, np.integer)) and elements >= 1):
         raise InputError(f"elements per link must be a whole number >= 1, got {elements!r}",
                          field="elements_per_link")
@@ -106,7 +106,7 @@ def chain_entries(length: float, elements: int, EA: float, EI: float, mass_per_l
     that rotate and scatter many links at once: (rows, cols, k_values, m_values), read-only
     arrays; K[rows, cols] and M[rows, cols] sum over repeated (row, col) pairs. Cached, since a
     sweep asks for the same link at every pose."""
-    _check(length, elements, EA, EI, mass_per_length)
+    check_link_inputs(length, elements, EA, EI, mass_per_length)
     k_ax, m_ax, k_b, m_b = _unit_chain(int(elements))
     # the stiffness and mass of one basis have the same entries, so K and M share one list
     if not (np.array_equal(k_ax.row, m_ax.row) and np.array_equal(k_b.row, m_b.row)

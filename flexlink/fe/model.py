@@ -26,8 +26,9 @@ import math
 import numpy as np
 
 from flexlink.errors import InputError
-from flexlink.fe.link import link_matrices
+from flexlink.fe.beams import THEORIES, beam_matrices
 
+BENDINGS = ("edgewise", "flatwise")
 DOF_NAMES = ("ux", "uy", "rz")
 GROUND = -1
 
@@ -38,6 +39,8 @@ class Section:
 
     E [Pa], G [Pa], density [kg/m^3], area [m^2], second_moment [m^4] for in-plane bending,
     depth [m] = in-plane depth of the section (for slenderness checks).
+    beam: the beam theory of the link's elements, a name in ``beams.THEORIES``;
+    shear_factor [-]: Timoshenko shear correction k (5/6 for a rectangle), unused otherwise.
     """
 
     E: float
@@ -47,20 +50,35 @@ class Section:
     second_moment: float
     depth: float
     name: str = ""
+    beam: str = "euler-bernoulli"
+    shear_factor: float = 5.0 / 6.0
+    bending: str = "edgewise"  # a flat bar's orientation (``rectangle``); edgewise otherwise
 
     def __post_init__(self):
-        for field in ("E", "G", "density", "area", "second_moment", "depth"):
+        for field in ("E", "G", "density", "area", "second_moment", "depth", "shear_factor"):
             value = getattr(self, field)
             if not (math.isfinite(value) and value > 0):
                 raise InputError(f"must be positive and finite, got {value!r}",
                                  source=self.name or None, field=field)
+        if self.beam not in THEORIES:
+            raise InputError(f"unknown beam theory {self.beam!r}", source=self.name or None,
+                             field="model.beam", expected=" or ".join(map(repr, THEORIES)))
 
     @classmethod
-    def rectangle(cls, E, G, density, width, thickness, name=""):
-        """Flat bar lying in the mechanism plane: ``width`` [m] is the in-plane depth,
-        ``thickness`` [m] is out of plane; in-plane bending uses I = thickness width^3 / 12."""
+    def rectangle(cls, E, G, density, width, thickness, name="", bending="edgewise",
+                  beam="euler-bernoulli"):
+        """Flat bar of ``width`` [m] and ``thickness`` [m]. ``bending`` says how it lies:
+        "edgewise": the width is in the mechanism plane, so in-plane bending uses the width as
+        depth, I = thickness width^3 / 12 (the stiff way); "flatwise": the thickness is in the
+        plane and the width out of it (the broad faces stand normal to the mechanism plane), so
+        in-plane bending uses I = width thickness^3 / 12 (the flexible way)."""
+        if bending not in BENDINGS:
+            raise InputError(f"unknown bending {bending!r}", source=name or None,
+                             field="section.bending", expected=" or ".join(map(repr, BENDINGS)))
+        depth, across = (width, thickness) if bending == "edgewise" else (thickness, width)
         return cls(E=E, G=G, density=density, area=width * thickness,
-                   second_moment=thickness * width**3 / 12.0, depth=width, name=name)
+                   second_moment=across * depth**3 / 12.0, depth=depth, name=name, beam=beam,
+                   bending=bending)
 
     @classmethod
     def tube(cls, E, G, density, outer_radius, inner_radius, name=""):
@@ -84,6 +102,22 @@ class Section:
     @property
     def mass_per_length(self) -> float:
         return self.density * self.area
+
+    @property
+    def strip(self) -> tuple[float, float]:
+        """(width, thickness) [m] of a flat bar, whichever way it lies."""
+        across = self.area / self.depth
+        return (self.depth, across) if self.bending == "edgewise" else (across, self.depth)
+
+    @property
+    def kGA(self) -> float:
+        """Shear stiffness k G A [N] (Timoshenko)."""
+        return self.shear_factor * self.G * self.area
+
+    @property
+    def rotary_inertia(self) -> float:
+        """Rotary inertia per unit length rho I [kg m] (Timoshenko)."""
+        return self.density * self.second_moment
 
 
 @dataclasses.dataclass(frozen=True)
@@ -154,8 +188,7 @@ class LinkMesh:
 
     def local_matrices(self):
         """(K, M) in the link frame; cached in ``link.py``, so cheap across poses."""
-        s = self.section
-        return link_matrices(self.length, self.elements, s.EA, s.EI, s.mass_per_length)
+        return beam_matrices(self.length, self.elements, self.section)
 
 
 @dataclasses.dataclass(frozen=True)

@@ -157,8 +157,24 @@ class BeamMaterial:
     density: float
 
 
-def woven_composite(fiber: Constituent, matrix: Constituent, fiber_fraction: float) -> BeamMaterial:
-    """Beam material of a woven 0/90 laminate (see the module docstring for the formula)."""
+SHEAR_SOURCES = ("printed", "isotropic")
+
+
+def isotropic_shear(material: Constituent) -> Constituent:
+    """The constituent with G = E / 2 (1 + nu) [Pa] in place of its printed G."""
+    return dataclasses.replace(material, G=material.E / (2.0 * (1.0 + material.poisson)))
+
+
+def woven_composite(fiber: Constituent, matrix: Constituent, fiber_fraction: float,
+                    shear: str = "printed") -> BeamMaterial:
+    """Beam material of a woven 0/90 laminate (see the module docstring for the formula).
+    ``shear``: "printed" uses the constituents' G as given, "isotropic" E / 2 (1 + nu) of each
+    (Table I's printed G values conflict with its E and nu; both are shown where G matters)."""
+    if shear not in SHEAR_SOURCES:
+        raise InputError(f"unknown shear modulus source {shear!r}", field="shear_modulus",
+                         expected=" or ".join(map(repr, SHEAR_SOURCES)))
+    if shear == "isotropic":
+        fiber, matrix = isotropic_shear(fiber), isotropic_shear(matrix)
     ply = rule_of_mixtures(fiber, matrix, fiber_fraction)
     return BeamMaterial(name=f"woven {fiber.name}/{matrix.name} Vf={fiber_fraction:g}",
                         E=woven_beam_modulus(ply), G=ply.G12, density=ply.density)

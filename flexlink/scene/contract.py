@@ -45,6 +45,7 @@ class Composite:
     fiber: str
     matrix: str
     fiber_volume_fraction: float
+    shear_modulus: str = "printed"  # constituent G: "printed" (Table I) or "isotropic"
 
 
 @dataclasses.dataclass(frozen=True)

@@ -3,6 +3,7 @@ the drive, the reference table and the stage options. Hidden defaults become ass
 
 from __future__ import annotations
 
+import dataclasses
 import difflib
 import math
 
@@ -14,6 +15,14 @@ from flexlink.scene.contract import Composite, Options, PrbOptions, Reference, V
 from flexlink.scene.source import Assumption, SceneSource
 
 DEFAULT_G_RATIO = 2.6  # E / G of an isotropic solid with nu = 0.3: 2 (1 + nu)
+
+
+def tube_shear_factor(outer: float, inner: float, nu: float = 0.3) -> float:
+    """Timoshenko shear factor k of a round tube (Cowper 1966), m = inner / outer:
+    6 (1 + nu)(1 + m^2)^2 / ((7 + 6 nu)(1 + m^2)^2 + (20 + 12 nu) m^2); 0.886 for a solid rod
+    at nu = 0.3, 0.53 for a thin wall."""
+    q = 1.0 + (inner / outer) ** 2
+    return 6 * (1 + nu) * q * q / ((7 + 6 * nu) * q * q + (20 + 12 * nu) * (inner / outer) ** 2)
 
 
 def closest(name: str, choices) -> list[str]:
@@ -50,7 +59,7 @@ def material(src: SceneSource, sf: schema.SceneFile, link: str,
         if m.composite is not None:
             c = m.composite
             return woven_composite(load_constituent(c.fiber), load_constituent(c.matrix),
-                                   c.fiber_volume_fraction)
+                                   c.fiber_volume_fraction, shear=c.shear_modulus)
         if m.isotropic is not None:
             return isotropic(load_constituent(m.isotropic))
     except InputError as exc:
@@ -83,6 +92,7 @@ def section(src: SceneSource, sf: schema.SceneFile, link: str, mat: BeamMaterial
     where = fields.get(next(iter(keys), ""), "section")
     label = f"{link}: {mat.name}"
     args = (mat.E, mat.G, mat.density)
+    beam = sf.model.beam
 
     def need_length(key):
         if length is None:
@@ -97,7 +107,7 @@ def section(src: SceneSource, sf: schema.SceneFile, link: str, mat: BeamMaterial
         area, second = keys["area"], keys["second_moment"]
         # depth of the rectangle with this A and I: only used for slenderness messages
         return Section(*args, area, second, math.sqrt(12 * second / area),
-                       name=f"{label}, A {area:.4g} m^2")
+                       name=f"{label}, A {area:.4g} m^2", beam=beam)
     if "tube_inner_radius" in keys:
         inner = keys["tube_inner_radius"]
         if "tube_outer_radius" in keys:
@@ -107,8 +117,9 @@ def section(src: SceneSource, sf: schema.SceneFile, link: str, mat: BeamMaterial
         else:
             raise InputError("a tube needs tube_outer_radius or mass", source=src.file_of(where),
                              field=where)
-        return Section.tube(*args, outer, inner,
-                            name=f"{label}, tube {2e3 * outer:.3f} x {1e3 * (outer - inner):.3f} mm")
+        return dataclasses.replace(Section.tube(
+            *args, outer, inner, name=f"{label}, tube {2e3 * outer:.3f} x {1e3 * (outer - inner):.3f} mm"),
+            beam=beam, shear_factor=tube_shear_factor(outer, inner))
     if "width" not in keys:
         raise InputError("no section given", source=src.file_of(where), field=f"links.{link}.section",
                          expected="width with thickness (or plies and ply_thickness, or mass), "
@@ -123,8 +134,9 @@ def section(src: SceneSource, sf: schema.SceneFile, link: str, mat: BeamMaterial
     else:
         raise InputError("a flat bar needs thickness, plies with ply_thickness, or mass",
                          source=src.file_of(fields["width"]), field=fields["width"])
-    return Section.rectangle(*args, width, thickness,
-                             name=f"{label}, {width * 1e3:g} x {thickness * 1e3:.4g} mm")
+    bending = keys.get("bending", "edgewise")
+    return Section.rectangle(*args, width, thickness, bending=bending, beam=beam,
+                             name=f"{label}, {width * 1e3:g} x {thickness * 1e3:.4g} mm {bending}")
 
 
 def joints(src: SceneSource, sf: schema.SceneFile, names: list[str], ground: set[str],
@@ -223,4 +235,5 @@ def unique(assumptions) -> tuple[Assumption, ...]:
 
 def composite(sf: schema.SceneFile) -> Composite | None:
     c = sf.material.composite if sf.material is not None else None
-    return None if c is None else Composite(c.fiber, c.matrix, c.fiber_volume_fraction)
+    return None if c is None else Composite(c.fiber, c.matrix, c.fiber_volume_fraction,
+                                            c.shear_modulus)

@@ -64,8 +64,8 @@ def scene_findings(scene) -> list[Finding]:
             found.append(_range_finding("length", value, *where(
                 f"linkage.{name}", f"linkage.four_bar.{name}", "linkage.ground")))
     for link, s in scene.sections.items():
-        thickness = s.area / s.depth
-        for kind, key, value in (("section", "width", s.depth), ("section", "thickness", thickness),
+        width, thickness = s.strip
+        for kind, key, value in (("section", "width", width), ("section", "thickness", thickness),
                                  ("E", "E", s.E), ("density", "density", s.density)):
             if kind == "section":
                 fields = (f"links.{link}.section.{key}", f"section.{key}")

@@ -15,8 +15,12 @@ SCHEMA_ID = "https://flexlink.invalid/scene.schema.json"  # an identifier, not a
 
 
 def _noted(prop: dict) -> dict:
-    """A property schema that also accepts ``{ value = ..., note = "..." }``."""
-    noted = {"type": "object", "properties": {"value": prop, "note": {"type": "string"}},
+    """A property schema that also accepts ``{ value = ..., note = "..." }``, with an assumed
+    value's optional ``range = [low, high]`` and ``reason``."""
+    noted = {"type": "object", "properties": {
+                 "value": prop, "note": {"type": "string"},
+                 "range": {"type": "array", "items": prop, "minItems": 2, "maxItems": 2},
+                 "reason": {"type": "string"}},
              "required": ["value"], "additionalProperties": False}
     keep = {k: prop[k] for k in ("description", "default", "title") if k in prop}
     return {**keep, "anyOf": [prop, noted]}
@@ -179,7 +183,9 @@ def reference_markdown() -> str:
            "edit by hand (a test fails when this file is stale).", "",
            "Quantities are strings with a unit (`\"20 mm\"`, `\"1e6 N/m\"`); stiffnesses may "
            "be `\"rigid\"`. Any value may be written `{ value = ..., note = \"...\" }`; a note "
-           "that starts with \"assumed\" lists the value among the scene's assumptions. A key "
+           "that starts with \"assumed\" lists the value among the scene's assumptions, and "
+           "such a value may add `range = [low, high]` (written like the value) with the "
+           "`reason` for it, used by `flexlink modes --sensitivity`. A key "
            "or table not listed here is an error. `base = \"file.toml\"` merges a shared file "
            "underneath (the scene's keys win; `[material]` is replaced whole)."]
     _sections(schema.SceneFile, "", set(), out)

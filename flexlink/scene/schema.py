@@ -138,6 +138,10 @@ class CompositeTable(Table):
     matrix: str = doc("Matrix constituent: a shipped name (e.g. 'polyester') or a path.")
     fiber_volume_fraction: number(0.0, 1.0, low_open=True, high_open=True) = doc(
         "Fibre volume fraction Vf of the woven 0/90 laminate (rule of mixtures).")
+    shear_modulus: Literal["printed", "isotropic"] = doc(
+        "Constituent shear moduli for the laminate's G (used by Timoshenko links and torsion): "
+        "'printed' takes each constituent file's G; 'isotropic' takes E / 2 (1 + nu) of each "
+        "(Table I's printed G conflicts with its E and nu).", default="printed")
 
 
 class MaterialTable(Table):
@@ -169,8 +173,13 @@ class SectionTable(Table):
     """A link's cross-section, in one of four forms: width with thickness (or plies times
     ply_thickness, or the link's mass); area with second_moment; a round tube."""
 
-    width: LENGTH | None = doc("In-plane depth of a flat bar (bending in the mechanism plane uses "
-                               "I = thickness width^3 / 12).", default=None)
+    width: LENGTH | None = doc("Width of a flat bar (the in-plane depth when bending is "
+                               "'edgewise').", default=None)
+    bending: Literal["edgewise", "flatwise"] | None = doc(
+        "How a flat bar lies: 'edgewise' puts the width in the mechanism plane (in-plane "
+        "bending uses I = thickness width^3 / 12, the stiff way); 'flatwise' puts the "
+        "thickness in the plane (I = width thickness^3 / 12, the flexible way, as in most "
+        "flexible-link rigs). Default 'edgewise'.", default=None)
     thickness: LENGTH | None = doc("Out-of-plane thickness of a flat bar.", default=None)
     plies: number(1, 1000, integer=True) | None = doc(
         "Number of plies; thickness = plies x ply_thickness.", default=None)
@@ -401,6 +410,9 @@ class ModelTable(Table):
     family: Literal["planar", "out-of-plane", "3d"] = doc(
         "Model family: the paper's in-plane frame, out-of-plane bending and torsion, or both.",
         default="planar")
+    beam: Literal["euler-bernoulli", "timoshenko"] = doc(
+        "Beam theory of the in-plane links: Euler-Bernoulli (the paper's) or Timoshenko (shear "
+        "strain with k = 5/6 for rectangles, and rotary inertia).", default="euler-bernoulli")
 
 
 class ChecksTable(Table):

@@ -7,7 +7,9 @@ from (so an error names the right file) and the notes written beside values.
   tables merge key by key, except ``material``, which a scene replaces whole (mixing two
   materials' keys would describe neither).
 - Any value may be written ``{ value = ..., note = "..." }``. A note starting with "assumed"
-  makes the value one of the scene's assumptions, reported with every result.
+  makes the value one of the scene's assumptions, reported with every result. An assumed
+  value may also carry ``range = [low, high]`` (written like the value) and the ``reason``
+  for that range; ``flexlink modes --sensitivity`` evaluates both ends and samples between.
 - Overrides (``{"section.width": "25 mm"}``) are applied as if written in the file, before
   validation, so a sweep or a fit goes through the same checks as a file.
 """
@@ -23,6 +25,7 @@ from flexlink.errors import InputError
 REPLACED_WHOLE = {"material"}
 OVERRIDES = "overrides"  # the source name of values set by a caller rather than a file
 MAX_BASE_DEPTH = 5
+NOTED_KEYS = {"value", "note", "range", "reason"}
 
 
 @dataclasses.dataclass(frozen=True)
@@ -34,6 +37,8 @@ class Assumption:
     value: str
     note: str
     source: str
+    range: tuple = ()  # (low, high) as written in the file, or () when no range is given
+    reason: str = ""  # why the range is plausible
 
 
 @dataclasses.dataclass(frozen=True)
@@ -131,20 +136,41 @@ def _set_dotted(data: dict, origin: dict, field: str, value) -> None:
     origin[field] = OVERRIDES
 
 
+def _range(node: dict, origin: dict, prefix: str) -> tuple:
+    """The noted value's (low, high) as written, checked for shape; () without a range."""
+    if "range" not in node:
+        if "reason" in node:
+            raise InputError("a reason without a range", source=origin.get(prefix),
+                             field=f"{prefix}.reason", expected="range = [low, high] with it")
+        return ()
+    span, reason = node["range"], node.get("reason")
+    if not (isinstance(span, list) and len(span) == 2):
+        raise InputError(f"got {span!r}", source=origin.get(prefix), field=f"{prefix}.range",
+                         expected="[low, high], each written like the value")
+    if not (isinstance(reason, str) and reason.strip()):
+        raise InputError("a range needs its reason", source=origin.get(prefix),
+                         field=f"{prefix}.reason", expected="a text saying why the range is plausible")
+    return tuple(span)
+
+
 def _strip_notes(node, origin: dict, prefix: str, found: list[Assumption]):
     """``node`` with every ``{value, note}`` replaced by its value; assumed notes collected."""
     if _is_noted(node):
-        extra = set(node) - {"value", "note"}
+        extra = set(node) - NOTED_KEYS
         if extra:
-            raise InputError(f"a noted value holds only 'value' and 'note', not {sorted(extra)}",
+            raise InputError(f"a noted value holds only {sorted(NOTED_KEYS)}, not {sorted(extra)}",
                              source=origin.get(prefix), field=prefix)
+        span = _range(node, origin, prefix)
         note = node.get("note", "")
         if not isinstance(note, str):
             raise InputError(f"got {note!r}", source=origin.get(prefix), field=f"{prefix}.note",
                              expected="a text")
         if note.strip().lower().startswith("assumed"):
             found.append(Assumption(prefix, str(node["value"]), note.strip(),
-                                    origin.get(prefix, "")))
+                                    origin.get(prefix, ""), span, node.get("reason", "")))
+        elif span:
+            raise InputError("a range belongs to an assumed value", source=origin.get(prefix),
+                             field=f"{prefix}.range", expected='a note starting "assumed"')
         return _strip_notes(node["value"], origin, prefix, found)
     if isinstance(node, dict):
         return {k: _strip_notes(v, origin, f"{prefix}.{k}" if prefix else k, found)

@@ -34,7 +34,7 @@ MISSING_MODE_PENALTY = 5.0  # ln-residual used when the model has fewer modes th
 def _nominal_section(index):
     def get(scene: Scene):
         s = scene.sections["crank"]
-        return (s.depth, s.area / s.depth)[index]
+        return s.strip[index]
     return get
 
 

@@ -58,7 +58,7 @@ def scene_inputs(path, base_overrides: dict, vf_sd: float, thickness_sd: float) 
     nominal["vf"] = composite.fiber_volume_fraction
     sd["vf"] = vf_sd
     section = scene.sections["crank"]
-    nominal["thickness"] = section.area / section.depth
+    nominal["thickness"] = section.strip[1]
     sd["thickness"] = thickness_sd
     return Inputs(nominal, sd, composite.fiber, composite.matrix)
 

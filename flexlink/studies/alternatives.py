@@ -1,0 +1,69 @@
+"""The same scene under the other value of a two-way modelling choice, for the one-line notes
+beside a result: the strip orientation (``section.bending``) and, for Timoshenko links of a
+composite, the source of the shear modulus (``material.composite.shear_modulus``)."""
+
+from __future__ import annotations
+
+from flexlink.analysis.families import elastic_modes
+from flexlink.scene import Scene, load_scene
+
+OTHER_BENDING = {"flatwise": "edgewise", "edgewise": "flatwise"}
+OTHER_SHEAR = {"printed": "isotropic", "isotropic": "printed"}
+
+
+def _mean_abs_errors(scene: Scene, computed) -> dict[str, float]:
+    columns = scene.reference.columns if scene.reference else {}
+    out = {}
+    for name, values in columns.items():
+        pairs = [(c, r) for c, r in zip(computed, values)]
+        if pairs:
+            out[name] = float(sum(abs(100.0 * (c - r) / r) for c, r in pairs) / len(pairs))
+    return out
+
+
+def _alternative(scene: Scene, field: str, value: str, n_modes: int, elements: int | None,
+                 overrides: dict | None) -> dict:
+    other = load_scene(scene.path, overrides={**(overrides or {}), field: value})
+    computed = elastic_modes(other, n_modes, elements)[0]
+    return {"field": field, "value": value, "computed_Hz": [float(f) for f in computed],
+            "mean_abs_error_pct": _mean_abs_errors(other, computed)}
+
+
+def bending_of(scene: Scene) -> str | None:
+    """The orientation the scene's strips lie in, if it says (shared [section] bending)."""
+    names = {link.section.bending for link in scene.links}
+    return names.pop() if len(names) == 1 and scene.has_field("section.bending") else None
+
+
+def other_orientation(scene: Scene, n_modes: int, elements: int | None,
+                      overrides: dict | None = None) -> dict | None:
+    """Frequencies [Hz] and mean |error| [%] with the strips turned the other way, or None
+    when the scene does not set the orientation. ``overrides``: those ``scene`` was loaded
+    with (a Scene does not keep them)."""
+    bending = bending_of(scene)
+    if bending is None:
+        return None
+    return _alternative(scene, "section.bending", OTHER_BENDING[bending], n_modes, elements,
+                        overrides)
+
+
+def other_shear_source(scene: Scene, n_modes: int, elements: int | None,
+                       overrides: dict | None = None) -> dict | None:
+    """For Timoshenko links of a composite: the frequencies with the other shear modulus
+    source (printed Table I G, or E / 2 (1 + nu) of each constituent); None otherwise."""
+    if scene.composite is None or all(l.section.beam != "timoshenko" for l in scene.links):
+        return None
+    used = scene.composite.shear_modulus
+    out = _alternative(scene, "material.composite.shear_modulus", OTHER_SHEAR[used], n_modes,
+                       elements, overrides)
+    return {**out, "used": used}
+
+
+def timoshenko_alternative(scene: Scene, n_modes: int, elements: int | None,
+                           overrides: dict | None = None) -> dict | None:
+    """The scene's frequencies with Timoshenko links (shear and rotary inertia), for scenes
+    built with Euler-Bernoulli links; None otherwise. The computed difference a
+    slenderness warning points to."""
+    if all(link.section.beam == "timoshenko" for link in scene.links):
+        return None
+    return _alternative(scene, "model.beam", "timoshenko", n_modes, elements, overrides)

@@ -1,0 +1,188 @@
+"""A plane-stress continuum reference for one link, against the two beam theories.
+
+The link is a strip of length L [m] and in-plane depth h [m], meshed with quadratic
+quadrilaterals (scikit-fem ``ElementQuad2``, plane stress, Ex = Ey = E, shear modulus G,
+Poisson's ratio nu). Its ends are simply supported the way a beam's pinned ends are: the
+transverse displacement uy is zero over both end faces (they stay free to turn and to warp),
+and ux is held at the mid-depth point of the left end only (removing the axial rigid motion).
+For that support the exact 2D fields are sin / cos in x, the continuum's counterpart of
+the pinned-pinned beam, so the first flexural frequency compares one to one with
+``beam_frequencies`` of the same strip, pinned at both ends.
+
+A flexural mode is picked out by its symmetry about the mid-depth line (uy even, ux odd in y)
+and by the shape of uy along that line (one half sine); thickness-shear modes, which in a
+strip soft in shear can lie below it, are skipped.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+import scipy.linalg
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+
+from flexlink.fe.beams import beam_matrices
+from flexlink.fe.model import Section
+
+BENDING_SHAPE = 0.9  # least correlation of the mid-line uy with sin(pi x / L) for mode 1
+
+
+def beam_frequencies(section: Section, length: float, elements: int, n: int = 1) -> np.ndarray:
+    """Lowest ``n`` bending frequencies [Hz] of a straight link pinned at both ends (v = 0 at
+    both, u = 0 at the start), in the section's beam theory."""
+    K, M = beam_matrices(length, elements, section)
+    keep = np.setdiff1d(np.arange(K.shape[0]), [0, 1, 3 * elements + 1])
+    K, M = K[keep][:, keep], M[keep][:, keep]
+    if len(keep) <= 200:
+        lam, vec = scipy.linalg.eigh(K.toarray(), M.toarray())
+    else:  # shift below the first bending mode; ask for enough modes to pass the axial ones
+        first = euler_bernoulli_pinned(section, length)
+        lam, vec = spla.eigsh(K.tocsc(), min(n + 8, len(keep) - 2), M.tocsc(),
+                              sigma=-(2 * math.pi * first) ** 2 / 4, which="LM")
+        order = np.argsort(lam)
+        lam, vec = lam[order], vec[:, order]
+    # bending modes carry transverse motion; axial ones only u
+    v_rows, u_rows = keep % 3 == 1, keep % 3 == 0
+    bending = [k for k in range(len(lam))
+               if np.linalg.norm(vec[v_rows, k]) > np.linalg.norm(vec[u_rows, k])]
+    if len(bending) < n:
+        raise RuntimeError(f"found {len(bending)} bending modes of the {n} asked for")
+    return np.sqrt(lam[bending[:n]]) / (2 * math.pi)
+
+
+def timoshenko_pinned(section: Section, length: float, n: int = 1) -> float:
+    """Closed-form flexural frequency [Hz] of mode ``n`` of a pinned-pinned Timoshenko beam:
+    with w = W sin(a x), psi = Psi cos(a x), a = n pi / L, the equations
+    kGA (w'' - psi') = rhoA w_tt and EI psi'' + kGA (w' - psi) = rhoI psi_tt give
+    det [[kGA a^2 - rhoA w^2, -kGA a], [-kGA a, EI a^2 + kGA - rhoI w^2]] = 0, a quadratic
+    in w^2 whose lower root is the flexural mode."""
+    a = n * math.pi / length
+    s = section
+    kGA, EI, rA, rI = s.kGA, s.EI, s.mass_per_length, s.rotary_inertia
+    # (kGA a^2 - rA x)(EI a^2 + kGA - rI x) - (kGA a)^2 = 0, x = omega^2
+    c2 = rA * rI
+    c1 = -(rA * (EI * a * a + kGA) + rI * kGA * a * a)
+    c0 = kGA * a * a * EI * a * a
+    # the lower root written without cancellation (c2 c0 << c1^2 on slender beams)
+    x = 2 * c0 / (-c1 + math.sqrt(c1 * c1 - 4 * c2 * c0))
+    return math.sqrt(x) / (2 * math.pi)
+
+
+def euler_bernoulli_pinned(section: Section, length: float, n: int = 1) -> float:
+    """Closed-form frequency [Hz] of mode ``n`` of a pinned-pinned Euler-Bernoulli beam."""
+    return (n * math.pi / length) ** 2 * math.sqrt(section.EI / section.mass_per_length) / (2 * math.pi)
+
+
+def _plane_stress_matrices(length, depth, E, G, nu, density, nx, ny):
+    from skfem import Basis, BilinearForm, ElementQuad2, ElementVector, MeshQuad
+    from skfem.helpers import dot, sym_grad
+
+    c = E / (1.0 - nu * nu)
+
+    @BilinearForm
+    def stiffness(u, v, w):
+        eu, ev = sym_grad(u), sym_grad(v)
+        sxx = c * (eu[0, 0] + nu * eu[1, 1])
+        syy = c * (nu * eu[0, 0] + eu[1, 1])
+        sxy = 2.0 * G * eu[0, 1]
+        return sxx * ev[0, 0] + syy * ev[1, 1] + 2.0 * sxy * ev[0, 1]
+
+    @BilinearForm
+    def mass(u, v, w):
+        return density * dot(u, v)
+
+    mesh = MeshQuad.init_tensor(np.linspace(0.0, length, nx + 1), np.linspace(0.0, depth, ny + 1))
+    basis = Basis(mesh, ElementVector(ElementQuad2()), intorder=4)
+    return basis, stiffness.assemble(basis), mass.assemble(basis)
+
+
+@dataclasses.dataclass(frozen=True)
+class ContinuumMode:
+    """First flexural frequency [Hz] of the strip and the mesh it was computed on."""
+
+    frequency: float
+    nx: int
+    ny: int
+    dofs: int
+
+
+def plane_stress_first_bending(length: float, depth: float, E: float, G: float, nu: float,
+                               density: float, nx: int, ny: int, n_search: int = 12) -> ContinuumMode:
+    """First flexural frequency [Hz] of a simply supported plane-stress strip (module
+    docstring), on an nx x ny mesh of quadratic quadrilaterals; ny must be even (the ux hold
+    sits on the mid-depth node)."""
+    if ny % 2:
+        raise ValueError(f"ny must be even, got {ny}")
+    basis, K, M = _plane_stress_matrices(length, depth, E, G, nu, density, nx, ny)
+    x, y = basis.doflocs
+    comp = np.empty(basis.N, dtype=int)  # 0: ux, 1: uy (dofs interleave by component)
+    for dofs in (basis.nodal_dofs, basis.facet_dofs, basis.interior_dofs):
+        if dofs.size:
+            comp[dofs] = np.arange(dofs.shape[0])[:, None] % 2
+    tol = 1e-9 * length
+    ends = (np.abs(x) < tol) | (np.abs(x - length) < tol)
+    fixed = (ends & (comp == 1)) | ((np.abs(x) < tol) & (np.abs(y - depth / 2) < tol * depth / length + 1e-12) & (comp == 0))
+    free = np.flatnonzero(~fixed)
+    Kf, Mf = K[free][:, free].tocsc(), M[free][:, free].tocsc()
+    scale = euler_bernoulli_pinned(Section(E, G, density, depth, depth**3 / 12, depth), length)
+    lam, vec = spla.eigsh(Kf, n_search, Mf, sigma=-(0.01 * 2 * math.pi * scale) ** 2, which="LM")
+    order = np.argsort(lam)
+    lam, vec = lam[order], vec[:, order]
+    full = np.zeros((basis.N, len(lam)))
+    full[free] = vec
+    key = np.round(np.c_[x / tol, y / tol, comp]).astype(np.int64)
+    mirror_key = np.round(np.c_[x / tol, (depth - y) / tol, comp]).astype(np.int64)
+    index = {tuple(k): i for i, k in enumerate(key)}
+    mirror = np.array([index[tuple(k)] for k in mirror_key])
+    sign = np.where(comp == 1, 1.0, -1.0)  # flexural: uy even, ux odd about mid-depth
+    line = np.flatnonzero((np.abs(y - depth / 2) < 1e-9 * depth) & (comp == 1))
+    half_sine = np.sin(math.pi * x[line] / length)
+    for k in range(len(lam)):
+        u = full[:, k]
+        symmetric = u @ (sign * u[mirror]) > 0.5 * (u @ u)
+        mid = u[line]
+        shape = abs(mid @ half_sine) / (np.linalg.norm(mid) * np.linalg.norm(half_sine) + 1e-300)
+        if symmetric and shape > BENDING_SHAPE:
+            return ContinuumMode(math.sqrt(lam[k]) / (2 * math.pi), nx, ny, basis.N)
+    raise RuntimeError(f"no flexural mode among the lowest {n_search} of the strip "
+                       f"(L = {length} m, h = {depth} m)")
+
+
+@dataclasses.dataclass(frozen=True)
+class Row:
+    """One strip: slenderness L/h, first flexural frequency [Hz] of the continuum on two
+    meshes (coarse, fine) and of the two beam theories (closed forms, pinned-pinned)."""
+
+    slenderness: float
+    continuum_coarse: float
+    continuum: float
+    timoshenko: float
+    euler_bernoulli: float
+
+    @property
+    def mesh_change(self) -> float:
+        return abs(self.continuum_coarse / self.continuum - 1.0)
+
+    def error(self, beam: str) -> float:
+        """Relative error of a beam theory against the (fine) continuum."""
+        return getattr(self, beam.replace("-", "_")) / self.continuum - 1.0
+
+
+def compare(E: float, G: float, nu: float, density: float, slenderness, depth: float = 0.01,
+            per_depth: int = 4, depth_elements: int = 4) -> list[Row]:
+    """The continuum against both beam theories for each L/h in ``slenderness``; the coarse
+    mesh has ``per_depth`` elements per depth along the strip and ``depth_elements`` across
+    it, the fine mesh twice both."""
+    rows = []
+    for ratio in slenderness:
+        L = ratio * depth
+        section = Section(E, G, density, depth, depth**3 / 12.0, depth, beam="timoshenko")
+        nx = max(4, int(round(per_depth * ratio)))
+        coarse = plane_stress_first_bending(L, depth, E, G, nu, density, nx, depth_elements)
+        fine = plane_stress_first_bending(L, depth, E, G, nu, density, 2 * nx, 2 * depth_elements)
+        rows.append(Row(ratio, coarse.frequency, fine.frequency, timoshenko_pinned(section, L),
+                        euler_bernoulli_pinned(section, L)))
+    return rows
