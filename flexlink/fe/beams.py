@@ -7,7 +7,14 @@ A section (``model.Section``) names its theory in ``section.beam``.
 
 from __future__ import annotations
 
+import math
+
+import numpy as np
+import scipy.linalg
 import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+
+from flexlink.errors import NumericalError
 
 from flexlink.fe import link, timoshenko
 
@@ -42,3 +49,26 @@ def beam_matrices(length: float, elements: int, section):
 def shear_parameter(section, h: float) -> float:
     """Phi = 12 EI / (k G A h^2) of an element of length h [m]; 0 for Euler-Bernoulli."""
     return 12.0 * section.EI / (section.kGA * h * h) if section.beam == "timoshenko" else 0.0
+
+
+def pinned_bending_frequencies(section, length: float, elements: int, n: int = 1) -> np.ndarray:
+    """Lowest ``n`` bending frequencies [Hz] of a straight link pinned at both ends (v = 0 at
+    both, u = 0 at the start), in the section's beam theory."""
+    K, M = beam_matrices(length, elements, section)
+    keep = np.setdiff1d(np.arange(K.shape[0]), [0, 1, 3 * elements + 1])
+    K, M = K[keep][:, keep], M[keep][:, keep]
+    if len(keep) <= 200:
+        lam, vec = scipy.linalg.eigh(K.toarray(), M.toarray())
+    else:  # shift below the first bending mode; ask for enough modes to pass the axial ones
+        first = (math.pi / length) ** 4 * section.EI / section.mass_per_length  # EB, [rad^2/s^2]
+        lam, vec = spla.eigsh(K.tocsc(), min(n + 8, len(keep) - 2), M.tocsc(),
+                              sigma=-first / 4, which="LM")
+        order = np.argsort(lam)
+        lam, vec = lam[order], vec[:, order]
+    # bending modes carry transverse motion; axial ones only u
+    v_rows, u_rows = keep % 3 == 1, keep % 3 == 0
+    bending = [k for k in range(len(lam))
+               if np.linalg.norm(vec[v_rows, k]) > np.linalg.norm(vec[u_rows, k])]
+    if len(bending) < n:
+        raise NumericalError(f"found {len(bending)} bending modes of the {n} asked for")
+    return np.sqrt(lam[bending[:n]]) / (2 * math.pi)

@@ -7,7 +7,7 @@ transverse displacement uy is zero over both end faces (they stay free to turn a
 and ux is held at the mid-depth point of the left end only (removing the axial rigid motion).
 For that support the exact 2D fields are sin / cos in x, the continuum's counterpart of
 the pinned-pinned beam, so the first flexural frequency compares one to one with
-``beam_frequencies`` of the same strip, pinned at both ends.
+``fe.beams.pinned_bending_frequencies`` of the same strip, pinned at both ends.
 
 A flexural mode is picked out by its symmetry about the mid-depth line (uy even, ux odd in y)
 and by the shape of uy along that line (one half sine); thickness-shear modes, which in a
@@ -24,33 +24,10 @@ import scipy.linalg
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from flexlink.fe.beams import beam_matrices
+from flexlink.fe.beams import pinned_bending_frequencies
 from flexlink.fe.model import Section
 
 BENDING_SHAPE = 0.9  # least correlation of the mid-line uy with sin(pi x / L) for mode 1
-
-
-def beam_frequencies(section: Section, length: float, elements: int, n: int = 1) -> np.ndarray:
-    """Lowest ``n`` bending frequencies [Hz] of a straight link pinned at both ends (v = 0 at
-    both, u = 0 at the start), in the section's beam theory."""
-    K, M = beam_matrices(length, elements, section)
-    keep = np.setdiff1d(np.arange(K.shape[0]), [0, 1, 3 * elements + 1])
-    K, M = K[keep][:, keep], M[keep][:, keep]
-    if len(keep) <= 200:
-        lam, vec = scipy.linalg.eigh(K.toarray(), M.toarray())
-    else:  # shift below the first bending mode; ask for enough modes to pass the axial ones
-        first = euler_bernoulli_pinned(section, length)
-        lam, vec = spla.eigsh(K.tocsc(), min(n + 8, len(keep) - 2), M.tocsc(),
-                              sigma=-(2 * math.pi * first) ** 2 / 4, which="LM")
-        order = np.argsort(lam)
-        lam, vec = lam[order], vec[:, order]
-    # bending modes carry transverse motion; axial ones only u
-    v_rows, u_rows = keep % 3 == 1, keep % 3 == 0
-    bending = [k for k in range(len(lam))
-               if np.linalg.norm(vec[v_rows, k]) > np.linalg.norm(vec[u_rows, k])]
-    if len(bending) < n:
-        raise RuntimeError(f"found {len(bending)} bending modes of the {n} asked for")
-    return np.sqrt(lam[bending[:n]]) / (2 * math.pi)
 
 
 def timoshenko_pinned(section: Section, length: float, n: int = 1) -> float:
