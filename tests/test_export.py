@@ -351,7 +351,7 @@ def test_frequency_plot(case3):
 
 def test_export_command_writes_and_lists_everything(tmp_path):
     args = ["export", str(CASE3), "-e", "8", "-n", "2", "--phases", "3", "--subdivide", "2",
-            "--json", "--out", str(tmp_path)]
+            "--common-phase", "--json", "--out", str(tmp_path)]
     result = CliRunner().invoke(main, args)
     assert result.exit_code == 0, result.output
     doc = json.loads(result.stdout)
@@ -364,6 +364,9 @@ def test_export_command_writes_and_lists_everything(tmp_path):
     assert sorted(Path(p).name for p in files["pictures"]) == [
         "case3_mode1.png", "case3_mode2.png", "case3_modes.png"]
     assert [Path(p).name for p in files["plot"]] == ["case3_frequencies.png"]
+    for pvd in files["pvd"]:  # --common-phase: time is the fraction of the period
+        entries = ET.parse(pvd).getroot().find("Collection").findall("DataSet")
+        assert [float(e.get("timestep")) for e in entries] == pytest.approx([0, 1 / 3, 2 / 3])
     every = [p for kind in ("vtu", "pvd", "frames", "pictures", "plot") for p in files[kind]]
     assert all(Path(p).is_file() and Path(p).stat().st_size > 0 for p in every)
     assert sorted(str(p) for p in (tmp_path / "case3").rglob("*") if p.is_file()) == sorted(every)

@@ -13,13 +13,22 @@ Arrays of the ``.vtu`` (2D model padded with z = 0, as VTK wants 3D points):
   ``mode<n>_rotation`` [rad/sqrt(kg)]: the mass-normalised shapes exactly as solved, for the
   elastic modes numbered as in the ``modes`` table; the names hold no frequency, so a ParaView
   state file survives a change of input (the frequency is field data ``mode<n>_frequency_Hz``);
-- cell data ``link_id`` (index of the link), ``element_id`` (global element number);
+- the ground and the joints: the fixed ground pivots are points after the sampled ones (zero
+  displacement in every mode); a ``line`` cell joins consecutive ground pivots (the frame,
+  O2-O4 in a four-bar); every joint spring is a ``line`` cell between the points it joins (a
+  bearing: pivot to link end; a pin: its first link end to each other one; zero length at rest,
+  so Warp By Vector and the animation show a joint's stretch); every joint is a ``vertex``
+  cell (the pivot of a bearing, the first link end of a pin);
+- cell data ``part`` (``PARTS``: 0 link element, 1 ground line, 2 joint spring, 3 joint),
+  ``link_id`` (index of the link), ``element_id`` (global element number), ``joint_id`` (index
+  of the joint); -1 where they do not apply;
 - field data ``frequencies_Hz``, ``mode_numbers``, ``warp_scale`` (per mode, the factor for
   ParaView's Warp By Vector that gives the animation's amplitude), ``theta2_deg``, ``mu_deg``,
-  and ``link_<name>`` = [link_id] for every link (meshio writes numeric arrays only, so the
-  link names travel as array names).
+  ``link_<name>`` = [link_id] for every link, ``joint_<name>`` = [joint_id] for every joint and
+  ``part_<name>`` = [code] (meshio writes numeric arrays only, so names travel as array names).
 Animation frames hold the deformed positions themselves (ParaView plays them as they are) with
-the scaled ``displacement`` and ``rotation`` as point data; the ``.pvd`` time is in seconds.
+the scaled ``displacement`` and ``rotation`` as point data and the same cells; the ``.pvd`` time
+is in seconds, or the fraction of the period with ``common_phase``.
 """
 
 from __future__ import annotations
