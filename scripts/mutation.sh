@@ -6,18 +6,18 @@
 # scratch copies (with `mutmut results` / `mutmut show NAME` usable inside) under $OUT.
 set -euo pipefail
 ROOT="$(cd "$(dirname "$0")/.." && pwd)"
-PY="${PYTHON:-$ROOT/../main/.venv/bin/python}"
+PY="${PYTHON:-$ROOT/.venv/bin/python}"
 [ -x "$PY" ] || PY=python
 OUT="${MUTATION_OUT:-/tmp/flexlink-mutation}"
 
 # module -> the tests that exercise it
 declare -A TESTS=(
-    [flexlink/studies/comparison.py]="tests/test_calibration_synthetic.py"
-    [flexlink/studies/calibration.py]="tests/test_calibration_synthetic.py tests/test_calibration.py"
+    [flexlink/studies/comparison.py]="tests/test_calibration_synthetic.py tests/test_calibration_failures.py"
+    [flexlink/studies/calibration.py]="tests/test_calibration_synthetic.py tests/test_calibration.py tests/test_calibration_failures.py"
     [flexlink/studies/uncertainty.py]="tests/test_uncertainty.py tests/test_calibration_synthetic.py"
     [flexlink/materials/mixtures.py]="tests/test_materials.py tests/test_uncertainty.py"
     [flexlink/units.py]="tests/test_units.py"
-    [flexlink/fileio.py]="tests/test_fileio.py tests/test_export.py"
+    [flexlink/fileio.py]="tests/test_fileio.py tests/test_export_interrupted.py tests/test_cycle_plot_atomic.py"
 )
 modules=("$@")
 [ ${#modules[@]} -gt 0 ] || modules=(flexlink/units.py flexlink/materials/mixtures.py

@@ -22,7 +22,7 @@ CORPUS = {
 }
 COMMANDS = (["modes"], ["export", "--no-pictures"], ["stability"], ["converge"],
             ["cycle", "--poses", "8"], ["kinematics", "--poses", "8"], ["prb"],
-            ["calibrate", "--starts", "1", "--samples", "2"],
+            ["calibrate", "--starts", "1", "--samples", "2"], ["report", "--cycle-poses", "0"],
             ["campbell", "--speeds", "0:3000 rev/min", "--poses", "8"])
 
 

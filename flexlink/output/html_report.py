@@ -1,0 +1,248 @@
+"""The report as one self-contained HTML page: every script, style and number inline, so the
+file can be mailed and opened offline; nothing is fetched when it is viewed.
+
+Plotting library: plotly.js, inlined from the ``plotly`` Python package (``plotly.offline.
+get_plotlyjs()``). Chosen because it is widely used and maintained, ships its whole browser
+bundle inside a PyPI wheel (nothing to download at build or view time), draws zoomable,
+hoverable 2D plots with equal-aspect axes, and lets a few lines of JavaScript restyle a trace
+per animation frame; vtk.js through pyvista/trame would bring 3D machinery a planar linkage
+does not need and a much larger page.
+
+Each scene is a list of sections, each a function of that scene's ``report_data.scene_page``
+that returns its HTML, or "" when the scene has no data for it (SECTIONS): a new section (mode
+labels, intervals, a Campbell plot) is one function added there. Figures are plotly specs put
+in the page's JSON data and drawn by ``html_assets.SCRIPT``.
+"""
+
+from __future__ import annotations
+
+import html
+import json
+import math
+import re
+
+from flexlink.output.html_assets import SCRIPT, STYLE
+
+LINK_COLOURS = ("#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#17becf")
+
+
+def _e(text) -> str:
+    return html.escape(str(text), quote=True)
+
+
+def _number(value: float, digits: int = 2) -> str:
+    return f"{value:,.{digits}f}" if value is not None and math.isfinite(value) else "-"
+
+
+def _table(header: list[str], rows: list[list[str]], numeric_from: int = 0) -> str:
+    """A table in a scrolling box (a phone shows wide tables by scrolling them, not the page);
+    cells are already-escaped HTML; columns from ``numeric_from`` on are right-aligned."""
+    head = "".join(f"<th>{h}</th>" for h in header)
+    body = "".join("<tr>" + "".join(
+        f'<td class="num">{c}</td>' if i >= numeric_from else f"<td>{c}</td>"
+        for i, c in enumerate(row)) + "</tr>" for row in rows)
+    return f'<div class="scroll"><table><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table></div>'
+
+
+def _figure(page: dict, figures: list, name: str, data: list, layout: dict, css: str = "plot") -> str:
+    figure_id = f"fig-{page['id']}-{name}"
+    figures.append({"id": figure_id, "data": data, "layout": {**BASE_LAYOUT, **layout}})
+    return f'<div class="{css}" id="{figure_id}"></div>'
+
+
+BASE_LAYOUT = {"margin": {"l": 55, "r": 15, "t": 30, "b": 45}, "height": 360,
+               "font": {"family": "DejaVu Sans, Arial, sans-serif", "size": 12},
+               "paper_bgcolor": "#ffffff", "plot_bgcolor": "#fbfbfb"}
+
+
+def equal_axes(x_title: str = "x [mm]", y_title: str = "y [mm]") -> dict:
+    return {"xaxis": {"title": {"text": x_title}, "zeroline": False},
+            "yaxis": {"title": {"text": y_title}, "zeroline": False, "scaleanchor": "x",
+                      "scaleratio": 1},
+            "showlegend": False}
+
+
+# --- sections: each (page, figures) -> HTML or "" -------------------------------------------
+
+def pose_section(page: dict, figures: list) -> str:
+    pose = page["summary"]["pose"]
+    drawing = page["drawing"]
+    facts = [f"crank angle &theta;<sub>2</sub> = {_number(pose['theta2_deg'], 3)} deg"]
+    if pose.get("mu_deg") is not None:
+        facts.append(f"transmission angle &mu; = {_number(pose['mu_deg'], 3)} deg")
+    facts.append(f"{_e(pose['branch'])} branch")
+    lengths = page["summary"].get("linkage", {})
+    sizes = [f"{_e(k.removesuffix('_m'))} {_number(1e3 * v, 1)} mm"
+             for k, v in lengths.items() if k.endswith("_m")]
+    if "grashof" in lengths:
+        sizes.append(f"Grashof class: {_e(lengths['grashof'])}")
+    data = [{"type": "scatter", "mode": "lines", "x": [p[0] for p in link["points"]],
+             "y": [p[1] for p in link["points"]], "name": link["name"],
+             "line": {"width": 6, "color": LINK_COLOURS[i % len(LINK_COLOURS)]},
+             "hovertemplate": f"{_e(link['name'])}<extra></extra>"}
+            for i, link in enumerate(drawing["links"])]
+    names = list(drawing["joints"])
+    data.append({"type": "scatter", "mode": "markers+text", "name": "joints",
+                 "x": [drawing["joints"][n][0] for n in names],
+                 "y": [drawing["joints"][n][1] for n in names], "text": names,
+                 "textposition": "top center", "hovertemplate": "%{text}: (%{x}, %{y}) mm<extra></extra>",
+                 "marker": {"size": [14 if n in drawing["ground"] else 9 for n in names],
+                            "symbol": ["triangle-up" if n in drawing["ground"] else "circle"
+                                       for n in names],
+                            "color": "#222222"}})
+    figure = _figure(page, figures, "pose", data, {**equal_axes(), "height": 320})
+    return (f"<h3>Pose</h3><p>{'; '.join(facts)}.</p>"
+            + (f"<p>{'; '.join(sizes)}.</p>" if sizes else "") + figure
+            + '<p class="note">Links drawn between their end joints; triangles are ground '
+              "joints.</p>")
+
+
+KNOWN_ROW_KEYS = {"mode", "computed_Hz"}
+
+
+def frequency_section(page: dict, figures: list) -> str:
+    summary = page["summary"]
+    rows = summary["modes"]
+    if not rows:
+        return ""
+    refs = [k[:-3] for k in rows[0] if k.endswith("_Hz") and k != "computed_Hz"]
+    known = KNOWN_ROW_KEYS | {f"{r}_Hz" for r in refs} | {f"error_vs_{r}_pct" for r in refs}
+    extra = [k for k in rows[0] if k not in known]  # e.g. "kind", or a later label/interval
+    header = ["mode", "computed [Hz]"] + [h for r in refs for h in (f"{_e(r)} [Hz]", "error")] \
+        + [_e(k.replace("_", " ")) for k in extra]
+    body = []
+    for row in rows:
+        cells = [str(row["mode"]), _number(row["computed_Hz"])]
+        for r in refs:
+            if f"{r}_Hz" in row:
+                cells += [_number(row[f"{r}_Hz"], 1), f"{row[f'error_vs_{r}_pct']:+.1f} %"]
+            else:
+                cells += ["-", "-"]
+        cells += [_e(row.get(k, "")) for k in extra]
+        body.append(cells)
+    parts = [f"<h3>Natural frequencies</h3><p>{_e(summary.get('family', 'planar'))} model, "
+             f"{summary['elements_per_link']} elements/link, {summary['dofs']} DOFs, "
+             f"{_e(summary['solver'])} solver, largest residual "
+             f"{summary['max_residual']:.1e}.</p>", _table(header, body, 1)]
+    if summary.get("mean_abs_error_pct"):
+        parts.append("<p>Mean |error|: " + ", ".join(
+            f"vs {_e(k)} {v:.1f} %" for k, v in sorted(summary["mean_abs_error_pct"].items()))
+            + ". Errors are (computed - reference) / reference, modes paired by order.</p>")
+    if summary.get("reference_source"):
+        parts.append(f'<p class="note">Reference: {_e(summary["reference_source"])}</p>')
+    if summary.get("mechanism_modes_Hz"):
+        parts.append("<p>Rigid-body/mechanism modes (not paired): " + ", ".join(
+            f"{f:.3g} Hz" for f in summary["mechanism_modes_Hz"]) + ".</p>")
+    if summary.get("warnings"):
+        parts.append('<div class="warnings"><strong>Warnings</strong><ul>' + "".join(
+            f"<li>{_e(w)}</li>" for w in summary["warnings"]) + "</ul></div>")
+    return "".join(parts)
+
+
+def assumptions_section(page: dict, figures: list) -> str:
+    assumptions = page["summary"].get("assumptions") or []
+    if not assumptions:
+        return ""
+    rows = [[f"<code>{_e(a['field'])}</code>", _e(a["value"]), _e(a["note"])] for a in assumptions]
+    return "<h3>Assumptions</h3>" + _table(["field", "value", "note"], rows, 99)
+
+
+def mesh_section(page: dict, figures: list) -> str:
+    mesh = page["mesh"]
+    parts = [f"<h3>Mesh</h3><p>{_e(mesh['describe'])}.</p>"]
+    if mesh.get("history"):
+        rows = [[str(n), f"{e:.2e}"] for n, e in mesh["history"]]
+        parts.append(_table(["elements/link", "estimated relative error"], rows, 0))
+    return "".join(parts)
+
+
+def modes_section(page: dict, figures: list) -> str:
+    shapes = page["shapes"]
+    if not shapes["modes"]:
+        return ""
+    pid = _e(page["id"])
+    options = "".join(f'<option value="{i}">mode {m["number"]}: {m["frequency_Hz"]:.1f} Hz</option>'
+                      for i, m in enumerate(shapes["modes"]))
+    return (f'<h3>Mode shapes</h3><div class="player" id="player-{pid}" data-scene="{pid}">'
+            f'<div class="controls"><label>Mode <select aria-label="mode">{options}</select></label>'
+            '<button type="button" class="play" aria-label="pause">Pause</button>'
+            '<label class="amp">Amplitude <input type="range" min="0" max="25" step="0.5" '
+            'value="10" aria-label="amplitude"> <span class="amp-value">10 %</span></label></div>'
+            f'<div class="plot mode-plot" id="modeplot-{pid}"></div></div>'
+            '<p class="note">Largest displacement drawn as the slider\'s fraction of the '
+            "mechanism size; grey: the undeformed pose. Mass-normalised shapes as solved "
+            "(sampled with each element's own shape functions).</p>")
+
+
+def cycle_section(page: dict, figures: list) -> str:
+    cycle = page.get("cycle")
+    if cycle is None:
+        return ""
+    if "unavailable" in cycle:
+        return f"<h3>Cycle map</h3><p>Not available: {_e(cycle['unavailable'])}</p>"
+    data = [{"type": "scatter", "mode": "lines", "x": cycle["crank_deg"], "y": f,
+             "name": f"mode {j + 1}", "hovertemplate": "%{x:.1f} deg: %{y:.1f} Hz<extra></extra>"}
+            for j, f in enumerate(cycle["frequencies_Hz"])]
+    shapes = [{"type": "line", "x0": cycle["pose_deg"], "x1": cycle["pose_deg"], "yref": "paper",
+               "y0": 0, "y1": 1, "line": {"color": "#444", "dash": "dash", "width": 1}}]
+    for angles in cycle["mu90_deg"].values():
+        shapes += [{"type": "line", "x0": a, "x1": a, "yref": "paper", "y0": 0, "y1": 1,
+                    "line": {"color": "#bbb", "dash": "dot", "width": 1}} for a in angles]
+    layout = {"xaxis": {"title": {"text": "crank angle [deg]"}, "range": [0, 360], "dtick": 60},
+              "yaxis": {"title": {"text": "natural frequency [Hz]"}},
+              "legend": {"orientation": "h", "y": -0.25}, "shapes": shapes, "height": 380}
+    return ("<h3>Cycle map</h3>" + _figure(page, figures, "cycle", data, layout)
+            + f'<p class="note">The first {len(data)} elastic frequencies over one crank '
+              f"revolution ({len(cycle['crank_deg'])} poses); dashed: the analysed pose, dotted: "
+              "transmission angle 90 deg.</p>")
+
+
+def files_section(page: dict, figures: list) -> str:
+    files = page["files"]
+    links = [f'<li><a href="{_e(p)}">{_e(p)}</a></li>' for p in files["vtu"] + files["pvd"]]
+    if not links:
+        return ""
+    return ("<h3>Files for ParaView</h3><p>Next to this page (send the folder along to keep the "
+            "links working): all modes as point data (.vtu) and one animation per mode (.pvd, "
+            "press play in ParaView).</p><ul class=\"files\">" + "".join(links) + "</ul>")
+
+
+def _failures(messages) -> str:
+    if not messages:
+        return ""
+    return ('<div class="warnings"><strong>Scenes not in this report</strong><ul>'
+            + "".join(f"<li>{_e(m)}</li>" for m in messages) + "</ul></div>")
+
+
+SECTIONS = (pose_section, frequency_section, assumptions_section, mesh_section, modes_section,
+            cycle_section, files_section)
+
+
+def render_page(pages: list[dict], plotly_js: str, title: str = "flexlink report",
+                subtitle: str = "", failures: tuple[str, ...] = ()) -> str:
+    """The whole page for ``pages`` (``report_data.scene_page`` each); ``plotly_js``: the
+    plotly.js bundle, inlined; ``failures``: one message per scene that could not be
+    analysed, listed at the top."""
+    figures: list = []
+    scenes = []
+    for page in pages:
+        parts = [section(page, figures) for section in SECTIONS]
+        summary = page["summary"]
+        scenes.append(f'<section class="scene" id="scene-{_e(page["id"])}">'
+                      f'<h2>{_e(summary["scene"])}</h2><p class="file">{_e(summary["file"])}</p>'
+                      + "".join(f'<div class="part">{p}</div>' for p in parts if p)
+                      + "</section>")
+    nav = "".join(f'<a href="#scene-{_e(p["id"])}">{_e(p["summary"]["scene"])}</a>' for p in pages)
+    data = {"figures": figures,
+            "animations": {p["id"]: p["shapes"] for p in pages if p["shapes"]["modes"]}}
+    # "</script" inside a script would end it early; "<\/" means "</" in JSON and in
+    # JavaScript strings, the only places a script can hold it
+    payload = json.dumps(data, separators=(",", ":"), allow_nan=False).replace("</", "<\\/")
+    plotly_js = re.sub(r"</(script)", r"<\\/\1", plotly_js, flags=re.I)
+    return ("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
+            "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">"
+            f"<title>{_e(title)}</title><style>{STYLE}</style></head><body>"
+            f"<header><h1>{_e(title)}</h1><p>{_e(subtitle)}</p><nav>{nav}</nav></header>"
+            f"<main>{_failures(failures)}{''.join(scenes)}</main>"
+            f'<script type="application/json" id="flexlink-data">{payload}</script>'
+            f"<script>{plotly_js}</script><script>{SCRIPT}</script></body></html>\n")

@@ -1,0 +1,106 @@
+"""What the HTML report shows for one scene, as plain JSON-ready data: the pose and its drawing,
+the comparison table, assumptions, mesh, mode shapes ready to animate, the cycle map and the
+ParaView files. ``html_report.py`` turns a list of these into the page; keeping the numbers
+here, apart from the markup, lets a new section (mode labels, intervals, a Campbell plot) add
+one key here and one section there.
+
+Lengths in the page data are in mm (what a person reads on a drawing of a linkage this size);
+mode shapes are normalised so that each mode's largest sampled displacement is 1, and the page
+scales them by its amplitude slider times the mechanism size.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+
+from flexlink.analysis.modal import CaseResult
+from flexlink.output.export_vtk import ModeSet
+from flexlink.studies.cycle import ModalMap
+
+MM = 1e3  # m -> mm
+DIGITS = 5  # significant digits kept in the page's coordinates: far below a pixel
+
+
+def _rounded(values: np.ndarray) -> list[float]:
+    """Values rounded to DIGITS significant digits of the array's largest magnitude, so the
+    page stays small (the full-precision shapes are in the .vtu)."""
+    values = np.asarray(values, dtype=float)
+    top = float(np.abs(values).max()) if values.size else 0.0
+    if top == 0.0:
+        return values.tolist()
+    decimals = max(0, DIGITS - 1 - math.floor(math.log10(top)))
+    return np.round(values, decimals).tolist()
+
+
+def linkage_drawing(result: CaseResult) -> dict:
+    """The posed linkage: each link as its end points [mm], every joint [mm] and which joints
+    are grounded."""
+    model = result.model
+    links = [{"name": link.name,
+              "points": _rounded(model.nodes[[link.nodes[0], link.nodes[-1]]] * MM)}
+             for link in model.links]
+    joints = {name: _rounded(np.asarray(xy) * MM) for name, xy in result.pose.joints.items()}
+    ground = sorted(j.name for j in result.scene.joints if j.ground)
+    return {"links": links, "joints": joints, "ground": ground}
+
+
+def mode_shapes(modes: ModeSet) -> dict:
+    """Undeformed polylines (one per link, null between links, as a plotting library draws a
+    broken line) [mm] and, per mode, the displacement along them normalised to a largest
+    magnitude of 1; ``size_mm`` is the mechanism size the page's amplitude fraction refers to."""
+    sampled = modes.sampled
+    order, start = [], 0
+    for link_index in range(len(sampled.link_names)):
+        count = int((sampled.cell_link == link_index).sum()) * sampled.subdivisions + 1
+        order.extend(range(start, start + count))
+        order.append(-1)  # a break between links
+        start += count
+    index = np.array(order[:-1])
+    gap = index < 0
+    xy = sampled.points[np.where(gap, 0, index)] * MM
+    x = [None if g else v for g, v in zip(gap, _rounded(xy[:, 0]))]
+    y = [None if g else v for g, v in zip(gap, _rounded(xy[:, 1]))]
+    shapes = []
+    for i, (number, frequency) in enumerate(zip(modes.numbers, modes.frequencies)):
+        d = sampled.displacement[np.where(gap, 0, index), :, i]
+        peak = float(np.linalg.norm(d, axis=1).max())
+        d = d / peak if peak > 0 else d
+        shapes.append({"number": int(number), "frequency_Hz": float(frequency),
+                       "dx": [None if g else v for g, v in zip(gap, _rounded(d[:, 0]))],
+                       "dy": [None if g else v for g, v in zip(gap, _rounded(d[:, 1]))]})
+    return {"x": x, "y": y, "size_mm": modes.size * MM, "modes": shapes}
+
+
+def cycle_data(cycle: ModalMap | None, crank_angle: float, reason: str | None = None
+               ) -> dict | None:
+    """The modal map over the crank cycle (frequencies [Hz] against crank angle [deg]), the
+    analysed pose's crank angle and where a transmission angle is 90 deg; None when no map
+    was asked for, {"unavailable": reason} when one could not be made."""
+    if cycle is None:
+        return None if reason is None else {"unavailable": reason}
+    order = np.argsort(np.degrees(cycle.q) % 360.0)
+    crank = np.degrees(cycle.q)[order] % 360.0
+    return {"crank_deg": _rounded(crank),
+            "frequencies_Hz": [_rounded(cycle.frequencies[order, j])
+                               for j in range(cycle.frequencies.shape[1])],
+            "pose_deg": math.degrees(crank_angle) % 360.0,
+            "mu90_deg": {pair: [math.degrees(a) % 360.0 for a in angles]
+                         for pair, angles in cycle.mu90.items()}}
+
+
+def scene_page(result: CaseResult, summary: dict, mesh: dict, modes: ModeSet,
+               cycle: dict | None, files: dict, out: Path) -> dict:
+    """Everything the report shows for one scene. ``summary``: ``report.case_summary`` (with
+    its "warnings"); ``mesh``: ``MeshRule.as_dict()`` with "describe"; ``cycle``:
+    ``cycle_data``; ``files``: ``export.export_case``'s answer, linked relative to ``out``."""
+    def relative(paths):
+        return [Path(p).relative_to(out).as_posix() for p in paths]
+
+    stem = Path(result.scene.path).stem
+    return {"id": stem, "summary": summary, "mesh": mesh, "drawing": linkage_drawing(result),
+            "shapes": mode_shapes(modes), "cycle": cycle,
+            "files": {"vtu": relative(files.get("vtu", [])),
+                      "pvd": relative(files.get("pvd", []))}}
