@@ -75,13 +75,13 @@ def test_vtu_round_trip_matches_the_solver(case3, modes, tmp_path):
 
     # geometry: z = 0, the model's nodes where the samples sit on nodes, links straight between
     assert np.all(back.points[:, 2] == 0)
-    np.testing.assert_allclose(back.points[:, :2], s.points, rtol=0, atol=1e-15)
-    on_node = s.point_node >= 0
+    np.testing.assert_allclose(back.points[:len(s.points), :2], s.points, rtol=0, atol=1e-15)
+    on_node = np.flatnonzero(s.point_node >= 0)
     np.testing.assert_array_equal(back.points[on_node, :2], model.nodes[s.point_node[on_node]])
-    assert on_node.sum() == len(model.nodes)
+    assert len(on_node) == len(model.nodes)
 
     # connectivity: one Lagrange curve per element, its two end points on the element's nodes
-    (block,) = back.cells
+    block = back.cells[0]
     assert block.type == "VTK_LAGRANGE_CURVE" and block.data.shape == (3 * 6, 4)
     ends = s.point_node[block.data[:, :2]]
     starts = np.concatenate([link.nodes[:-1] for link in model.links])
@@ -99,7 +99,7 @@ def test_vtu_round_trip_matches_the_solver(case3, modes, tmp_path):
         name = f"mode{k + 1}"
         assert back.field_data[f"{name}_frequency_Hz"][0] == solved.frequencies[elastic[k]]
         disp, rot = back.point_data[f"{name}_displacement"], back.point_data[f"{name}_rotation"]
-        assert disp.shape == (len(s.points), 3) and np.all(disp[:, 2] == 0)
+        assert disp.shape == (len(back.points), 3) and np.all(disp[:, 2] == 0)
         # (rotated to the link frame and back: a few ulps of round-off)
         np.testing.assert_allclose(disp[on_node, :2], shapes[s.point_node[on_node], :2, k],
                                    rtol=0, atol=4 * np.finfo(float).eps * np.abs(shapes).max())
@@ -120,6 +120,8 @@ def test_vtu_round_trip_matches_the_solver(case3, modes, tmp_path):
                                            rtol=0, atol=1e-12 * np.abs(shapes[..., k]).max())
                 element += 1
         assert element == len(block.data)
+        # the fixed ground pivots after the sampled points never move
+        np.testing.assert_array_equal(disp[len(s.points):], 0)
 
 
 def test_pvd_animation_references_its_frames(case3, modes, tmp_path):
@@ -136,13 +138,168 @@ def test_pvd_animation_references_its_frames(case3, modes, tmp_path):
     assert [pvd.parent / e.get("file") for e in entries] == written[:-1]
     # frame 0 is the largest deflection, FRACTION of the mechanism size; half a period later
     # the shape is reversed; the points are the deformed positions themselves
-    base = np.column_stack([modes.sampled.points, np.zeros(len(modes.sampled.points))])
+    pivots = [j.position for j in modes.joints if j.ground]
+    rest = np.vstack([modes.sampled.points, pivots])
+    base = np.column_stack([rest, np.zeros(len(rest))])
     peak = np.linalg.norm(frames[0].point_data["displacement"], axis=1).max()
     assert peak == pytest.approx(FRACTION * modes.size, rel=1e-12)
     np.testing.assert_allclose(frames[0].points, base + frames[0].point_data["displacement"],
                                atol=1e-15)
     np.testing.assert_allclose(frames[3].point_data["displacement"],
                                -frames[0].point_data["displacement"], atol=1e-15)
+
+
+def test_common_phase_puts_every_mode_on_one_normalised_period(modes, tmp_path):
+    phases = 5
+    for i in range(3):
+        pvd = write_animation(tmp_path, "case3", modes, i, phases, FRACTION, common_phase=True)[-1]
+        entries = ET.parse(pvd).getroot().find("Collection").findall("DataSet")
+        # the same times for modes of different frequencies: k / phases, no seconds
+        assert [float(e.get("timestep")) for e in entries] == pytest.approx(
+            np.arange(phases) / phases, rel=0, abs=1e-12)
+
+
+def test_vtu_has_the_ground_and_the_joints(case3, modes, tmp_path):
+    from flexlink.output.export_vtk import PARTS
+
+    path = write_vtu(tmp_path / "case3.vtu", modes_mesh(case3, modes, FRACTION))
+    back = meshio.read(path)
+    s, n = modes.sampled, len(modes.sampled.points)
+    cells = {name: [] for name in PARTS}
+    for block, part, joint in zip(back.cells, back.cell_data["part"], back.cell_data["joint_id"]):
+        for code, cell, j in zip(part, block.data, joint):
+            cells[next(k for k, v in PARTS.items() if v == code)].append((block.type, cell, j))
+    # names travel as field data: joint_<name> = joint_id, part_<name> = part code
+    names = [j.name for j in modes.joints]
+    assert names == ["O2", "A", "B", "O4"]
+    for k, name in enumerate(names):
+        assert back.field_data[f"joint_{name}"][0] == k
+    for name, code in PARTS.items():
+        assert back.field_data[f"part_{name}"][0] == code
+    assert len(cells["link"]) == len(s.cells)
+    # the ground line O2 - O4 between the two pivots, appended after the sampled points
+    ((kind, ground, _),) = cells["ground"]
+    assert kind == "line"
+    np.testing.assert_allclose(back.points[ground, :2], [case3.pose.joints["O2"],
+                                                         case3.pose.joints["O4"]], atol=1e-15)
+    assert set(ground) == {n, n + 1}
+    # one vertex per joint: the pivot of a bearing, the first link end of a pin
+    vertices = {names[j]: cell for kind, cell, j in cells["joint"] if kind == "vertex"}
+    assert len(vertices) == len(cells["joint"]) == 4
+    for name in names:
+        np.testing.assert_allclose(back.points[vertices[name][0], :2], case3.pose.joints[name],
+                                   atol=1e-12)
+    # springs: one per bearing (pivot to link end), one per pin (link end to link end); each
+    # joins points that sit on the joint at rest, from different links
+    springs = [(names[j], cell) for kind, cell, j in cells["joint_spring"]]
+    assert sorted(name for name, _ in springs) == sorted(names)
+    for name, (a, b) in springs:
+        np.testing.assert_allclose(back.points[[a, b], :2], [case3.pose.joints[name]] * 2,
+                                   atol=1e-12)
+        assert a != b
+    # VTK's own reader (the one ParaView uses) opens the file with every cell and array
+    import pyvista
+
+    grid = pyvista.read(path)
+    assert grid.n_cells == sum(len(block.data) for block in back.cells)
+    assert grid.n_points == len(back.points)
+    np.testing.assert_array_equal(grid.cell_data["part"], np.concatenate(back.cell_data["part"]))
+    assert "joint_O4" in grid.field_data and "mode3_displacement" in grid.point_data
+
+
+def test_joint_springs_join_the_displaced_link_ends(case3, modes):
+    from flexlink.output.pictures import joint_springs
+
+    model, solved = case3.model, case3.modes
+    i, factor = 1, modes.scale(1, FRACTION)  # mode 2: the coupler sliding on the joint springs
+    shape = solved.shapes[:, solved.elastic[i]].reshape(-1, 3)
+    displaced = model.nodes + factor * shape[:, :2]
+    springs = joint_springs(modes, i, factor)
+    assert [sp.name for sp in springs] == ["O2", "A", "B", "O4"]
+    for sp in springs:
+        nodes = model.joint_nodes[sp.name]
+        # (displacements rotated to the link frame and back: a few ulps)
+        if sp.ground:
+            np.testing.assert_array_equal(sp.start, case3.pose.joints[sp.name])
+            np.testing.assert_allclose(sp.end, displaced[nodes[0]], rtol=0, atol=1e-15)
+        else:
+            np.testing.assert_allclose([sp.start, sp.end], displaced[list(nodes)], rtol=0,
+                                       atol=1e-15)
+    # the drawn stretch of pin A is the solver's relative displacement of its two nodes, and
+    # in this joint-spring mode it is a visible part of the drawing (docs/export.md: about 40 %
+    # of the peak displacement)
+    a = next(sp for sp in springs if sp.name == "A")
+    a_nodes = model.joint_nodes["A"]
+    stretch = factor * np.linalg.norm(shape[a_nodes[0], :2] - shape[a_nodes[1], :2])
+    assert np.linalg.norm(a.end - a.start) == pytest.approx(stretch, rel=1e-9)
+    assert stretch > 0.2 * FRACTION * modes.size
+
+
+def test_zigzag_runs_between_its_ends():
+    from flexlink.output.pictures import zigzag
+
+    start, end, width = np.array([1.0, 2.0]), np.array([4.0, 6.0]), 0.1
+    points = zigzag(start, end, width, teeth=4)
+    assert len(points) == 2 * 4 + 3
+    np.testing.assert_array_equal(points[[0, -1]], [start, end])
+    unit = (end - start) / 5.0
+    normal = np.array([-unit[1], unit[0]])
+    offset = (points - start) @ normal
+    along = (points - start) @ unit
+    assert np.all(np.diff(along) > 0)  # it goes forward
+    teeth = offset[2:-2]
+    np.testing.assert_allclose(np.abs(teeth), width, rtol=1e-12)
+    assert np.all(teeth[:-1] * teeth[1:] < 0)  # alternating sides
+    # a short spring keeps its shape: teeth at most 0.4 of its length
+    short = zigzag(start, start + 0.05 * unit, width)
+    assert np.abs((short - start) @ normal).max() == pytest.approx(0.4 * 0.05, rel=1e-12)
+
+
+def test_scale_bar_states_the_amplitude_scale(modes):
+    from flexlink.output.pictures import scale_bar
+
+    for i in range(3):
+        bar = scale_bar(modes, i, FRACTION)
+        mantissa = bar.length / 10 ** math.floor(math.log10(bar.length))
+        assert min(abs(mantissa - m) for m in (1, 2, 5)) < 1e-9  # a round length
+        assert 0.08 * modes.size < bar.length <= 0.2 * modes.size
+        # the factor draws the mode's largest mass-normalised displacement at FRACTION of the
+        # size; the bar stands for its length divided by that factor
+        peak = np.linalg.norm(modes.sampled.displacement[:, :, i], axis=1).max()
+        assert bar.factor * peak == pytest.approx(FRACTION * modes.size, rel=1e-12)
+        assert bar.displacement == pytest.approx(bar.length * peak / (FRACTION * modes.size),
+                                                 rel=1e-12)
+        above, below = bar.labels()
+        assert f"{1e3 * bar.length:.3g} mm" in above
+        shown = bar.displacement if bar.displacement >= 1 else 1e3 * bar.displacement
+        assert f"{shown:.3g}" in below and "/sqrt(kg)" in below and "mass-normalised" in below
+
+
+def test_pictures_draw_every_stretched_spring_and_the_bar(modes, monkeypatch):
+    import flexlink.output.pictures as pictures
+
+    drawn, labels = [], []
+    zigzag, add_labels = pictures.zigzag, None
+
+    def counting(start, end, width, teeth=6):
+        drawn.append((tuple(start), tuple(end)))
+        return zigzag(start, end, width, teeth)
+
+    monkeypatch.setattr(pictures, "zigzag", counting)
+    import pyvista
+
+    add_labels = pyvista.Plotter.add_point_labels
+
+    def recording(self, points, texts, *args, **kwargs):
+        labels.extend(texts)
+        return add_labels(self, points, texts, *args, **kwargs)
+
+    monkeypatch.setattr(pyvista.Plotter, "add_point_labels", recording)
+    pictures.mode_picture("case 3: mode 2", modes, 1, FRACTION, size=(240, 160))
+    factor = modes.scale(1, FRACTION)
+    expected = {(tuple(sp.start), tuple(sp.end)) for sp in pictures.joint_springs(modes, 1, factor)}
+    assert set(drawn) == expected and len(drawn) == 4
+    assert list(pictures.scale_bar(modes, 1, FRACTION).labels()) == labels[-2:]
 
 
 def png_pixels(data):
@@ -160,13 +317,10 @@ def coloured_fraction(pixels):
 def test_mode_picture_and_sheet_are_drawn(case3, modes):
     from flexlink.output.pictures import mode_picture, overview_sheet
 
-    joints, ground = case3.pose.joints, {"O2", "O4"}
-    size, pixels = png_pixels(mode_picture("case 3: mode 1", modes, 0, joints, ground, FRACTION,
-                                           size=(480, 320)))
+    size, pixels = png_pixels(mode_picture("case 3: mode 1", modes, 0, FRACTION, size=(480, 320)))
     assert size == (480, 320)
     assert pixels.std() > 10 and coloured_fraction(pixels) > 0.005
-    size, pixels = png_pixels(overview_sheet("case 3", modes, joints, ground, FRACTION,
-                                             tile=(300, 200)))
+    size, pixels = png_pixels(overview_sheet("case 3", modes, FRACTION, tile=(300, 200)))
     assert size == (600, 400)  # three modes: two per row, two rows
     for tile in (pixels[:200, :300], pixels[:200, 300:], pixels[200:, :300]):
         assert tile.std() > 10 and coloured_fraction(tile) > 0.002
@@ -180,7 +334,7 @@ def test_failed_rendering_check_is_a_clear_error(modes, case3, monkeypatch):
     monkeypatch.setattr(pictures, "_PROBE", "import sys; sys.exit(3)")
     try:
         with pytest.raises(OutputError, match="system-deps.sh"):
-            pictures.mode_picture("x", modes, 0, case3.pose.joints, set(), FRACTION)
+            pictures.mode_picture("x", modes, 0, FRACTION)
     finally:
         pictures._check_rendering.cache_clear()
 
@@ -197,7 +351,7 @@ def test_frequency_plot(case3):
 
 def test_export_command_writes_and_lists_everything(tmp_path):
     args = ["export", str(CASE3), "-e", "8", "-n", "2", "--phases", "3", "--subdivide", "2",
-            "--json", "--out", str(tmp_path)]
+            "--common-phase", "--json", "--out", str(tmp_path)]
     result = CliRunner().invoke(main, args)
     assert result.exit_code == 0, result.output
     doc = json.loads(result.stdout)
@@ -210,6 +364,9 @@ def test_export_command_writes_and_lists_everything(tmp_path):
     assert sorted(Path(p).name for p in files["pictures"]) == [
         "case3_mode1.png", "case3_mode2.png", "case3_modes.png"]
     assert [Path(p).name for p in files["plot"]] == ["case3_frequencies.png"]
+    for pvd in files["pvd"]:  # --common-phase: time is the fraction of the period
+        entries = ET.parse(pvd).getroot().find("Collection").findall("DataSet")
+        assert [float(e.get("timestep")) for e in entries] == pytest.approx([0, 1 / 3, 2 / 3])
     every = [p for kind in ("vtu", "pvd", "frames", "pictures", "plot") for p in files[kind]]
     assert all(Path(p).is_file() and Path(p).stat().st_size > 0 for p in every)
     assert sorted(str(p) for p in (tmp_path / "case3").rglob("*") if p.is_file()) == sorted(every)

@@ -113,7 +113,7 @@ def test_mac_command_pairs_two_meshes_of_one_scene(tmp_path):
                                        "--elements-b", "16", "-n", "3", "--json", "--out",
                                        str(tmp_path)])
     assert result.exit_code == 0, result.output
-    doc = json.loads(result.output)
+    doc = json.loads(result.stdout)  # stderr carries the run's warnings
     assert [(p["a"], p["b"]) for p in doc["pairs"]] == [(1, 1), (2, 2), (3, 3)]
     assert min(p["mac"] for p in doc["pairs"]) > 0.99
     assert np.array(doc["mac"]).shape == (3, 3)

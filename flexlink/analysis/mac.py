@@ -13,6 +13,14 @@ link), so the comparison does not depend on the pose:
   - different meshes or scenes with the same link names: u and v sampled at the same fractions
     of each link's length (``stations``) with the element shape functions, weighted by the
     link's mass per station (a trapezoid rule of rhoA).
+
+Only shapes of one model family can be compared. The in-plane family's DOFs are (ux, uy, rz)
+per node and the out-of-plane family's (w, rx, ry) (``fe/strip.py``): different motions, not
+two views of one, so a MAC between the families would mean nothing. ``compare_models`` takes
+the family: "in-plane" samples (u, v) as above; "out-of-plane" samples, in each link's frame,
+the deflection w (Hermite cubic of w and w' = -ty) weighted by the link's mass per station and
+the twist tx (linear between nodes) weighted by its rotary inertia rho Ip per station, so the
+weighted sum is the kinetic energy of the shape's velocities (``out_of_plane_stations``).
 """
 
 from __future__ import annotations
@@ -101,12 +109,58 @@ def stations(model: FrameModel, shapes: np.ndarray, per_link: int = STATIONS):
     return np.vstack(values), np.concatenate(weights), tuple(l.name for l in model.links)
 
 
+def _station_places(link, per_link: int):
+    """(element, xi, station weight fraction) of ``per_link`` + 1 equally spaced stations."""
+    n = link.elements
+    where = np.linspace(0.0, n, per_link + 1)
+    element = np.minimum(where.astype(int), n - 1)
+    share = np.full(per_link + 1, 1.0 / per_link)  # trapezoid rule along the link
+    share[[0, -1]] /= 2
+    return element, where - element, share
+
+
+def out_of_plane_stations(model: FrameModel, shapes: np.ndarray, per_link: int = STATIONS):
+    """(values, weights, link names) as ``stations``, for out-of-plane shapes (n_dofs, k) with
+    global (w, rx, ry) per node (``fe/strip.py``): per link the deflection w [shape units]
+    at ``per_link`` + 1 stations weighted by the link mass [kg] each stands for, and the twist
+    tx about the link axis [shape units] weighted by its rotary inertia [kg m^2]."""
+    from flexlink.fe.strip import StripProperties
+
+    U = np.asarray(shapes, dtype=float).reshape(model.n_dofs, -1)
+    values, weights = [], []
+    for link in model.links:
+        c, s = math.cos(link.angle), math.sin(link.angle)
+        tx = c * U[3 * link.nodes + 1] + s * U[3 * link.nodes + 2]
+        ty = -s * U[3 * link.nodes + 1] + c * U[3 * link.nodes + 2]
+        element, xi, share = _station_places(link, per_link)
+        first, second = element, element + 1  # positions along the link's own node chain
+        W, _ = hermite_weights(xi, link.length / link.elements)
+        w_nodes = U[3 * link.nodes]
+        w = (W[:, 0:1] * w_nodes[first] - W[:, 1:2] * ty[first]
+             + W[:, 2:3] * w_nodes[second] - W[:, 3:4] * ty[second])  # w' = -ty
+        twist = (1 - xi)[:, None] * tx[first] + xi[:, None] * tx[second]
+        strip = StripProperties.of(link.section)
+        values += [w, twist]
+        weights += [strip.rhoA * link.length * share, strip.rhoIp * link.length * share]
+    return np.vstack(values), np.concatenate(weights), tuple(l.name for l in model.links)
+
+
+FAMILY_STATIONS = {"in-plane": stations, "out-of-plane": out_of_plane_stations}
+
+
 def compare_models(model_a: FrameModel, shapes_a: np.ndarray, model_b: FrameModel,
-                   shapes_b: np.ndarray, per_link: int = STATIONS) -> np.ndarray:
+                   shapes_b: np.ndarray, per_link: int = STATIONS,
+                   family: str = "in-plane") -> np.ndarray:
     """MAC of the modes of two models with the same link names (any meshes, poses, sections),
-    compared at link stations (``stations``) weighted by the first model's link masses."""
-    va, wa, names_a = stations(model_a, shapes_a, per_link)
-    vb, _, names_b = stations(model_b, shapes_b, per_link)
+    compared at link stations weighted by the first model's link masses (and, out of plane,
+    rotary inertias). ``family``: "in-plane" (``stations``) or "out-of-plane"
+    (``out_of_plane_stations``); both shape sets must be of that family."""
+    if family not in FAMILY_STATIONS:
+        raise InputError(f"got {family!r}", field="family",
+                         expected=f"one of {', '.join(FAMILY_STATIONS)}")
+    sample = FAMILY_STATIONS[family]
+    va, wa, names_a = sample(model_a, shapes_a, per_link)
+    vb, _, names_b = sample(model_b, shapes_b, per_link)
     if names_a != names_b:
         raise InputError(f"the two models have different links ({', '.join(names_a)} vs "
                          f"{', '.join(names_b)}): MAC compares shapes link by link",

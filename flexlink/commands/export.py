@@ -33,11 +33,14 @@ from flexlink.commands._options import dumps, json_option, out_option
 @click.option("--pictures/--no-pictures", default=True, show_default=True,
               help="Draw PNGs of the modes (pyvista, off screen; needs OpenGL). The frequency "
                    "plot (matplotlib) is drawn either way.")
+@click.option("--common-phase", is_flag=True,
+              help="Animation time as the fraction of the period (0 ... 1 for every mode, so "
+                   "modes play side by side in ParaView) instead of seconds.")
 @json_option
 @out_option
 @names_scene("scenes")
-def command(scenes, n_modes, elements, tol, method, subdivide, phases, amplitude, pictures, as_json,
-            out_dir):
+def command(scenes, n_modes, elements, tol, method, subdivide, phases, amplitude, pictures,
+            common_phase, as_json, out_dir):
     """Write, for each SCENE (a scene file or a folder of them), the first modes as a .vtu, a
     .pvd animation per mode, a PNG per mode, an overview sheet and a frequency plot, into
     OUT/<scene file name>/ (each folder replaced as a whole), and a list of everything in
@@ -54,7 +57,8 @@ def command(scenes, n_modes, elements, tol, method, subdivide, phases, amplitude
     from flexlink.scene import load_scene, scene_files
 
     settings = ExportSettings(n_modes=n_modes, subdivisions=subdivide, phases=phases,
-                              amplitude=amplitude, pictures=pictures, plot=True)
+                              amplitude=amplitude, pictures=pictures, plot=True,
+                              common_phase=common_phase)
     out = prepare_out_dir(out_dir)
     files = scene_files(scenes)
     stems = [f.stem for f in files]

@@ -17,24 +17,31 @@ from flexlink.commands._options import dumps, json_option, out_option
                    "`flexlink modes`].")
 @click.option("--elements-b", default=None, type=click.IntRange(1, 100000),
               help="Elements per link of B, to compare two meshes of one scene.")
+@click.option("--family", type=click.Choice(["auto", "in-plane", "out-of-plane"]),
+              default="auto", show_default=True,
+              help="Model family whose modes are compared: auto = the family both scenes "
+                   "declare (model.family planar -> in-plane); a comparison across families "
+                   "is refused (their shapes move different DOFs).")
 @json_option
 @out_option
-def command(scene_a, scene_b, n_modes, elements, elements_b, as_json, out_dir):
-    """MAC between the lowest elastic modes of scenes A and B at their poses (in-plane
-    modes), compared link by link at stations along each link, so two meshes, sections or
-    poses of one linkage can be compared; the scenes must name the same links. Prints the MAC
-    matrix and pairs the modes; writes mac.json and mac.csv to OUT/<A>+<B>/."""
+def command(scene_a, scene_b, n_modes, elements, elements_b, family, as_json, out_dir):
+    """MAC between the lowest elastic modes of scenes A and B at their poses, within one model
+    family (in-plane: the frame model; out-of-plane: the strip model), compared link by link at
+    stations along each link, so two meshes, sections or poses of one linkage can be compared;
+    the scenes must name the same links. Prints the MAC matrix and pairs the modes; writes
+    mac.json and mac.csv to OUT/<A>+<B>/. The mesh is chosen as for in-plane modes."""
     from flexlink.analysis.mesh import DEFAULT_TOL, choose_mesh
     from flexlink.fileio import prepare_out_dir, write_atomic
     from flexlink.scene import load_scene
-    from flexlink.studies.shapes import comparison_json, compare_scenes, mac_csv
+    from flexlink.studies.shapes import comparison_json, compare_scenes, mac_csv, mac_family
     from ._written import announce, run_folder
 
     folder = run_folder(prepare_out_dir(out_dir), [scene_a, scene_b])
     a, b = load_scene(scene_a), load_scene(scene_b)
+    family = mac_family(a, b, family)
     mesh_a = choose_mesh(a, n_modes, elements, DEFAULT_TOL)
     mesh_b = choose_mesh(b, n_modes, elements if elements_b is None else elements_b, DEFAULT_TOL)
-    result = compare_scenes(a, b, n_modes, mesh_a.elements, mesh_b.elements)
+    result = compare_scenes(a, b, n_modes, mesh_a.elements, mesh_b.elements, family=family)
     paths = [folder / "mac.json", folder / "mac.csv"]
     document = {"command": "mac", **comparison_json(result, n_modes),
                 "files": [str(p) for p in paths]}
@@ -43,6 +50,7 @@ def command(scene_a, scene_b, n_modes, elements, elements_b, as_json, out_dir):
     if as_json:
         click.echo(dumps(document))
         return
+    click.echo(f"{family} modes")
     for side in ("a", "b"):
         s = document[side]
         click.echo(f"{side.upper()}: {s['scene']} ({s['file']}), {s['elements_per_link']} "

@@ -28,7 +28,8 @@ from flexlink.fileio import staged_folder, write_atomic
 class ExportSettings:
     """n_modes: elastic modes exported; subdivisions: segments per element; phases: animation
     frames per period; amplitude: largest drawn displacement as a fraction of the mechanism
-    size (the diagonal of the joints' bounding box); pictures/plot: draw PNGs."""
+    size (the diagonal of the joints' bounding box); pictures/plot: draw PNGs; common_phase:
+    animation time as the fraction of the period (0 ... 1 for every mode), not seconds."""
 
     n_modes: int = 4
     subdivisions: int = 4
@@ -36,6 +37,7 @@ class ExportSettings:
     amplitude: float = 0.1
     pictures: bool = True
     plot: bool = True
+    common_phase: bool = False
 
     def __post_init__(self):
         checks = (("n_modes", 1, 200), ("subdivisions", 1, 64), ("phases", 2, 1000))
@@ -78,22 +80,19 @@ def _write_case(result: CaseResult, summary: dict, folder: Path, stem: str,
     files["vtu"].append(write_vtu(folder / f"{stem}.vtu",
                                   modes_mesh(result, modes, settings.amplitude)))
     for i in range(len(modes.numbers)):
-        *frames, pvd = write_animation(folder, stem, modes, i, settings.phases, settings.amplitude)
+        *frames, pvd = write_animation(folder, stem, modes, i, settings.phases, settings.amplitude,
+                                       settings.common_phase)
         files["frames"] += frames
         files["pvd"].append(pvd)
     if settings.pictures:
         from flexlink.output.pictures import mode_picture, overview_sheet
 
-        ground = {j.name for j in result.scene.joints if j.ground}
-        joints = result.pose.joints
         name = result.scene.name
         for i, (n, f) in enumerate(zip(modes.numbers, modes.frequencies)):
-            png = mode_picture(f"{name}: mode {n}, {f:.1f} Hz", modes, i, joints, ground,
-                               settings.amplitude)
+            png = mode_picture(f"{name}: mode {n}, {f:.1f} Hz", modes, i, settings.amplitude)
             files["pictures"].append(write_atomic(folder / f"{stem}_mode{n}.png", png))
         files["pictures"].append(write_atomic(
-            folder / f"{stem}_modes.png",
-            overview_sheet(name, modes, joints, ground, settings.amplitude)))
+            folder / f"{stem}_modes.png", overview_sheet(name, modes, settings.amplitude)))
     if settings.plot:
         from flexlink.output.plots import frequency_plot
 

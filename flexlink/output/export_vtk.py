@@ -13,13 +13,22 @@ Arrays of the ``.vtu`` (2D model padded with z = 0, as VTK wants 3D points):
   ``mode<n>_rotation`` [rad/sqrt(kg)]: the mass-normalised shapes exactly as solved, for the
   elastic modes numbered as in the ``modes`` table; the names hold no frequency, so a ParaView
   state file survives a change of input (the frequency is field data ``mode<n>_frequency_Hz``);
-- cell data ``link_id`` (index of the link), ``element_id`` (global element number);
+- the ground and the joints: the fixed ground pivots are points after the sampled ones (zero
+  displacement in every mode); a ``line`` cell joins consecutive ground pivots (the frame,
+  O2-O4 in a four-bar); every joint spring is a ``line`` cell between the points it joins (a
+  bearing: pivot to link end; a pin: its first link end to each other one; zero length at rest,
+  so Warp By Vector and the animation show a joint's stretch); every joint is a ``vertex``
+  cell (the pivot of a bearing, the first link end of a pin);
+- cell data ``part`` (``PARTS``: 0 link element, 1 ground line, 2 joint spring, 3 joint),
+  ``link_id`` (index of the link), ``element_id`` (global element number), ``joint_id`` (index
+  of the joint); -1 where they do not apply;
 - field data ``frequencies_Hz``, ``mode_numbers``, ``warp_scale`` (per mode, the factor for
   ParaView's Warp By Vector that gives the animation's amplitude), ``theta2_deg``, ``mu_deg``,
-  and ``link_<name>`` = [link_id] for every link (meshio writes numeric arrays only, so the
-  link names travel as array names).
+  ``link_<name>`` = [link_id] for every link, ``joint_<name>`` = [joint_id] for every joint and
+  ``part_<name>`` = [code] (meshio writes numeric arrays only, so names travel as array names).
 Animation frames hold the deformed positions themselves (ParaView plays them as they are) with
-the scaled ``displacement`` and ``rotation`` as point data; the ``.pvd`` time is in seconds.
+the scaled ``displacement`` and ``rotation`` as point data and the same cells; the ``.pvd`` time
+is in seconds, or the fraction of the period with ``common_phase``.
 """
 
 from __future__ import annotations
@@ -41,14 +50,28 @@ CELL_TYPE = "VTK_LAGRANGE_CURVE"
 
 
 @dataclasses.dataclass(frozen=True)
+class JointPoints:
+    """A joint of the linkage as drawn: its rest position [m] and the sampled points (indices
+    into ``SampledShapes.points``) of the link ends that meet there, first the end the joint's
+    springs attach the others to (``fe/model.py``). A ground joint's springs run from the fixed
+    pivot at ``position`` to every link end."""
+
+    name: str
+    ground: bool
+    position: tuple[float, float]
+    points: tuple[int, ...]
+
+
+@dataclasses.dataclass(frozen=True)
 class ModeSet:
     """The elastic modes to export: numbers (1-based, as in the ``modes`` table), frequencies
-    [Hz], and their samples along the elements."""
+    [Hz], their samples along the elements, and the joints."""
 
     numbers: tuple[int, ...]
     frequencies: np.ndarray
     sampled: SampledShapes
     size: float  # mechanism size [m]: diagonal of the joints' bounding box, ground included
+    joints: tuple[JointPoints, ...] = ()
 
     def scale(self, i: int, fraction: float) -> float:
         """Factor that makes mode i's largest displacement ``fraction`` of the mechanism size."""
@@ -67,10 +90,23 @@ def mode_set(result: CaseResult, n_modes: int, subdivisions: int = 4) -> ModeSet
     chosen = modes.elastic[:n_modes]
     joints = np.array(list(result.pose.joints.values()), dtype=float)
     size = float(np.linalg.norm(joints.max(axis=0) - joints.min(axis=0)))
+    sampled = sample_shapes(result.model, modes.shapes[:, chosen], subdivisions)
     return ModeSet(numbers=tuple(range(1, len(chosen) + 1)),
-                   frequencies=modes.frequencies[chosen],
-                   sampled=sample_shapes(result.model, modes.shapes[:, chosen], subdivisions),
-                   size=size)
+                   frequencies=modes.frequencies[chosen], sampled=sampled, size=size,
+                   joints=joint_points(result, sampled))
+
+
+def joint_points(result: CaseResult, sampled: SampledShapes) -> tuple[JointPoints, ...]:
+    """Every joint of ``result``'s scene with the sampled points of its link ends."""
+    point_of = {int(node): p for p, node in enumerate(sampled.point_node) if node >= 0}
+    joints = []
+    for spec in result.scene.joints:
+        nodes = result.model.joint_nodes.get(spec.name, ())
+        xy = result.pose.joints[spec.name]
+        joints.append(JointPoints(name=spec.name, ground=spec.ground,
+                                  position=(float(xy[0]), float(xy[1])),
+                                  points=tuple(point_of[n] for n in nodes)))
+    return tuple(joints)
 
 
 def _pad(xy: np.ndarray) -> np.ndarray:
@@ -82,17 +118,79 @@ def _lagrange_order(cells: np.ndarray) -> np.ndarray:
     return np.column_stack([cells[:, 0], cells[:, -1], cells[:, 1:-1]])
 
 
-def _link_fields(sampled: SampledShapes) -> dict:
-    return {f"link_{name}": np.array([i]) for i, name in enumerate(sampled.link_names)}
+# cell data ``part``: what a cell is (the codes are also field data ``part_<name>``)
+PARTS = {"link": 0, "ground": 1, "joint_spring": 2, "joint": 3}
+
+
+@dataclasses.dataclass(frozen=True)
+class _Cells:
+    """Points appended after the sampled ones (the fixed ground pivots) and every cell block
+    with its cell data, for the .vtu and the animation frames alike."""
+
+    pivots: np.ndarray  # (G, 2) [m]
+    blocks: list
+    cell_data: dict
+
+
+def _cells(modes: ModeSet) -> _Cells:
+    s = modes.sampled
+    ground = [j for j in modes.joints if j.ground]
+    pivot_index = {j.name: len(s.points) + k for k, j in enumerate(ground)}
+    blocks, data = [(CELL_TYPE, _lagrange_order(s.cells))], [
+        (PARTS["link"], s.cell_link, s.cell_element, np.full(len(s.cells), -1))]
+    if len(ground) >= 2:  # the frame between consecutive ground pivots
+        chain = [pivot_index[j.name] for j in ground]
+        blocks.append(("line", np.column_stack([chain[:-1], chain[1:]])))
+        data.append((PARTS["ground"], None, None, np.full(len(chain) - 1, -1)))
+    springs, spring_joint, anchors = [], [], []
+    for k, joint in enumerate(modes.joints):
+        # a bearing's springs hold each link end to the fixed pivot; a pin's hold the other
+        # link ends to the first one (fe/model.py)
+        anchor = pivot_index[joint.name] if joint.ground else joint.points[0]
+        ends = joint.points if joint.ground else joint.points[1:]
+        springs += [(anchor, p) for p in ends]
+        spring_joint += [k] * len(ends)
+        anchors.append(anchor)
+    if springs:
+        blocks.append(("line", np.array(springs)))
+        data.append((PARTS["joint_spring"], None, None, np.array(spring_joint)))
+    if anchors:
+        blocks.append(("vertex", np.array(anchors)[:, None]))
+        data.append((PARTS["joint"], None, None, np.arange(len(anchors))))
+    cell_data = {"part": [], "link_id": [], "element_id": [], "joint_id": []}
+    for (part, link, element, joint), (_, cells) in zip(data, blocks):
+        n = len(cells)
+        cell_data["part"].append(np.full(n, part, dtype=np.int64))
+        cell_data["link_id"].append(np.full(n, -1, dtype=np.int64) if link is None
+                                    else link.astype(np.int64))
+        cell_data["element_id"].append(np.full(n, -1, dtype=np.int64) if element is None
+                                       else element.astype(np.int64))
+        cell_data["joint_id"].append(np.asarray(joint, dtype=np.int64))
+    pivots = np.array([j.position for j in ground], dtype=float).reshape(-1, 2)
+    return _Cells(pivots=pivots, blocks=blocks, cell_data=cell_data)
+
+
+def _name_fields(modes: ModeSet) -> dict:
+    # meshio writes numeric arrays only, so names travel as array names
+    return {**{f"link_{name}": np.array([i]) for i, name in enumerate(modes.sampled.link_names)},
+            **{f"joint_{j.name}": np.array([k]) for k, j in enumerate(modes.joints)},
+            **{f"part_{name}": np.array([code]) for name, code in PARTS.items()}}
+
+
+def _with_pivots(values: np.ndarray, cells: _Cells) -> np.ndarray:
+    """Per-point values followed by zeros for the pivots (they never move)."""
+    values = np.asarray(values)
+    return np.concatenate([values, np.zeros((len(cells.pivots),) + values.shape[1:])])
 
 
 def modes_mesh(result: CaseResult, modes: ModeSet, fraction: float) -> meshio.Mesh:
     """Undeformed linkage with every mode's shape as point data (see module docstring)."""
     s = modes.sampled
+    cells = _cells(modes)
     point_data = {}
     for i in range(len(modes.numbers)):
-        point_data[f"{modes.label(i)}_displacement"] = _pad(s.displacement[:, :, i])
-        point_data[f"{modes.label(i)}_rotation"] = s.rotation[:, i].copy()
+        point_data[f"{modes.label(i)}_displacement"] = _pad(_with_pivots(s.displacement[:, :, i], cells))
+        point_data[f"{modes.label(i)}_rotation"] = _with_pivots(s.rotation[:, i], cells)
     field_data = {
         "frequencies_Hz": np.asarray(modes.frequencies, dtype=float),
         "mode_numbers": np.asarray(modes.numbers, dtype=np.int64),
@@ -101,27 +199,24 @@ def modes_mesh(result: CaseResult, modes: ModeSet, fraction: float) -> meshio.Me
         "mu_deg": np.array([math.degrees(result.pose.mu)]),
         **{f"{modes.label(i)}_frequency_Hz": np.array([float(modes.frequencies[i])])
            for i in range(len(modes.numbers))},
-        **_link_fields(s),
+        **_name_fields(modes),
     }
-    return meshio.Mesh(_pad(s.points), [(CELL_TYPE, _lagrange_order(s.cells))],
-                       point_data=point_data,
-                       cell_data={"link_id": [s.cell_link.astype(np.int64)],
-                                  "element_id": [s.cell_element.astype(np.int64)]},
-                       field_data=field_data)
+    return meshio.Mesh(_pad(np.vstack([s.points, cells.pivots])), cells.blocks,
+                       point_data=point_data, cell_data=cells.cell_data, field_data=field_data)
 
 
 def frame_mesh(modes: ModeSet, i: int, factor: float) -> meshio.Mesh:
     """Mode i deformed by ``factor`` times its shape: one animation frame."""
     s = modes.sampled
-    displacement = factor * s.displacement[:, :, i]
-    return meshio.Mesh(_pad(s.points + displacement), [(CELL_TYPE, _lagrange_order(s.cells))],
+    cells = _cells(modes)
+    displacement = _with_pivots(factor * s.displacement[:, :, i], cells)
+    return meshio.Mesh(_pad(np.vstack([s.points, cells.pivots]) + displacement), cells.blocks,
                        point_data={"displacement": _pad(displacement),
-                                   "rotation": factor * s.rotation[:, i]},
-                       cell_data={"link_id": [s.cell_link.astype(np.int64)],
-                                  "element_id": [s.cell_element.astype(np.int64)]},
+                                   "rotation": _with_pivots(factor * s.rotation[:, i], cells)},
+                       cell_data=cells.cell_data,
                        field_data={"frequency_Hz": np.array([modes.frequencies[i]]),
                                    "mode_number": np.array([modes.numbers[i]]),
-                                   **_link_fields(s)})
+                                   **_name_fields(modes)})
 
 
 def _field_data_xml(field_data: dict) -> str:
@@ -165,17 +260,20 @@ def pvd_text(entries: list[tuple[float, str]]) -> str:
 
 
 def write_animation(folder: Path, stem: str, modes: ModeSet, i: int, phases: int,
-                    fraction: float) -> list[Path]:
+                    fraction: float, common_phase: bool = False) -> list[Path]:
     """Frames of mode i at ``phases`` equally spaced phases over one period (cosine, so frame 0
     is the largest deflection), in ``folder/<stem>_mode<n>/``, then ``<stem>_mode<n>.pvd``
-    (written last, so it never names a missing frame). Returns the files written."""
+    (written last, so it never names a missing frame). The .pvd time is in seconds, or with
+    ``common_phase`` the phase as a fraction of the period, 0 ... (phases - 1) / phases, the
+    same for every mode so that modes play side by side. Returns the files written."""
     name = f"{stem}_mode{modes.numbers[i]}"
     frames = folder / name
     try:
         frames.mkdir(exist_ok=True)
     except OSError as exc:
         raise OutputError(f"cannot create {frames}: {exc.strerror or exc}") from None
-    period = 1.0 / modes.frequencies[i] if modes.frequencies[i] > 0 else 1.0
+    period = (1.0 if common_phase or modes.frequencies[i] <= 0
+              else 1.0 / modes.frequencies[i])
     scale = modes.scale(i, fraction)
     written, entries = [], []
     for k in range(phases):

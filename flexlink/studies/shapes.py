@@ -1,5 +1,11 @@
 """Two scenes or meshes compared mode by mode: the MAC matrix of their lowest elastic modes
-at their poses and the pairing it gives (``analysis.mac``)."""
+at their poses and the pairing it gives (``analysis.mac``), within one model family.
+
+The in-plane family is the frame model (``analysis.modal``); the out-of-plane family the strip
+model (``analysis.outofplane``). Their shapes live on different DOFs, so shapes are compared
+only within one family: ``mac_family`` picks it from the scenes' ``model.family`` (or takes
+the one asked for) and refuses a comparison across families.
+"""
 
 from __future__ import annotations
 
@@ -7,52 +13,117 @@ import dataclasses
 
 import numpy as np
 
+from flexlink.analysis.families import IN_PLANE, OUT_OF_PLANE
 from flexlink.analysis.identity import mode_identity
 from flexlink.analysis.mac import STATIONS, compare_models, pair_modes
-from flexlink.analysis.modal import CaseResult, analyze
+from flexlink.analysis.modal import analyze
+from flexlink.analysis.outofplane import analyze_out_of_plane
+from flexlink.errors import InputError
+from flexlink.fe.model import FrameModel
+from flexlink.fe.pose import pose_model
 from flexlink.scene import Scene
+
+FAMILY_OF_SCENE = {"planar": IN_PLANE, "out-of-plane": OUT_OF_PLANE}  # "3d" holds both
+
+
+@dataclasses.dataclass(frozen=True)
+class Side:
+    """One side of a comparison: the scene, its mesh, and its lowest elastic modes of one
+    family: frequencies [Hz], labels, the model (its mesh and links) and the mass-normalised
+    shapes (n_dofs, k) on that family's DOFs."""
+
+    scene: Scene
+    elements_per_link: int
+    frequencies: np.ndarray
+    labels: tuple[str, ...]
+    model: FrameModel
+    shapes: np.ndarray
 
 
 @dataclasses.dataclass(frozen=True)
 class ShapeComparison:
     """mac[i, j]: MAC of mode i of ``a`` with mode j of ``b`` (elastic modes, lowest first);
-    pairs: (i, j, MAC) of the best one-to-one pairing."""
+    pairs: (i, j, MAC) of the best one-to-one pairing; family: "in-plane" or "out-of-plane"."""
 
-    a: CaseResult
-    b: CaseResult
+    a: Side
+    b: Side
     mac: np.ndarray
     pairs: tuple[tuple[int, int, float], ...]
+    family: str = IN_PLANE
 
 
-def _elastic(result: CaseResult, n: int) -> np.ndarray:
-    return result.modes.shapes[:, result.modes.elastic[:n]]
+def mac_family(scene_a: Scene, scene_b: Scene, requested: str = "auto") -> str:
+    """The family to compare: ``requested`` ("in-plane" or "out-of-plane": every scene has both
+    models), or with "auto" the family both scenes declare in ``model.family``."""
+    if requested in (IN_PLANE, OUT_OF_PLANE):
+        return requested
+    if requested != "auto":
+        raise InputError(f"got {requested!r}", source="command line", field="--family",
+                         expected=f"auto, {IN_PLANE} or {OUT_OF_PLANE}")
+    declared = [(s.path, s.options.family) for s in (scene_a, scene_b)]
+    for path, family in declared:
+        if family not in FAMILY_OF_SCENE:
+            raise InputError(f"model.family = {family!r} holds both the in-plane and the "
+                             "out-of-plane modes, which MAC cannot compare with each other",
+                             source=path, field="model.family",
+                             expected=f"--family {IN_PLANE} or --family {OUT_OF_PLANE}")
+    families = {FAMILY_OF_SCENE[f] for _, f in declared}
+    if len(families) > 1:
+        listing = ", ".join(f"{p}: {f}" for p, f in declared)
+        raise InputError(f"the scenes declare different model families ({listing}); in-plane "
+                         "and out-of-plane shapes move different DOFs, so a MAC between them "
+                         "means nothing", source="command line", field="--family",
+                         expected=f"scenes of one family, or --family {IN_PLANE} or "
+                                  f"--family {OUT_OF_PLANE} to compare both in that family")
+    return families.pop()
+
+
+def _in_plane(scene: Scene, n_modes: int, elements: int | None) -> Side:
+    r = analyze(scene, n_modes, elements)
+    shapes = r.modes.shapes[:, r.modes.elastic[:n_modes]]
+    labels = tuple(d["label"] for d in mode_identity(r.model, shapes))
+    return Side(scene, r.elements_per_link, r.elastic_frequencies(n_modes), labels, r.model,
+                shapes)
+
+
+def _out_of_plane(scene: Scene, n_modes: int, elements: int | None) -> Side:
+    modes = analyze_out_of_plane(scene, n_modes, elements)
+    topology = scene.topology(elements)
+    model = pose_model(topology, scene.rigid_pose().joints, warn=False)  # its mesh and links
+    chosen = modes.elastic[:n_modes]
+    # the out-of-plane family has no energy labels (analysis/identity.py is in-plane)
+    return Side(scene, topology.links[0].elements, modes.frequencies[chosen],
+                (OUT_OF_PLANE,) * len(chosen), model, modes.shapes[:, chosen])
+
+
+SIDES = {IN_PLANE: _in_plane, OUT_OF_PLANE: _out_of_plane}
 
 
 def compare_scenes(scene_a: Scene, scene_b: Scene, n_modes: int, elements_a: int | None,
-                   elements_b: int | None, per_link: int = STATIONS) -> ShapeComparison:
-    """The lowest ``n_modes`` in-plane elastic modes of both scenes at their poses, compared at
-    ``per_link`` + 1 stations along each link (the scenes must name the same links)."""
-    a = analyze(scene_a, n_modes, elements_a)
-    b = analyze(scene_b, n_modes, elements_b)
-    mac = compare_models(a.model, _elastic(a, n_modes), b.model, _elastic(b, n_modes), per_link)
+                   elements_b: int | None, per_link: int = STATIONS,
+                   family: str = IN_PLANE) -> ShapeComparison:
+    """The lowest ``n_modes`` elastic modes of ``family`` of both scenes at their poses,
+    compared at ``per_link`` + 1 stations along each link (the scenes must name the same
+    links)."""
+    a = SIDES[family](scene_a, n_modes, elements_a)
+    b = SIDES[family](scene_b, n_modes, elements_b)
+    mac = compare_models(a.model, a.shapes, b.model, b.shapes, per_link, family)
     p = pair_modes(mac)
     return ShapeComparison(a, b, mac, tuple((int(i), int(j), float(m))
-                                            for i, j, m in zip(p.a, p.b, p.mac)))
+                                            for i, j, m in zip(p.a, p.b, p.mac)), family)
 
 
 def comparison_json(c: ShapeComparison, n_modes: int) -> dict:
-    """JSON-ready: each side's frequencies [Hz] and labels, the MAC matrix and the pairs
-    (1-based modes) with their frequency difference [%] (b vs a)."""
+    """JSON-ready: the family, each side's frequencies [Hz] and labels, the MAC matrix and the
+    pairs (1-based modes) with their frequency difference [%] (b vs a)."""
     sides = {}
-    for name, r in (("a", c.a), ("b", c.b)):
-        freqs = r.elastic_frequencies(n_modes)
-        labels = [d["label"] for d in mode_identity(r.model, _elastic(r, n_modes))]
-        sides[name] = {"scene": r.scene.name, "file": r.scene.path,
-                       "elements_per_link": r.elements_per_link,
+    for name, s in (("a", c.a), ("b", c.b)):
+        sides[name] = {"scene": s.scene.name, "file": s.scene.path,
+                       "elements_per_link": s.elements_per_link,
                        "modes": [{"mode": i + 1, "Hz": float(f), "label": l}
-                                 for i, (f, l) in enumerate(zip(freqs, labels))]}
-    fa, fb = c.a.elastic_frequencies(n_modes), c.b.elastic_frequencies(n_modes)
-    return {**sides, "mac": c.mac.tolist(),
+                                 for i, (f, l) in enumerate(zip(s.frequencies, s.labels))]}
+    fa, fb = c.a.frequencies, c.b.frequencies
+    return {"family": c.family, **sides, "mac": c.mac.tolist(),
             "pairs": [{"a": i + 1, "b": j + 1, "mac": m,
                        "difference_pct": 100.0 * (fb[j] - fa[i]) / fa[i]}
                       for i, j, m in c.pairs]}
