@@ -207,11 +207,15 @@ def test_vtu_has_the_ground_and_the_joints(case3, modes, tmp_path):
     assert "joint_O4" in grid.field_data and "mode3_displacement" in grid.point_data
 
 
-def test_joint_springs_join_the_displaced_link_ends(case3, modes):
+def test_joint_springs_join_the_displaced_link_ends():
     from flexlink.output.pictures import joint_springs
 
+    # case 3 with edgewise strips, whose mode 2 is the coupler sliding on the joint springs
+    case3 = analyze(load_scene(CASE3, overrides={"section.bending": "edgewise"}), 3,
+                    elements_per_link=6)
+    modes = mode_set(case3, 3, subdivisions=3)
     model, solved = case3.model, case3.modes
-    i, factor = 1, modes.scale(1, FRACTION)  # mode 2: the coupler sliding on the joint springs
+    i, factor = 1, modes.scale(1, FRACTION)
     shape = solved.shapes[:, solved.elastic[i]].reshape(-1, 3)
     displaced = model.nodes + factor * shape[:, :2]
     springs = joint_springs(modes, i, factor)
