@@ -67,8 +67,8 @@ def test_mac_family_resolves_auto_and_refuses_across_families():
 
 
 def test_mac_command_compares_out_of_plane_modes_of_two_meshes(tmp_path):
-    result = CliRunner().invoke(main, ["mac", str(CASE3), str(CASE3), "-e", "4", "--elements-b",
-                                       "8", "-n", "3", "--family", "out-of-plane", "--json",
+    result = CliRunner().invoke(main, ["mac", str(CASE3), str(CASE3), "-e", "8", "--elements-b",
+                                       "16", "-n", "3", "--family", "out-of-plane", "--json",
                                        "--out", str(tmp_path)])
     assert result.exit_code == 0, result.output
     doc = json.loads(result.stdout)
