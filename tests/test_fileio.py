@@ -115,3 +115,62 @@ def test_a_swap_cut_between_its_renames_is_undone(tmp_path):
     (old / "case1.vtu").write_text("previous")
     sweep_stale(tmp_path)
     assert (tmp_path / "case1" / "case1.vtu").read_text() == "previous" and not old.exists()
+
+
+def test_temporary_files_live_beside_their_target_under_a_sweepable_name(tmp_path):
+    """The rename is atomic only within one file system, and sweep_stale can only find what it
+    can read the writer's process id from."""
+    seen = []
+
+    def write(tmp):
+        seen.append(tmp)
+        tmp.write_text("x")
+
+    target = tmp_path / "case1" / "modes.json"
+    target.parent.mkdir()
+    write_atomic_with(target, write)
+    [tmp] = seen
+    assert tmp.parent == target.parent
+    assert tmp.name.startswith(f".modes.json.~{os.getpid()}~") and tmp.name.endswith(".tmp")
+    assert target.read_text() == "x" and not tmp.exists()
+
+
+def test_sweep_reports_what_it_removed_and_stops_at_its_depth(tmp_path):
+    pid = dead_pid()
+    levels = [tmp_path, tmp_path / "a", tmp_path / "a" / "b", tmp_path / "a" / "b" / "c"]
+    levels[-1].mkdir(parents=True)
+    planted = [level / f".f.vtu.~{pid}~abcdefgh.tmp" for level in levels]
+    hidden = tmp_path / ".git"
+    hidden.mkdir()
+    planted_hidden = hidden / f".f.~{pid}~abcdefgh.tmp"
+    for p in planted + [planted_hidden]:
+        p.write_bytes(b"")
+    removed = sweep_stale(tmp_path, depth=2)
+    assert sorted(removed) == sorted(planted[:3])  # three levels: the folder and two below
+    assert planted[3].exists() and planted_hidden.exists()
+
+
+def test_a_live_process_of_another_id_keeps_its_temporary_files(tmp_path):
+    sleeper = subprocess.Popen([sys.executable, "-c", "import time; time.sleep(30)"])
+    try:
+        busy = tmp_path / f".modes.json.~{sleeper.pid}~abcdefgh.tmp"
+        busy.write_bytes(b"being written")
+        assert sweep_stale(tmp_path) == [] and busy.exists()
+    finally:
+        sleeper.kill()
+        sleeper.wait()
+    assert sweep_stale(tmp_path) == [busy] and not busy.exists()
+
+
+def test_prepare_out_dir_makes_nested_folders_and_leaves_nothing_behind(tmp_path):
+    out = prepare_out_dir(tmp_path / "runs" / "today" / "out")
+    assert out.is_dir() and list(out.iterdir()) == []  # the write probe is gone
+
+
+def test_a_write_that_cannot_start_names_the_file_and_the_reason(tmp_path):
+    blocker = tmp_path / "file"
+    blocker.write_text("not a folder")
+    with pytest.raises(OutputError, match=r"cannot write .*file/modes\.json: Not a directory"):
+        write_atomic(blocker / "modes.json", "{}")
+    with pytest.raises(OutputError, match=r"file/out"):
+        prepare_out_dir(blocker / "out")
