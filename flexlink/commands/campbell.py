@@ -96,9 +96,9 @@ def command(scene_path, speeds, n_modes, poses, elements, tol, margin, harmonics
         for c in document["critical_speeds"]:
             click.echo(f"{c['mode']:>4} {c['harmonic']:>8} {c['from_rev_per_min']:>15.1f} "
                        f"{c['to_rev_per_min']:>13.1f}")
-    else:
-        click.echo("no critical speed in the range")
-    n = document["nearest_margin"]
-    click.echo(f"nearest margin: harmonic {n['harmonic']} of mode {n['mode']}, relative gap "
-               f"{100 * n['relative_gap']:.2f} % at {n['at_rev_per_min']:.1f} rev/min")
+    else:  # the nearest margin says how close the range comes (inside a band it is 0)
+        n = document["nearest_margin"]
+        click.echo("no critical speed in the range; nearest margin: harmonic "
+                   f"{n['harmonic']} of mode {n['mode']}, relative gap "
+                   f"{100 * n['relative_gap']:.2f} % at {n['at_rev_per_min']:.1f} rev/min")
     announce(paths, as_json)
