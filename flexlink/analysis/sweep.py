@@ -30,6 +30,7 @@ from flexlink.analysis.solve import (DENSE_LIMIT, DENSE_REFUSE, ELASTIC, SPARE_M
                                      lowest_elastic, solve_modes)
 from flexlink.analysis.stacked import stacked_modes
 from flexlink.errors import InputError
+from flexlink.parallel import run_tasks, workers
 
 
 @dataclasses.dataclass(frozen=True)
@@ -280,16 +281,15 @@ def _craig_bampton_poses(plan: CraigBamptonPlan, angles, lengths, lambda_ref, n_
 def parallel_modal_sweep(topology: Topology, poses: Iterable[Mapping[str, tuple[float, float]]],
                          n_modes: int, method: str = "auto", n_jobs: int = -1,
                          reduction: str | None = None) -> SweepResult:
-    """``modal_sweep`` with the poses split into one contiguous chunk per worker process
-    (joblib, loky backend; ``n_jobs`` = -1: one per core). Same result as the serial sweep;
-    worth it from a few hundred poses on, below that starting the workers costs more."""
-    from joblib import Parallel, delayed, effective_n_jobs
-
+    """``modal_sweep`` with the poses split into one contiguous chunk per worker
+    (``parallel.run_tasks``: joblib processes, ``n_jobs`` = -1: one per core, or the dask
+    cluster of ``parallel.use_scheduler``). Same result as the serial sweep for the full model;
+    a Craig-Bampton chunk fits its basis to its own poses, so chunks agree with the serial sweep
+    to the reduction's accuracy. Worth it from a few hundred full-model poses on; below that
+    starting the workers costs more."""
     poses = list(poses)
-    chunks = [c for c in np.array_split(np.arange(len(poses)), effective_n_jobs(n_jobs)) if len(c)]
-    parts = Parallel(n_jobs=n_jobs)(
-        delayed(modal_sweep)(topology, [poses[i] for i in chunk], n_modes, method,
-                             reduction=reduction)
-        for chunk in chunks)
+    chunks = [c for c in np.array_split(np.arange(len(poses)), workers(n_jobs)) if len(c)]
+    parts = run_tasks(modal_sweep, [(topology, [poses[i] for i in chunk], n_modes, method, None,
+                                     reduction) for chunk in chunks], n_jobs=n_jobs)
     return SweepResult(frequencies=np.concatenate([p.frequencies for p in parts]),
                        mechanism_counts=np.concatenate([p.mechanism_counts for p in parts]))
