@@ -65,3 +65,35 @@ def test_changed_file_is_read_again(tmp_path):
     after = load_scene(path)
     assert after.sections["crank"].depth == pytest.approx(0.030)
     assert before.sections["crank"].depth == pytest.approx(0.020)
+
+
+def _read_every_time(path, overrides):
+    """The scene as read before files were kept: parse, apply overrides, strip notes."""
+    from flexlink.scene import source
+
+    data, origin = source._with_bases(Path(path))
+    for field, value in overrides.items():
+        source._set_dotted(data, origin, field, value)
+    found = []
+    plain = source._strip_notes(data, origin, "", found)
+    return source.SceneSource(path=Path(path), data=plain, origin=origin,
+                              assumptions=tuple({(a.field, a.value): a for a in found}.values()))
+
+
+def test_same_frequencies_as_reading_every_time():
+    """Calibration and Monte Carlo numbers do not change with the read-once path (bitwise)."""
+    import numpy as np
+
+    from flexlink.analysis.families import elastic_modes
+    from flexlink.scene.load import BUILDERS, validate
+
+    over = {"model.family": "planar", "section.width": "23.5 mm", "joints.Kr": "0.7 N*m/rad",
+            "material": {"E": "61e9 Pa", "G": "4e9 Pa", "density": "1500 kg/m^3"}}
+    for case in ("case1.toml", "case3.toml"):
+        path = CASES / case
+        src = _read_every_time(path, over)
+        sf = validate(src)
+        before = elastic_modes(BUILDERS[sf.linkage.type](src, sf), 4, 6)[0]
+        load_scene(path)  # warm
+        after = elastic_modes(load_scene(path, overrides=over), 4, 6)[0]
+        assert np.array_equal(before, after)
