@@ -243,9 +243,10 @@ def _craig_bampton_sweep(topology: Topology, poses, n_modes: int, freqs: np.ndar
     lambda_cut = CUTOFF**2 * min(lowest_fixed_interface(l.length, l.elements, l.section.EA,
                                                         l.section.EI, l.section.mass_per_length)
                                  for l in model.links)
-    todo, first = np.arange(1), True
+    todo, first, plan = np.arange(1), True, None
     while todo.size:
-        plan = CraigBamptonPlan(model, fixed, lambda_cut)
+        if plan is None or plan.lambda_cut != lambda_cut:
+            plan = CraigBamptonPlan(model, fixed, lambda_cut)
         elastic, n_mechanism, need = _craig_bampton_poses(plan, angles[todo], lengths[todo],
                                                           lambda_ref[todo], n_modes)
         fits = need <= plan.lambda_cut
