@@ -158,7 +158,7 @@ def cycle_map(scene_path, n_poses=360):
 
 def whole_cycle(repeats: int) -> None:
     scenes = [load_scene(p) for p in CASES]
-    elements = scenes[0].elements_per_link
+    elements = scenes[0].topology().links[0].elements
     print(f"2. whole-cycle map: 360 poses x {len(CASES)} cases, {elements} elements/link "
           f"({build_model(scenes[0].topology(), scenes[0].rigid_pose().joints).n_dofs} DOFs), "
           f"{N_MODES} modes, one core, medians of {repeats} repeats")

@@ -223,12 +223,13 @@ def _craig_bampton_sweep(topology: Topology, poses, n_modes: int, freqs: np.ndar
     truncation correction for every pose together; no model object is built per pose.
 
     The basis keeps every fixed-interface mode up to CUTOFF times the highest requested
-    frequency. It is first fitted to the first pose alone (starting from CUTOFF times the lowest
-    fixed-interface frequency of any link, rebuilt with room to spare, a factor 1.2 in
-    frequency, until that pose's highest requested frequency fits), then all poses are solved
-    with it; any pose whose highest requested frequency outgrows the basis (or with fewer
-    elastic modes than requested) is solved again, with the others like it, on a basis rebuilt
-    for the largest of them. Every pose's answer thus comes from a basis that fits it."""
+    frequency. The first pose alone is solved with CUTOFF times the lowest fixed-interface
+    frequency of any link; if its highest requested frequency does not fit, the basis is
+    rebuilt for it with room to spare (a factor 1.2 in frequency), and it is solved again with
+    all the other poses. Any pose whose highest requested frequency outgrows the basis (or
+    with fewer elastic modes than requested) is solved again, with the others like it, on a
+    basis rebuilt for the largest of them. Every pose's answer thus comes from a basis that
+    fits it."""
     poses = list(poses)
     if not poses:
         return
@@ -252,11 +253,11 @@ def _craig_bampton_sweep(topology: Topology, poses, n_modes: int, freqs: np.ndar
         fits = need <= plan.lambda_cut
         freqs[todo[fits], :n_modes] = elastic[fits]
         mechanism[todo[fits]] = n_mechanism[fits]
-        todo = todo[~fits]
-        if todo.size:
+        if not fits.all():
             lambda_cut = 1.2**2 * need[~fits].max()
-        elif first:  # the first pose fits: on to the others with its basis
-            todo, first = np.arange(1, len(poses)), False
+        todo = todo[~fits]
+        if first:  # the basis is fitted to the first pose (if need be): on to the others
+            todo, first = np.concatenate([todo, np.arange(1, len(poses))]), False
 
 
 def _craig_bampton_poses(plan: CraigBamptonPlan, angles, lengths, lambda_ref, n_modes: int):

@@ -9,7 +9,8 @@ interior mode gives the full model back exactly; the truncation is the only appr
 
 Per pose only the boundary DOFs rotate (the modal coordinates are scalars in the link frame),
 so a pose costs 2 small matrix products per link, one scatter and a dense eigen solve of
-(boundary DOFs + kept modes) unknowns. Springs, joint masses and rigid constraints act on link
+(boundary DOFs + kept modes) unknowns, all done for every pose of a sweep at once
+(``CraigBamptonPlan.stacked``, ``corrected_stack``). Springs, joint masses and rigid constraints act on link
 end nodes only; they are taken from the full model's layout through a "boundary model"
 (``FrameModel`` with one element per link, whose nodes are the end nodes), so
 ``assembly.spring_entries``, ``point_mass_entries`` and ``reduction`` are reused unchanged.
@@ -23,8 +24,8 @@ same diagonal scaling (D on the boundary rotations only; the modal coordinates a
 
 Mode choice (``CUTOFF``): a link keeps every fixed-interface mode whose frequency is at most
 CUTOFF times the highest requested system frequency. ``sweep._craig_bampton_sweep`` checks this
-after each solve and enlarges the basis (and solves again) when a pose's frequencies have grown
-past what the basis was chosen for.
+for every pose and solves the poses whose frequencies have grown past what the basis was chosen
+for again, on an enlarged basis.
 
 Truncation correction: plain truncation converges slowly here (about 3e-5 relative on the sixth
 mode of Table II case 2 with a cut-off of 16 times its frequency), because the axial
