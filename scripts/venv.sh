@@ -10,7 +10,7 @@ fi
 stamp=.venv/.flexlink-installed
 if [ ! -f "$stamp" ] || [ pyproject.toml -nt "$stamp" ]; then
     .venv/bin/python -m pip install --quiet --upgrade pip
-    .venv/bin/python -m pip install --quiet -e ".[draw,test]"
+    .venv/bin/python -m pip install --quiet -e ".[draw,test,dask]"
     touch "$stamp"
 fi
 export PATH="$PWD/.venv/bin:$PATH"

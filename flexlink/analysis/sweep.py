@@ -27,7 +27,11 @@ from flexlink.errors import InputError
 from flexlink.fe.beams import link_entries
 from flexlink.fe.model import FrameModel, Topology, layout
 from flexlink.fe.pose import pose_model
-from flexlink.analysis.solve import DENSE_LIMIT, DENSE_REFUSE, ELASTIC, lowest_elastic, solve_modes
+from flexlink.analysis.solve import (DENSE_LIMIT, DENSE_REFUSE, ELASTIC, SPARE_MODES,
+                                     lowest_elastic, solve_modes)
+from flexlink.analysis.stacked import stacked_modes
+from flexlink.errors import InputError
+from flexlink.parallel import run_tasks, workers
 
 
 @dataclasses.dataclass(frozen=True)
@@ -197,57 +201,101 @@ def modal_sweep(topology: Topology, poses: Iterable[Mapping[str, tuple[float, fl
     return SweepResult(frequencies=freqs, mechanism_counts=mechanism)
 
 
+def pose_geometry(topology: Topology, poses) -> tuple[np.ndarray, np.ndarray]:
+    """(angles [rad], lengths [m]), each (poses, links): every link's direction and length at
+    every pose (joint name -> (x, y) [m]), as ``model.build_model`` meshes them."""
+    names = sorted({j for spec in topology.links for j in (spec.start, spec.end)})
+    index = {name: k for k, name in enumerate(names)}
+    try:
+        xy = np.array([[points[name] for name in names] for points in poses], dtype=float)
+    except KeyError as exc:
+        raise InputError(f"no position for joint {exc.args[0]!r}", field="pose") from None
+    start = xy[:, [index[spec.start] for spec in topology.links]]
+    end = xy[:, [index[spec.end] for spec in topology.links]]
+    d = end - start
+    return np.arctan2(d[..., 1], d[..., 0]), np.hypot(d[..., 0], d[..., 1])
+
+
 def _craig_bampton_sweep(topology: Topology, poses, n_modes: int, freqs: np.ndarray,
                          mechanism: np.ndarray) -> None:
-    """``modal_sweep`` through ``CraigBamptonPlan``, filling ``freqs`` and ``mechanism``.
+    """``modal_sweep`` through ``CraigBamptonPlan``, all poses at once, filling ``freqs`` and
+    ``mechanism``: one stack of reduced matrices (``CraigBamptonPlan.stacked``), one stacked
+    eigen solve with the checks of a single solve (``stacked.stacked_modes``), and the
+    truncation correction for every pose together; no model object is built per pose.
 
     The basis keeps every fixed-interface mode up to CUTOFF times the highest requested
-    frequency: the first pose starts from CUTOFF times the lowest fixed-interface frequency of
-    any link, and whenever a pose's highest requested frequency outgrows the basis (or fewer
-    elastic modes than requested are found), the plan is rebuilt with room to spare (a factor
-    1.2 in frequency, so a slowly growing spectrum does not rebuild at every pose) and the pose
-    is solved again."""
+    frequency. The first pose alone is solved with CUTOFF times the lowest fixed-interface
+    frequency of any link; if its highest requested frequency does not fit, the basis is
+    rebuilt for it with room to spare (a factor 1.2 in frequency), and it is solved again with
+    all the other poses. Any pose whose highest requested frequency outgrows the basis (or
+    with fewer elastic modes than requested) is solved again, with the others like it, on a
+    basis rebuilt for the largest of them. Every pose's answer thus comes from a basis that
+    fits it."""
     if any(spec.section.beam != "euler-bernoulli" for spec in topology.links):
         raise InputError("the Craig-Bampton reduction is built for Euler-Bernoulli links only",
                          field="model.beam", expected="'euler-bernoulli', or no reduction")
+    poses = list(poses)
+    if not poses:
+        return
     fixed = layout(topology)
-    plan, expected = None, 0
-    for i, points in enumerate(poses):
-        model = pose_model(topology, points, fixed, warn=i == 0)
-        lambda_ref = in_plane_eigen_scale(model)
-        if plan is None:
-            lowest = min(lowest_fixed_interface(l.length, l.elements, l.section.EA, l.section.EI,
-                                                l.section.mass_per_length) for l in model.links)
-            plan = CraigBamptonPlan(model, fixed, CUTOFF**2 * lowest)
-        while True:
-            K, M = plan.matrices(model)
-            solve = functools.partial(solve_modes, K, M, lambda_ref=lambda_ref, method="dense")
-            result, mask = _solve_lowest(solve, n_modes, expected)
-            n_mechanism = len(mask) - int(mask.sum())
-            lam = np.sort(plan.corrected(model, result.eigenvalues[mask], result.shapes[:, mask]))
-            elastic = np.sqrt(np.clip(lam[:n_modes], 0.0, None)) / (2 * math.pi)
-            need = (CUTOFF * 2 * math.pi * elastic[-1])**2 if len(elastic) == n_modes else math.inf
-            if need <= plan.lambda_cut or math.isinf(plan.lambda_cut):
-                break
-            plan = CraigBamptonPlan(model, fixed, 1.2**2 * need)
-        expected = n_mechanism
-        freqs[i, :len(elastic)] = elastic
-        mechanism[i] = n_mechanism
+    model = pose_model(topology, poses[0], fixed)  # the plan's springs, masses, constraints
+    angles, lengths = pose_geometry(topology, poses)
+    if not np.all(lengths > 0):
+        bad = int(np.argmax(~(lengths > 0).all(axis=1)))
+        pose_model(topology, poses[bad], fixed, warn=False)  # raises, naming the link
+    lambda_ref = np.min([s.EI / (s.mass_per_length * lengths[:, i] ** 4)
+                         for i, s in enumerate(spec.section for spec in topology.links)], axis=0)
+    lambda_cut = CUTOFF**2 * min(lowest_fixed_interface(l.length, l.elements, l.section.EA,
+                                                        l.section.EI, l.section.mass_per_length)
+                                 for l in model.links)
+    todo, first, plan = np.arange(1), True, None
+    while todo.size:
+        if plan is None or plan.lambda_cut != lambda_cut:
+            plan = CraigBamptonPlan(model, fixed, lambda_cut)
+        elastic, n_mechanism, need = _craig_bampton_poses(plan, angles[todo], lengths[todo],
+                                                          lambda_ref[todo], n_modes)
+        fits = need <= plan.lambda_cut
+        freqs[todo[fits], :n_modes] = elastic[fits]
+        mechanism[todo[fits]] = n_mechanism[fits]
+        if not fits.all():
+            lambda_cut = 1.2**2 * need[~fits].max()
+        todo = todo[~fits]
+        if first:  # the basis is fitted to the first pose (if need be): on to the others
+            todo, first = np.concatenate([todo, np.arange(1, len(poses))]), False
+
+
+def _craig_bampton_poses(plan: CraigBamptonPlan, angles, lengths, lambda_ref, n_modes: int):
+    """(elastic frequencies [Hz] (poses, n_modes), NaN where fewer; mechanism counts; the
+    eigenvalue [rad^2/s^2] the basis must reach for each pose: (CUTOFF omega_n)^2, inf when
+    fewer elastic modes were found and the basis is not yet complete, 0 once it is)."""
+    K, M = plan.stacked(angles, lengths)
+    modes = stacked_modes(K, M, lambda_ref, checked=n_modes + SPARE_MODES)
+    n_mechanism = modes.mechanisms
+    pick = n_mechanism[:, None] + np.arange(n_modes)
+    found = pick < plan.n
+    pick = np.minimum(pick, plan.n - 1)
+    vals = np.take_along_axis(modes.eigenvalues, pick, axis=1)
+    vecs = np.take_along_axis(modes.vectors, pick[:, None, :], axis=2)
+    lam = np.sort(plan.corrected_stack(angles, lengths, vals, vecs), axis=1)
+    elastic = np.where(found, np.sqrt(np.clip(lam, 0.0, None)) / (2 * math.pi), np.nan)
+    if math.isinf(plan.lambda_cut):
+        return elastic, n_mechanism, np.zeros(len(elastic))
+    need = np.where(found.all(axis=1), (CUTOFF * 2 * math.pi * elastic[:, -1]) ** 2, math.inf)
+    return elastic, n_mechanism, need
 
 
 def parallel_modal_sweep(topology: Topology, poses: Iterable[Mapping[str, tuple[float, float]]],
                          n_modes: int, method: str = "auto", n_jobs: int = -1,
                          reduction: str | None = None) -> SweepResult:
-    """``modal_sweep`` with the poses split into one contiguous chunk per worker process
-    (joblib, loky backend; ``n_jobs`` = -1: one per core). Same result as the serial sweep;
-    worth it from a few hundred poses on, below that starting the workers costs more."""
-    from joblib import Parallel, delayed, effective_n_jobs
-
+    """``modal_sweep`` with the poses split into one contiguous chunk per worker
+    (``parallel.run_tasks``: joblib processes, ``n_jobs`` = -1: one per core, or the dask
+    cluster of ``parallel.use_scheduler``). Same result as the serial sweep for the full model;
+    a Craig-Bampton chunk fits its basis to its own poses, so chunks agree with the serial sweep
+    to the reduction's accuracy. Worth it from a few hundred full-model poses on; below that
+    starting the workers costs more."""
     poses = list(poses)
-    chunks = [c for c in np.array_split(np.arange(len(poses)), effective_n_jobs(n_jobs)) if len(c)]
-    parts = Parallel(n_jobs=n_jobs)(
-        delayed(modal_sweep)(topology, [poses[i] for i in chunk], n_modes, method,
-                             reduction=reduction)
-        for chunk in chunks)
+    chunks = [c for c in np.array_split(np.arange(len(poses)), workers(n_jobs)) if len(c)]
+    parts = run_tasks(modal_sweep, [(topology, [poses[i] for i in chunk], n_modes, method, None,
+                                     reduction) for chunk in chunks], n_jobs=n_jobs)
     return SweepResult(frequencies=np.concatenate([p.frequencies for p in parts]),
                        mechanism_counts=np.concatenate([p.mechanism_counts for p in parts]))

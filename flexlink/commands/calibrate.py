@@ -36,11 +36,15 @@ from flexlink.commands._options import dumps, json_option, out_option
               help="Elements per link in every evaluation.")
 @click.option("--jobs", default=-1, show_default=True, type=int,
               help="Parallel workers (joblib; -1 = all cores).")
+@click.option("--scheduler", default=None, metavar="ADDRESS",
+              help="Run the fits and the Monte Carlo on dask.distributed: 'local' starts a "
+                   "LocalCluster on this machine, else a scheduler address such as "
+                   "tcp://host:8786 (needs the 'dask' extra; see docs/performance.md).")
 @json_option
 @out_option
 @names_scene("scenes")
 def command(scenes, free_specs, families, starts, seed, samples, vf_sd, thickness_sd, elements,
-            jobs, as_json, out_dir):
+            jobs, scheduler, as_json, out_dir):
     """Calibrate each model family against the scenes' Ex column (and, separately, the paper's
     FE), cross-validate leaving one case out, fit each case alone and its mode ratios, and
     propagate Table I scatter by Monte Carlo; writes calibrate.json, report.md and PNG plots
@@ -50,6 +54,7 @@ def command(scenes, free_specs, families, starts, seed, samples, vf_sd, thicknes
     from flexlink.studies.comparison import StudySettings, run_study
     from flexlink.analysis.families import scene_family
     from flexlink.fileio import prepare_out_dir, write_atomic
+    from flexlink.parallel import use_scheduler
     from flexlink.scene import load_scene, scene_files
     from flexlink.units import parse_quantity
     from ._written import announce, run_folder
@@ -69,9 +74,10 @@ def command(scenes, free_specs, families, starts, seed, samples, vf_sd, thicknes
             chosen.append(fam)
 
     studies, written = [], []
-    for fam in chosen:  # each family's study is kept as soon as it is done
-        studies.append(run_study(files, fam, free, settings))
-        written.append(write_atomic(out / f"study-{fam}.json", dumps(studies[-1])))
+    with use_scheduler(scheduler):
+        for fam in chosen:  # each family's study is kept as soon as it is done
+            studies.append(run_study(files, fam, free, settings))
+            written.append(write_atomic(out / f"study-{fam}.json", dumps(studies[-1])))
     plots = {}
     for study in studies:
         fam = study["family"]

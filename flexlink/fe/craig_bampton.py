@@ -9,7 +9,8 @@ interior mode gives the full model back exactly; the truncation is the only appr
 
 Per pose only the boundary DOFs rotate (the modal coordinates are scalars in the link frame),
 so a pose costs 2 small matrix products per link, one scatter and a dense eigen solve of
-(boundary DOFs + kept modes) unknowns. Springs, joint masses and rigid constraints act on link
+(boundary DOFs + kept modes) unknowns, all done for every pose of a sweep at once
+(``CraigBamptonPlan.stacked``, ``corrected_stack``). Springs, joint masses and rigid constraints act on link
 end nodes only; they are taken from the full model's layout through a "boundary model"
 (``FrameModel`` with one element per link, whose nodes are the end nodes), so
 ``assembly.spring_entries``, ``point_mass_entries`` and ``reduction`` are reused unchanged.
@@ -23,8 +24,8 @@ same diagonal scaling (D on the boundary rotations only; the modal coordinates a
 
 Mode choice (``CUTOFF``): a link keeps every fixed-interface mode whose frequency is at most
 CUTOFF times the highest requested system frequency. ``sweep._craig_bampton_sweep`` checks this
-after each solve and enlarges the basis (and solves again) when a pose's frequencies have grown
-past what the basis was chosen for.
+for every pose and solves the poses whose frequencies have grown past what the basis was chosen
+for again, on an enlarged basis.
 
 Truncation correction: plain truncation converges slowly here (about 3e-5 relative on the sixth
 mode of Table II case 2 with a cut-off of 16 times its frequency), because the axial
@@ -126,28 +127,35 @@ class ReducedLink:
     def n_modes(self) -> int:
         return self.K.shape[0] - 6
 
+    def scales(self, lengths) -> tuple[np.ndarray, np.ndarray]:
+        """(a, b), each (..., 6 + n_modes): the link at ``lengths`` [m] (any shape) has
+        K = a a^T * K_ref and M = b b^T * M_ref, elementwise (exact rescaling, module docstring)."""
+        r = (np.asarray(lengths, dtype=float) / self.length)[..., None]
+        turn = np.where(self.rotation, r, 1.0)
+        return np.where(self.axial, r**-0.5, r**-1.5) * turn, np.sqrt(r) * turn
+
     def matrices(self, length: float) -> tuple[np.ndarray, np.ndarray]:
         """(K, M) of the same link at ``length`` [m], exact rescaling of the reference ones."""
-        r = length / self.length
-        if r == 1.0:
+        if length == self.length:
             return self.K, self.M
-        a = np.where(self.axial, r**-0.5, r**-1.5) * np.where(self.rotation, r, 1.0)
-        b = math.sqrt(r) * np.where(self.rotation, r, 1.0)
+        a, b = self.scales(length)
         return a[:, None] * self.K * a, b[:, None] * self.M * b
 
-    def flexibility_series(self, length: float) -> np.ndarray:
-        """(SERIES, 6, 6) F_j = sum over truncated modes of c c^T m^j / k^(j + 1) at ``length``
-        [m] (c: a truncated mode's mass coupling with the boundary DOFs, k, m: its modal
-        stiffness and mass; local frame). Eliminating the truncated modes adds
-        -lambda^2 sum_k c c^T / (k - lambda m) = -lambda^2 sum_j lambda^j F_j to the reduced
-        dynamic stiffness; every truncated mode has k / m > lambda_cut >= CUTOFF^2 lambda, so
-        the terms left out are below CUTOFF^(-2 SERIES) of the first."""
-        r = length / self.length
-        beta = r * np.where(self.rotation[:6], r, 1.0)  # coupling scale (module docstring)
+    def flexibility_series(self, length) -> np.ndarray:
+        """(..., SERIES, 6, 6) F_j = sum over truncated modes of c c^T m^j / k^(j + 1) at
+        ``length`` [m] (a number or an array of any shape; c: a truncated mode's mass coupling
+        with the boundary DOFs, k, m: its modal stiffness and mass; local frame). Eliminating
+        the truncated modes adds -lambda^2 sum_k c c^T / (k - lambda m) =
+        -lambda^2 sum_j lambda^j F_j to the reduced dynamic stiffness; every truncated mode has
+        k / m > lambda_cut >= CUTOFF^2 lambda, so the terms left out are below
+        CUTOFF^(-2 SERIES) of the first."""
+        r = np.asarray(length, dtype=float) / self.length
+        beta = r[..., None] * np.where(self.rotation[:6], r[..., None], 1.0)  # coupling scale
         power = np.arange(SERIES)[:, None, None]
-        axial = self.flexibility[0] * r**power / (1 / r) ** (power + 1)
-        bending = self.flexibility[1] * r**power / r ** (-3 * (power + 1))
-        return np.outer(beta, beta) * (axial + bending)
+        r = r[..., None, None, None]
+        axial = self.flexibility[0] * r**power * r ** (power + 1)
+        bending = self.flexibility[1] * r**power * r ** (3 * (power + 1))
+        return beta[..., None, :, None] * beta[..., None, None, :] * (axial + bending)
 
 
 def reduce_link(length: float, elements: int, EA: float, EI: float, rhoA: float,
@@ -262,15 +270,16 @@ class CraigBamptonPlan:
             boundary = column[6 * index + np.arange(6)]
             columns.append(np.concatenate([boundary, offset + np.arange(rl.n_modes)]))
             offset += rl.n_modes
-        self.slots = []
-        for cols in columns:
-            r, c = cols[:, None], cols[None, :]
-            self.slots.append(np.where((r >= 0) & (c >= 0), r * self.n + c, self.spare).ravel())
-        self.all_slots = np.concatenate(self.slots)
         self.columns = columns
         self.boundary = bmodel
         self.boundary_column = column
-        self._series = {}  # link lengths -> (links, SERIES, 6, 6) flexibility series
+        self._flat = []  # per link: its reduced entries' slots in the (n + 1)^2 stack
+        for cols in columns:
+            kept = cols[cols >= 0]
+            if len(np.unique(kept)) != len(kept):
+                raise AssertionError("two DOFs of one link share a reduced DOF")
+            where = np.where(cols >= 0, cols, self.n)  # grounded -> the dropped last slot
+            self._flat.append((where[:, None] * (self.n + 1) + where[None, :]).ravel())
         self.boundary_columns = np.array([cols[:6] for cols in columns])
         self.constant = []
         for rows, cols, vals in (spring_entries(bmodel), point_mass_entries(bmodel)):
@@ -281,25 +290,51 @@ class CraigBamptonPlan:
 
     def matrices(self, model: FrameModel) -> tuple[np.ndarray, np.ndarray]:
         """Reduced dense (K, M) of ``model`` (the plan's topology at any pose)."""
-        k_parts, m_parts = [], []
-        for rl, link in zip(self.links, model.links):
-            K, M = rl.matrices(link.length)
-            c, s = math.cos(link.angle), math.sin(link.angle)
-            Q = np.eye(K.shape[0])  # local = Q global on the boundary DOFs; modes unchanged
-            Q[[0, 3], [0, 3]] = Q[[1, 4], [1, 4]] = c
-            Q[[0, 3], [1, 4]], Q[[1, 4], [0, 3]] = s, -s
-            k_parts.append((Q.T @ K @ Q).ravel())
-            m_parts.append((Q.T @ M @ Q).ravel())
-        size = self.spare + 1
-        K = np.bincount(self.all_slots, weights=np.concatenate(k_parts), minlength=size)
-        M = np.bincount(self.all_slots, weights=np.concatenate(m_parts), minlength=size)
-        K = K[:self.spare].reshape(self.n, self.n) + self.constant[0]
-        M = M[:self.spare].reshape(self.n, self.n) + self.constant[1]
+        angles = np.array([[link.angle for link in model.links]])
+        lengths = np.array([[link.length for link in model.links]])
+        K, M = self.stacked(angles, lengths)
+        return K[0], M[0]
+
+    def stacked(self, angles: np.ndarray, lengths: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Reduced dense K and M, each (poses, n, n), of the plan's topology at many poses at
+        once: ``angles`` [rad] and ``lengths`` [m], each (poses, links), in the plan's link
+        order. Per link, its rescaled reduced matrices are rotated on their boundary DOFs
+        (Q^T K Q) for all poses together and added into a (n + 1)-square stack whose last
+        row and column collect the grounded DOFs and are dropped."""
+        angles, lengths = np.atleast_2d(angles), np.atleast_2d(lengths)
+        poses, n = angles.shape[0], self.n
+        K = np.zeros((poses, (n + 1) ** 2))
+        M = np.zeros((poses, (n + 1) ** 2))
+        for index, (rl, flat) in enumerate(zip(self.links, self._flat)):
+            a, b = rl.scales(lengths[:, index])
+            Kl = a[:, :, None] * rl.K * a[:, None, :]
+            Ml = b[:, :, None] * rl.M * b[:, None, :]
+            c, s = np.cos(angles[:, index]), np.sin(angles[:, index])
+            size = rl.K.shape[0]
+            Q = np.broadcast_to(np.eye(size), (poses, size, size)).copy()
+            Q[:, [0, 3], [0, 3]] = Q[:, [1, 4], [1, 4]] = c[:, None]
+            Q[:, [0, 3], [1, 4]], Q[:, [1, 4], [0, 3]] = s[:, None], -s[:, None]
+            Qt = Q.transpose(0, 2, 1)
+            # slots are distinct within a link except the dropped one (checked in __init__)
+            K[:, flat] += (Qt @ Kl @ Q).reshape(poses, -1)
+            M[:, flat] += (Qt @ Ml @ Q).reshape(poses, -1)
+        K = K.reshape(poses, n + 1, n + 1)[:, :n, :n] + self.constant[0]
+        M = M.reshape(poses, n + 1, n + 1)[:, :n, :n] + self.constant[1]
         return K, M
 
     def corrected(self, model: FrameModel, eigenvalues: np.ndarray, vectors: np.ndarray,
                   iterations: int = 3) -> np.ndarray:
-        """Eigenvalues [rad^2/s^2] with the truncated modes put back to leading order.
+        """``corrected_stack`` for one model: eigenvalues (k,), vectors (n, k)."""
+        angles = np.array([[link.angle for link in model.links]])
+        lengths = np.array([[link.length for link in model.links]])
+        return self.corrected_stack(angles, lengths, np.asarray(eigenvalues)[None],
+                                    np.asarray(vectors)[None], iterations)[0]
+
+    def corrected_stack(self, angles: np.ndarray, lengths: np.ndarray, eigenvalues: np.ndarray,
+                        vectors: np.ndarray, iterations: int = 3) -> np.ndarray:
+        """Eigenvalues [rad^2/s^2] (poses, k) with the truncated modes put back to leading
+        order; ``angles``, ``lengths`` as in ``stacked``, ``vectors`` (poses, n, k) with
+        x^T M x = 1.
 
         Eliminating the truncated coordinates exactly leaves the nonlinear eigenproblem
         (K - lambda M - lambda^2 sum_k c_k c_k^T / (k_k - lambda m_k)) x = 0 on the kept ones
@@ -309,28 +344,25 @@ class CraigBamptonPlan:
         (k_k - lambda m_k) = 0 (Newton from lambda_r); being stationary, its error is of second
         order in the error of x, where plain truncation has first order."""
         vectors = np.asarray(vectors)
-        padded = np.vstack([vectors, np.zeros((1, vectors.shape[1]))])
-        lengths = tuple(link.length for link in model.links)
-        if lengths not in self._series:
-            if len(self._series) >= 64:
-                self._series.clear()
-            self._series[lengths] = np.stack([rl.flexibility_series(length)
-                                              for rl, length in zip(self.links, lengths)])
-        series = self._series[lengths]  # (links, SERIES, 6, 6)
-        angle = np.array([link.angle for link in model.links])[:, None, None]
-        c, s = np.cos(angle), np.sin(angle)
-        u = padded[self.boundary_columns]  # (links, 6, modes), global frame
+        poses, _, k = vectors.shape
+        padded = np.concatenate([vectors, np.zeros((poses, 1, k))], axis=1)  # -1: grounded
+        series = np.stack([rl.flexibility_series(lengths[:, i])
+                           for i, rl in enumerate(self.links)], axis=1)  # (P, L, SERIES, 6, 6)
+        c = np.cos(angles)[:, :, None, None]
+        s = np.sin(angles)[:, :, None, None]
+        u = padded[:, self.boundary_columns]  # (P, L, 6, k), global frame
         local = np.empty_like(u)  # boundary DOFs in each link's frame
-        local[:, [0, 3]] = c * u[:, [0, 3]] + s * u[:, [1, 4]]
-        local[:, [1, 4]] = -s * u[:, [0, 3]] + c * u[:, [1, 4]]
-        local[:, [2, 5]] = u[:, [2, 5]]
-        terms = np.einsum("lim,ljim->jm", local, series @ local[:, None])  # u^T F_j u
+        local[:, :, [0, 3]] = c * u[:, :, [0, 3]] + s * u[:, :, [1, 4]]
+        local[:, :, [1, 4]] = -s * u[:, :, [0, 3]] + c * u[:, :, [1, 4]]
+        local[:, :, [2, 5]] = u[:, :, [2, 5]]
+        terms = np.einsum("plim,pljim->pjm", local, series @ local[:, :, None])  # u^T F_j u
         lam = np.array(eigenvalues, dtype=float)
         start = lam.copy()
         power = np.arange(SERIES)[:, None]
         for _ in range(iterations):
-            S = (lam**power * terms).sum(axis=0)
-            dS = (power[1:] * lam ** power[:-1] * terms[1:]).sum(axis=0)
+            L = lam[:, None, :]
+            S = (L**power * terms).sum(axis=1)
+            dS = (power[1:] * L ** power[:-1] * terms[:, 1:]).sum(axis=1)
             f = start - lam - lam**2 * S
             lam = lam + f / (1 + 2 * lam * S + lam**2 * dS)
         return lam

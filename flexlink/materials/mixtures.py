@@ -29,6 +29,7 @@ gives no crimp data, so none is applied.
 from __future__ import annotations
 
 import dataclasses
+import functools
 import tomllib
 from importlib import resources
 from importlib.resources.abc import Traversable
@@ -39,6 +40,7 @@ from flexlink.units import parse_quantity
 
 
 
+@functools.lru_cache(maxsize=1)
 def shipped_materials() -> Traversable:
     """The folder of shipped material files: the package data ``flexlink.materials.data``,
     which pyproject.toml maps from the repository's ``materials/`` folder (in a wheel and in an
@@ -103,6 +105,21 @@ def load_constituent(name_or_path: str | Path) -> Constituent:
                        if p.name.endswith(".toml")) if shipped.is_dir() else []
         raise InputError(f"no material file {path}", field="material",
                          expected=f"one of {known} or a path to a .toml file")
+    try:
+        stat = Path(str(path)).stat()
+    except OSError:  # e.g. inside a zipped package: no file to stat, read it every time
+        return _read_constituent(path)
+    return _cached_constituent(str(path), stat.st_mtime_ns, stat.st_size)
+
+
+@functools.lru_cache(maxsize=64)
+def _cached_constituent(path: str, mtime_ns: int, size: int) -> Constituent:
+    """``_read_constituent`` of the file as it was at (mtime_ns, size), the cache key: a
+    calibration reads the same two constituents for every evaluation."""
+    return _read_constituent(Path(path))
+
+
+def _read_constituent(path: Traversable) -> Constituent:
     src = str(path)
     with path.open("rb") as fh:
         data = tomllib.load(fh)

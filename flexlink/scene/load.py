@@ -16,7 +16,7 @@ from flexlink.errors import InputError
 from flexlink.scene import fourbar, general, parts, schema
 from flexlink.scene.contract import Scene
 from flexlink.scene.plausibility import check_scene
-from flexlink.scene.source import SceneSource, read_scene_source
+from flexlink.scene.source import SceneSource, overridden, read_scene_source
 
 BUILDERS = {"four-bar": fourbar.build_four_bar, "general": general.build_general}  # linkage.type -> builder
 
@@ -139,7 +139,14 @@ def load_scene(path: str | Path, overrides: dict | None = None) -> Scene:
     ``overrides`` maps dotted keys to values as they would be written in the file, e.g.
     ``{"section.width": "25 mm", "joints.Kt": "1e7 N/m"}``: sweeps, calibration and Monte Carlo
     vary inputs this way, through the same validation as a file."""
-    src = read_scene_source(path, overrides)
+    return load_overridden(read_scene_source(path), overrides)
+
+
+def load_overridden(src: SceneSource, overrides: dict | None = None) -> Scene:
+    """``load_scene`` from an already read scene (``source.read_scene_source``): the overrides
+    are applied to the read data (``source.overridden``), then validated and built exactly as
+    from a file, so a caller varying inputs reads each file once."""
+    src = overridden(src, overrides or {})
     sf = validate(src)
     scene = BUILDERS[sf.linkage.type](src, sf)
     check_scene(scene)  # unit slips such as "300 m" for "300 mm" (plausibility.py)

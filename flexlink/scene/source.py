@@ -12,11 +12,16 @@ from (so an error names the right file) and the notes written beside values.
   for that range; ``flexlink modes --sensitivity`` evaluates both ends and samples between.
 - Overrides (``{"section.width": "25 mm"}``) are applied as if written in the file, before
   validation, so a sweep or a fit goes through the same checks as a file.
+- A file is parsed once per process while it is unchanged (``_parsed``, keyed by path,
+  modification time and size): a calibration or a Monte Carlo loads the same scene thousands of
+  times with different overrides, and parsing dominated each load.
 """
 
 from __future__ import annotations
 
+import copy
 import dataclasses
+import functools
 import tomllib
 from pathlib import Path
 
@@ -59,7 +64,22 @@ class SceneSource:
 
 
 def read_toml(path: Path) -> dict:
-    """A TOML file as a dict; InputError (naming the file) when missing, unreadable or invalid."""
+    """A TOML file as a dict; InputError (naming the file) when missing, unreadable or invalid.
+    Parsed once while the file is unchanged; each call gets its own copy."""
+    try:
+        stat = path.stat()
+    except OSError:
+        return _parse_toml(path)  # not there (or unreadable): _parse_toml names the problem
+    return copy.deepcopy(_parsed(str(path), stat.st_mtime_ns, stat.st_size))
+
+
+@functools.lru_cache(maxsize=256)
+def _parsed(path: str, mtime_ns: int, size: int) -> dict:
+    """``_parse_toml`` of ``path`` as it was at (mtime_ns, size), the cache key."""
+    return _parse_toml(Path(path))
+
+
+def _parse_toml(path: Path) -> dict:
     try:
         raw = path.read_bytes()
     except FileNotFoundError:
@@ -182,12 +202,65 @@ def _strip_notes(node, origin: dict, prefix: str, found: list[Assumption]):
 
 def read_scene_source(path: str | Path, overrides: dict | None = None) -> SceneSource:
     """Read ``path`` with its base files, apply ``overrides`` (dotted key -> value as written in
-    a file) and strip the notes."""
+    a file) and strip the notes. The files are read once while they are unchanged
+    (``_READ``); the overrides are applied to a copy (``overridden``)."""
     path = Path(path)
-    data, origin = _with_bases(path)
-    for field, value in (overrides or {}).items():
-        _set_dotted(data, origin, field, value)
+    key = str(path)
+    known = _READ.get(key)
+    if known is None or _stamps(known[0]) != known[1]:
+        data, origin = _with_bases(path)
+        found: list[Assumption] = []
+        plain = _strip_notes(data, origin, "", found)
+        unique = {(a.field, a.value): a for a in found}
+        src = SceneSource(path=path, data=plain, origin=origin,
+                          assumptions=tuple(unique.values()))
+        files = tuple(sorted(set(origin.values()) | {key}))
+        if len(_READ) >= 256:
+            _READ.clear()
+        # stamped after reading: a file changed while being read is read again next time
+        known = _READ[key] = (files, _stamps(files), src)
+    return overridden(known[2], overrides or {})
+
+
+_READ: dict[str, tuple[tuple[str, ...], tuple, SceneSource]] = {}  # path -> (files, stamps, src)
+
+
+def _stamps(files) -> tuple:
+    """(modification time, size) of each file, None for one that is gone."""
+    out = []
+    for file in files:
+        try:
+            stat = Path(file).stat()
+            out.append((stat.st_mtime_ns, stat.st_size))
+        except OSError:
+            out.append(None)
+    return tuple(out)
+
+
+def _covers(field: str, key: str) -> bool:
+    """Whether overriding ``field`` replaces ``key`` (the same key or one inside it)."""
+    return key == field or key.startswith(field + ".") or key.startswith(field + "[")
+
+
+def overridden(src: SceneSource, overrides: dict) -> SceneSource:
+    """``src`` with ``overrides`` applied, as ``read_scene_source(src.path, overrides)`` would
+    give, without reading any file: for callers that vary a few keys of one scene many times
+    (``load.load_overridden``). Only the tables on each overridden key's path are copied; an
+    assumption whose value an override replaces is dropped, as re-reading would drop it."""
+    if not overrides:
+        return src
+    data, origin = dict(src.data), dict(src.origin)
     found: list[Assumption] = []
-    plain = _strip_notes(data, origin, "", found)
-    unique = {(a.field, a.value): a for a in found}
-    return SceneSource(path=path, data=plain, origin=origin, assumptions=tuple(unique.values()))
+    for field, value in overrides.items():
+        node, parts = data, field.split(".")
+        for part in parts[:-1]:
+            inner = node.get(part, {})
+            if not isinstance(inner, dict):
+                raise InputError("cannot override inside a plain value", source=OVERRIDES,
+                                 field=field)
+            node[part] = node = dict(inner)
+        node[parts[-1]] = _strip_notes(value, {field: OVERRIDES}, field, found)
+        origin[field] = OVERRIDES
+    kept = [a for a in src.assumptions if not any(_covers(f, a.field) for f in overrides)]
+    unique = {(a.field, a.value): a for a in [*kept, *found]}
+    return dataclasses.replace(src, data=data, origin=origin, assumptions=tuple(unique.values()))
