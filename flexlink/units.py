@@ -41,7 +41,8 @@ def parse_quantity(text: object, dimension: str, *, source: str | None = None,
     """
     table = UNITS[dimension]
     spellings = ", ".join(table)
-    expected = f"a {dimension} as a string with a unit, one of: {spellings}; e.g. '1 {next(iter(table))}'"
+    article = "an" if dimension[0] in "aeiou" else "a"
+    expected = f"{article} {dimension} as a string with a unit, one of: {spellings}; e.g. '1 {next(iter(table))}'"
     if isinstance(text, bool) or not isinstance(text, str):
         raise InputError(f"got {text!r} without a unit", source=source, field=field,
                          expected=expected)
