@@ -145,3 +145,19 @@ def test_export_and_cycle_record_the_mesh_they_used(tmp_path):
                                  "--out", str(tmp_path / "c")])
     assert cycle.exit_code == 0, cycle.output
     assert "mesh: 6 elements/link from the command line (-e)" in cycle.output
+
+
+def test_too_many_modes_is_said_even_where_the_top_modes_fail_their_checks(tmp_path):
+    """Flatwise strips with free bearings at 2 elements/link: asking for every mode makes the
+    highest ones fail the backward-error check through the spectral shift; a request beyond
+    the model's 18 elastic modes (26 DOFs less 8 mechanism modes) must say so, not report
+    round-off."""
+    scene = tmp_path / "soft.toml"
+    scene.write_text(f'base = "{(ROOT / "cases" / "_table2.toml").as_posix()}"\n'
+                     "[linkage]\nR2 = 0.267\nR3 = 0.800\nR4 = 0.667\n"
+                     '[joints]\nKt = "0 N/m"\n')
+    result = CliRunner().invoke(main, ["modes", str(scene), "-e", "2", "-n", "19", "--out",
+                                       str(tmp_path / "out")])
+    assert result.exit_code == 2
+    assert "19 elastic modes asked for, but the model has only 18 (26 DOFs, 8 of them" \
+        in result.stderr, result.stderr

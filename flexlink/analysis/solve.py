@@ -344,11 +344,35 @@ def lowest_elastic(solve, n_elastic: int, expected_mechanisms: int = 0,
     solved); ``require_elastic`` turns that into an error."""
     k = n_elastic + expected_mechanisms + spare
     while True:
-        result = solve(k)
+        try:
+            result = solve(k)
+        except NumericalError:
+            _refuse_beyond_the_model(solve, n_elastic, expected_mechanisms + spare + 1)
+            raise
         n_mechanism = result.kinds.count(MECHANISM)
         if len(result.kinds) - n_mechanism >= n_elastic or len(result.kinds) < k:
             return result  # enough, or every mode of the model
         k = n_elastic + n_mechanism + SPARE_MODES
+
+
+def _refuse_beyond_the_model(solve, n_elastic: int, probe: int) -> None:
+    """When a request for (nearly) every mode fails its checks, see whether it asked for more
+    elastic modes than the model has: the highest modes of a stiff, light frame fail the
+    backward-error check through the spectral shift, and a user who asked for more modes than
+    there are should hear that, not about round-off. Raises that InputError, or returns."""
+    while True:  # the lowest modes, until the first elastic one shows all the mechanisms
+        low = solve(probe)
+        n_mechanism = low.kinds.count(MECHANISM)
+        if n_mechanism < len(low.kinds) or len(low.kinds) < probe:
+            break
+        probe *= 2
+    available = low.n_dofs - low.condensed - n_mechanism
+    if n_elastic > available:
+        raise InputError(
+            f"{n_elastic} elastic modes asked for, but the model has only {available} "
+            f"({low.n_dofs} DOFs, {n_mechanism} of them rigid-body/mechanism modes"
+            + (f", {low.condensed} massless and condensed" if low.condensed else "") + ")",
+            field="number of modes (-n)", expected=f"at most {available}, or a finer mesh (-e)")
 
 
 def require_elastic(result: ModalResult, n_elastic: int) -> ModalResult:
