@@ -137,6 +137,15 @@ class Scene:
         links = tuple(dataclasses.replace(s, elements=n) if n else s for s in self.links)
         return Topology(links=links, joints=self.joints, drive=self.drive)
 
+    def cycle_origin(self) -> tuple[float, dict[str, tuple[float, float]]]:
+        """Where a whole-cycle sweep starts: (input angle [rad], moving joints near that pose).
+        A four-bar scene's cycle runs over crank angles 0 to 360 deg whatever pose it analyses;
+        a general scene's starts at its own start pose, whose guess picks the assembly."""
+        if self.kind == "four-bar":
+            joints = self.four_bar.pose(0.0, self.branch).joints
+            return 0.0, {k: v for k, v in joints.items() if k in self.guess}
+        return self.start, dict(self.guess)
+
     def rigid_pose(self, crank_angle: float | None = None) -> RigidPose:
         """The rigid pose at ``crank_angle`` [rad] (default: the scene's analysed pose)."""
         q = self.start if crank_angle is None else crank_angle

@@ -21,8 +21,10 @@ from flexlink.analysis.sweep import modal_sweep
 
 
 def kinematic_cycle(scene: Scene, n_poses: int = 360, progress=None) -> Cycle:
-    """Rigid poses at ``n_poses`` input angles over one revolution from ``scene.start``."""
-    return scene.linkage.cycle(crank_angles(n_poses, scene.start), scene.guess, progress)
+    """Rigid poses at ``n_poses`` input angles over one revolution from the scene's cycle
+    origin (``Scene.cycle_origin``)."""
+    start, guess = scene.cycle_origin()
+    return scene.linkage.cycle(crank_angles(n_poses, start), guess, progress)
 
 
 def transmission_angles(scene: Scene, cycle: Cycle) -> dict[str, np.ndarray]:
@@ -116,7 +118,7 @@ def resonances(result: ModalMap, crank_speed: float, margin: float = 0.05,
         for j in range(result.frequencies.shape[1]):
             f = result.frequencies[:, j]
             gap = np.abs(f - f_n) / f
-            near = result.q[gap <= margin]
+            near = np.remainder(result.q[gap <= margin], 2 * math.pi)  # as crossings are
             crossed = crossings(result.q, f, f_n)
             angles = np.unique(np.concatenate([near, crossed]))
             if angles.size:
