@@ -205,3 +205,20 @@ def test_a_failing_scene_is_listed_and_the_others_reported(tmp_path):
     assert "Scenes not in this report" in page and str(bad) in page
     assert '<section class="scene" id="scene-case1">' in page
     assert str(bad) in result.stderr.splitlines()[0]
+
+
+def test_sensitivity_section_shows_end_points_and_the_interval():
+    from flexlink.output.html_report import sensitivity_section
+
+    data = {"elements_per_link": 16, "nominal_Hz": [25.3, 45.4],
+            "inputs": [{"field": "linkage.ground", "value": "300 mm", "low": "200 mm",
+                        "high": "450 mm", "reason": "bench-top sizes", "low_Hz": [56.9, 102.0],
+                        "high_Hz": [11.2, 20.2]}],
+            "monte_carlo": {"samples": 20, "seed": 1, "failed": 0, "low_Hz": [10.0, 23.0],
+                            "high_Hz": [48.0, 112.0], "inside": {"Ex": [True, False]}}}
+    page = {"summary": {"sensitivity": data, "modes": [{"Ex_Hz": 27.0}, {"Ex_Hz": 171.0}]}}
+    html = sensitivity_section(page, [])
+    for text in ("linkage.ground", "200 mm", "56.90", "11.20", "10.0 - 48.0", "23.0 - 112.0",
+                 "yes (27)", "no (171)", "bench-top sizes", "20 samples, seed 1"):
+        assert text in html, text
+    assert sensitivity_section({"summary": {"modes": []}}, []) == ""

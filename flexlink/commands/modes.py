@@ -7,6 +7,7 @@ import logging
 import click
 
 from flexlink.commands._options import dumps, json_option, out_option
+from flexlink.commands._sensitivity import scene_sensitivity, sensitivity_options
 
 
 @click.command("modes")
@@ -22,14 +23,7 @@ from flexlink.commands._options import dumps, json_option, out_option
                    "[default: 1e-6].")
 @click.option("--method", type=click.Choice(["auto", "dense", "sparse"]), default="auto",
               show_default=True, help="Eigen solver.")
-@click.option("--sensitivity", is_flag=True,
-              help="Also evaluate every assumed input at both ends of its range and a Monte "
-                   "Carlo 95 % interval over them with the Table I spreads.")
-@click.option("--samples", default=200, show_default=True, type=click.IntRange(10, 100000),
-              help="Monte Carlo samples per scene (with --sensitivity).")
-@click.option("--seed", default=1, show_default=True, type=int, help="Monte Carlo seed.")
-@click.option("-j", "--jobs", default=-1, show_default=True, type=int,
-              help="Worker processes for --sensitivity (-1: one per core).")
+@sensitivity_options
 @json_option
 @out_option
 def command(scenes, n_modes, elements, method, tol, sensitivity, samples, seed, jobs, as_json,
@@ -67,8 +61,8 @@ def command(scenes, n_modes, elements, method, tol, sensitivity, samples, seed, 
                        "mesh": mesh.as_dict(), "warnings": list(result.warnings)}
             summary.update(_alternatives(scene, n_modes, mesh.elements, result.warnings))
             if sensitivity:
-                summary["sensitivity"] = _sensitivity(scene, n_modes, samples, seed, jobs,
-                                                      as_json)
+                summary["sensitivity"] = scene_sensitivity(scene, n_modes, samples, seed, jobs,
+                                                           as_json)
         except FlexlinkError as exc:  # the other scenes still get their results
             failures.append(scene_failure(path, exc))
             continue
@@ -114,17 +108,6 @@ def _alternatives(scene, n_modes, elements, warnings) -> dict:
     if shear is not None:
         out["other_shear_source"] = shear
     return out
-
-
-def _sensitivity(scene, n_modes, samples, seed, jobs, as_json) -> dict:
-    from flexlink.output.sensitivity_report import sensitivity_dict
-    from flexlink.studies.sensitivity import STUDY_ELEMENTS, end_points, interval
-
-    progress = not as_json
-    points = end_points(scene.path, n_modes, STUDY_ELEMENTS, jobs, progress)
-    spread = interval(scene.path, samples, seed, n_modes, STUDY_ELEMENTS, jobs, progress)
-    reference = dict(scene.reference.columns) if scene.reference else {}
-    return sensitivity_dict(points, spread, reference, STUDY_ELEMENTS)
 
 
 def _extra_lines(summary: dict) -> str:

@@ -9,6 +9,7 @@ import click
 
 from flexlink.commands._failures import names_scene
 from flexlink.commands._options import dumps, json_option, out_option
+from flexlink.commands._sensitivity import scene_sensitivity, sensitivity_options
 
 
 @click.command("report")
@@ -25,13 +26,16 @@ from flexlink.commands._options import dumps, json_option, out_option
               show_default=True, help="Eigen solver.")
 @click.option("--cycle-poses", default=120, show_default=True, type=click.IntRange(0, 100000),
               help="Crank angles of each scene's cycle map (0: no cycle map).")
+@sensitivity_options
 @json_option
 @out_option
 @names_scene("scenes")
-def command(scenes, n_modes, elements, tol, method, cycle_poses, as_json, out_dir):
+def command(scenes, n_modes, elements, tol, method, cycle_poses, sensitivity, samples, seed, jobs,
+            as_json, out_dir):
     """Write OUT/report.html: for each SCENE (a scene file or a folder of them) its pose and
-    drawing, frequencies against the reference columns, assumptions, mesh, animated mode
-    shapes, cycle map, and links to the .vtu/.pvd files written beside it in OUT/<scene>/.
+    drawing, frequencies against the reference columns, assumptions (with --sensitivity their
+    end points and the Monte Carlo 95 % interval), mesh, animated mode shapes, cycle map, and
+    links to the .vtu/.pvd files written beside it in OUT/<scene>/.
     The page is self-contained: it needs no network to be viewed. A scene that fails is
     listed on the page and on stderr; the others are still reported (exit status 2)."""
     import importlib.metadata
@@ -68,10 +72,13 @@ def command(scenes, n_modes, elements, tol, method, cycle_poses, as_json, out_di
             scene = load_scene(path)
             mesh = choose_mesh(scene, n_modes, elements, DEFAULT_TOL if tol is None else tol)
             result = analyze(scene, n_modes, mesh.elements, method)
+            summary = {**case_summary(result, n_modes), "warnings": list(result.warnings)}
+            if sensitivity:
+                summary["sensitivity"] = scene_sensitivity(scene, n_modes, samples, seed, jobs,
+                                                           as_json)
         except FlexlinkError as exc:  # the other scenes still get their report
             failures.append(scene_failure(path, exc))
             continue
-        summary = {**case_summary(result, n_modes), "warnings": list(result.warnings)}
         exported = export_case(result, summary, out, settings)
         written += exported["vtu"] + exported["pvd"]
         cycle, reason = None, None

@@ -147,6 +147,39 @@ def assumptions_section(page: dict, figures: list) -> str:
     return "<h3>Assumptions</h3>" + _table(["field", "value", "note"], rows, 99)
 
 
+def sensitivity_section(page: dict, figures: list) -> str:
+    """Each assumed input at both ends of its range, and the Monte Carlo 95 % interval with the
+    reference values inside it marked (``flexlink report --sensitivity``)."""
+    data = page["summary"].get("sensitivity")
+    if not data:
+        return ""
+    n = len(data["nominal_Hz"])
+    modes = [f"f{i + 1} [Hz]" for i in range(n)]
+    rows = [["nominal", "", *[_number(f) for f in data["nominal_Hz"]]]]
+    for row in data["inputs"]:
+        for end in ("low", "high"):
+            rows.append([_e(row["field"]) if end == "low" else "", _e(row[end]),
+                         *[_number(f) for f in row[f"{end}_Hz"]]])
+    mc = data["monte_carlo"]
+    interval = [["95 % interval", "", *[f"{lo:.1f} - {hi:.1f}"
+                                        for lo, hi in zip(mc["low_Hz"], mc["high_Hz"])]]]
+    for column, inside in mc["inside"].items():
+        values = page["summary"]["modes"]
+        interval.append([f"{_e(column)} inside?", "", *[
+            ("yes" if flag else "no") + f" ({row.get(f'{column}_Hz', float('nan')):.0f})"
+            for flag, row in zip(inside, values)]])
+    reasons = "".join(f"<li><code>{_e(r['field'])}</code>: {_e(r['low'])} to {_e(r['high'])}: "
+                      f"{_e(r['reason'])}</li>" for r in data["inputs"])
+    return ("<h3>Sensitivity to the assumptions</h3>"
+            f"<p>Each assumed input at both ends of its range, the others nominal "
+            f"({data['elements_per_link']} elements/link).</p>"
+            + _table(["input", "end", *modes], rows, 2)
+            + f"<p>Monte Carlo over every range together with the Table I spreads "
+            f"({mc['samples']} samples, seed {mc['seed']}, {mc['failed']} failed):</p>"
+            + _table(["", "", *modes], interval, 2)
+            + f'<details><summary>Ranges and their reasons</summary><ul>{reasons}</ul></details>')
+
+
 def mesh_section(page: dict, figures: list) -> str:
     mesh = page["mesh"]
     parts = [f"<h3>Mesh</h3><p>{_e(mesh['describe'])}.</p>"]
@@ -214,7 +247,8 @@ def _failures(messages) -> str:
             + "".join(f"<li>{_e(m)}</li>" for m in messages) + "</ul></div>")
 
 
-SECTIONS = (pose_section, frequency_section, assumptions_section, mesh_section, modes_section,
+SECTIONS = (pose_section, frequency_section, assumptions_section, sensitivity_section,
+            mesh_section, modes_section,
             cycle_section, files_section)
 
 
