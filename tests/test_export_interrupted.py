@@ -87,3 +87,18 @@ def test_export_keeps_other_commands_files_and_drops_its_own_old_ones(tmp_path):
     names = sorted(p.name for p in (out / "case3").iterdir())
     assert "modes.json" in names and "modes.csv" in names  # the modes command's
     assert not any(n.startswith("case3_mode2") for n in names)  # the 2-mode export's
+
+
+def test_report_keeps_the_pictures_of_an_earlier_export(tmp_path):
+    """The main job runs export, then report into the same folder: report writes only the .vtu
+    and .pvd files, so export's pictures and plot stay (and its old .vtu/.pvd are replaced)."""
+    out = tmp_path / "out"
+    export = CliRunner().invoke(main, ["export", str(CASE3), "-e", "2", "-n", "2", "--out", str(out)])
+    assert export.exit_code == 0, export.output
+    pictures = sorted(p.name for p in (out / "case3").glob("*.png"))
+    assert "case3_mode1.png" in pictures and "case3_frequencies.png" in pictures
+    report = CliRunner().invoke(main, ["report", str(CASE3), "-e", "2", "-n", "1",
+                                       "--cycle-poses", "0", "--out", str(out)])
+    assert report.exit_code == 0, report.output
+    assert sorted(p.name for p in (out / "case3").glob("*.png")) == pictures
+    assert not (out / "case3" / "case3_mode2.pvd").exists()  # the report wrote one mode

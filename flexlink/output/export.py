@@ -60,17 +60,24 @@ def export_case(result: CaseResult, summary: dict, out: Path, settings: ExportSe
     kinds vtu, pvd, frames, pictures, plot (paths as strings, in the final folder)."""
     stem = case_stem(result)
     folder = out / stem
-    with staged_folder(folder, keep=lambda name: not _is_export_file(stem, name)) as stage:
+    with staged_folder(folder, keep=lambda name: not _is_export_file(stem, name, settings)) \
+            as stage:
         files = _write_case(result, summary, stage, stem, settings)
     return {"folder": str(folder),
             **{k: [str(folder / p.relative_to(stage)) for p in v] for k, v in files.items()}}
 
 
-def _is_export_file(stem: str, name: str) -> bool:
-    """Whether ``name`` in a scene's folder is one of export's files (any number of modes);
-    other commands (``modes``, ``cycle``...) write into the same folder."""
-    return (name in (f"{stem}.vtu", f"{stem}_modes.png", f"{stem}_frequencies.png")
-            or re.fullmatch(rf"{re.escape(stem)}_mode\d+(\.pvd|\.png)?", name) is not None)
+def _is_export_file(stem: str, name: str, settings: ExportSettings) -> bool:
+    """Whether ``name`` in a scene's folder is a file of a kind this export writes (any number
+    of modes), so the old one goes; everything else is carried over: other commands' files
+    (``modes``, ``cycle``...), and the pictures or plot of an earlier export when this one
+    writes none (``flexlink report`` writes only the .vtu and .pvd files)."""
+    if name == f"{stem}.vtu" or re.fullmatch(rf"{re.escape(stem)}_mode\d+(\.pvd)?", name):
+        return True
+    if settings.pictures and (name == f"{stem}_modes.png"
+                              or re.fullmatch(rf"{re.escape(stem)}_mode\d+\.png", name)):
+        return True
+    return settings.plot and name == f"{stem}_frequencies.png"
 
 
 def _write_case(result: CaseResult, summary: dict, folder: Path, stem: str,
