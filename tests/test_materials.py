@@ -88,3 +88,21 @@ def test_fibre_fraction_outside_open_unit_interval_is_refused(vf):
     m = load_constituent("polyester")
     with pytest.raises(InputError, match="fiber_volume_fraction"):
         rule_of_mixtures(m, m, vf)
+
+
+def test_a_constituent_file_is_read_again_when_it_changes_and_a_folder_is_no_file(tmp_path):
+    import os
+
+    from flexlink.errors import InputError
+    from flexlink.materials.mixtures import shipped_materials
+    path = tmp_path / "resin.toml"
+    text = (shipped_materials() / "polyester.toml").read_text()
+    path.write_text(text)
+    first = load_constituent(str(path))
+    assert load_constituent(str(path)) is first  # kept while the file is unchanged
+    path.write_text(text.replace('mean = "1.25 g/cm^3"', 'mean = "1.35 g/cm^3"'))
+    os.utime(path, ns=(0, path.stat().st_mtime_ns + 10**9))  # a new mtime even on coarse clocks
+    assert load_constituent(str(path)).density == pytest.approx(1350.0)
+    (tmp_path / "folder.toml").mkdir()
+    with pytest.raises(InputError, match="no material file"):
+        load_constituent(str(tmp_path / "folder.toml"))

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import dataclasses
 import logging
+import warnings
 
 import numpy as np
 import scipy.linalg as la
@@ -94,26 +95,23 @@ def _sparse(K, M, k, shift):
 def _condense_massless(Kr, Mr):
     """Exact static condensation of DOFs with no mass (their rows of M are zero, M being PSD):
     K_c = K_mm - K_ms K_ss^-1 K_sm, and u_s = -K_ss^-1 K_sm u_m. Returns (K_c, M_c, expand) or
-    None when every DOF has mass."""
+    None when every DOF has mass. Dense (K, M) stay dense, sparse ones sparse."""
     massless = Mr.diagonal() <= 0
     if not massless.any():
         return None
     s, m = np.flatnonzero(massless), np.flatnonzero(~massless)
     if m.size == 0:
         raise NumericalError("no DOF has mass: the model has no inertia to vibrate with")
-    Kss = Kr[s][:, s].tocsc()
-    Ksm = Kr[s][:, m].tocsc()
-    try:
-        lu = spla.splu(Kss)
-    except RuntimeError:
-        lu = None
-    if lu is None or not np.all(np.isfinite(lu.U.diagonal())) or np.any(lu.U.diagonal() == 0):
-        raise NumericalError(f"{s.size} DOF(s) have neither mass nor stiffness (first: reduced "
-                             f"DOF {s[0]}): they are free to move without energy; give the "
-                             "joint a mass or a spring")
-    X = lu.solve(Ksm.toarray())  # K_ss^-1 K_sm, dense (n_s x n_m): few massless DOFs expected
-    Kc = Kr[m][:, m] - sp.csr_matrix(Ksm.T @ X)
-    Kc = ((Kc + Kc.T) / 2).tocsr()  # symmetric to round-off; make it exact for the solvers
+    dense = not sp.issparse(Kr)
+    X = (_dense_static(Kr, s, m) if dense else _sparse_static(Kr, s, m))  # K_ss^-1 K_sm (n_s x n_m)
+    Ksm = Kr[np.ix_(s, m)] if dense else Kr[s][:, m].toarray()
+    if dense:
+        Kc = Kr[np.ix_(m, m)] - Ksm.T @ X
+        Kc, Mc = (Kc + Kc.T) / 2, Mr[np.ix_(m, m)]
+    else:
+        Kc = Kr[m][:, m] - sp.csr_matrix(Ksm.T @ X)
+        Kc, Mc = ((Kc + Kc.T) / 2).tocsr(), Mr[m][:, m].tocsr()
+    # (Kc symmetric to round-off; made exact for the solvers)
     log.info("condensed %d massless DOF(s) statically (exact for zero mass)", s.size)
 
     def expand(vecs):
@@ -121,7 +119,35 @@ def _condense_massless(Kr, Mr):
         full[m], full[s] = vecs, -X @ vecs
         return full
 
-    return Kc, Mr[m][:, m].tocsr(), expand
+    return Kc, Mc, expand
+
+
+def _no_energy(s) -> NumericalError:
+    return NumericalError(f"{s.size} DOF(s) have neither mass nor stiffness (first: reduced "
+                          f"DOF {s[0]}): they are free to move without energy; give the "
+                          "joint a mass or a spring")
+
+
+def _sparse_static(Kr, s, m) -> np.ndarray:
+    """K_ss^-1 K_sm, dense (few massless DOFs expected), by sparse LU."""
+    try:
+        lu = spla.splu(Kr[s][:, s].tocsc())
+    except RuntimeError:
+        lu = None
+    if lu is None or not np.all(np.isfinite(lu.U.diagonal())) or np.any(lu.U.diagonal() == 0):
+        raise _no_energy(s)
+    return lu.solve(Kr[s][:, m].toarray())
+
+
+def _dense_static(Kr, s, m) -> np.ndarray:
+    """K_ss^-1 K_sm by dense LU; an exactly zero or non-finite pivot means no stiffness."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", la.LinAlgWarning)  # the pivot check below says it
+        lu, piv = la.lu_factor(Kr[np.ix_(s, s)])
+    pivots = np.diagonal(lu)
+    if not np.all(np.isfinite(pivots)) or np.any(pivots == 0):
+        raise _no_energy(s)
+    return la.lu_solve((lu, piv), Kr[np.ix_(s, m)])
 
 
 def _norm1(A) -> float:
@@ -160,14 +186,14 @@ class Prepared:
 
 
 def prepare(K, M, T=None) -> Prepared:
-    """Reduce (K, M) by u = T q and condense the massless DOFs (``_condense_massless``)."""
-    if T is None and isinstance(K, np.ndarray) and isinstance(M, np.ndarray) \
-            and np.all(M.diagonal() > 0):
-        # a sweep's small dense matrices stay dense: converting them to CSR and back costs
-        # more than their eigen solve
-        return Prepared(K, M, K, M, None)
-    Kr, Mr = (K, M) if T is None else ((T.T @ K @ T).tocsr(), (T.T @ M @ T).tocsr())
-    Kr, Mr = sp.csr_matrix(Kr), sp.csr_matrix(Mr)
+    """Reduce (K, M) by u = T q and condense the massless DOFs (``_condense_massless``).
+    Dense (K, M) with T None stay dense: converting small matrices to CSR and back costs more
+    than their eigen solve."""
+    if T is None and isinstance(K, np.ndarray) and isinstance(M, np.ndarray):
+        Kr, Mr = K, M
+    else:
+        Kr, Mr = (K, M) if T is None else ((T.T @ K @ T).tocsr(), (T.T @ M @ T).tocsr())
+        Kr, Mr = sp.csr_matrix(Kr), sp.csr_matrix(Mr)
     if Kr.shape[0] == 0:
         raise NumericalError("the model has no free DOFs: every DOF is constrained")
     condensed = _condense_massless(Kr, Mr)
@@ -297,7 +323,8 @@ def label(vals, zero: float, lambda_ref: float, zero_tol: float, refined: bool,
 
 
 def solve_modes(K, M, n_modes: int, *, T=None, lambda_ref: float, method: str = "auto",
-                zero_tol: float = 1e-6, backward_tol: float = 1e-10, energy=None) -> ModalResult:
+                zero_tol: float = 1e-6, backward_tol: float = 1e-10, energy=None,
+                reduced: bool = False) -> ModalResult:
     """Lowest ``n_modes`` modes of (K, M), optionally reduced by u = T q: ``prepare``,
     ``eigen_solve``, ``check``, then (optionally) ``refined_eigenvalues`` and ``label``.
 
@@ -308,9 +335,10 @@ def solve_modes(K, M, n_modes: int, *, T=None, lambda_ref: float, method: str = 
     for full-size shapes without cancellation (``energy.twice_strain_energy``); the eigenvalues
     are then its Rayleigh quotients, free of the round-off of K's large entries. Raises
     NumericalError on NaN, clearly negative eigenvalues, a backward error above
-    ``backward_tol`` or lost M-orthogonality.
+    ``backward_tol`` or lost M-orthogonality. ``reduced``: K and M are already T^T K T and
+    T^T M T (``assembly.assemble_reduced_dense``); T then only maps the shapes back.
     """
-    p = prepare(K, M, T)
+    p = prepare(K, M, None if reduced else T)
     k = min(n_modes, p.n_solved)
     method = pick_method(method, p.n_solved, k)
     lambda_max = p.lambda_max

@@ -20,7 +20,8 @@ from collections.abc import Iterable, Mapping
 import numpy as np
 
 from flexlink.fe.pose import in_plane_eigen_scale
-from flexlink.fe.assembly import assemble, placed_link_entries, point_mass_entries, spring_entries
+from flexlink.fe.assembly import (assemble, dense_slots, dense_sum, placed_link_entries,
+                                  point_mass_entries, reduced_columns, spring_entries)
 from flexlink.fe.assembly import reduction as rigid_reduction
 from flexlink.fe.craig_bampton import CUTOFF, CraigBamptonPlan, lowest_fixed_interface
 from flexlink.errors import InputError
@@ -66,17 +67,7 @@ class _DensePlan:
     for K and M together."""
 
     def __init__(self, model: FrameModel, T):
-        n_full = model.n_dofs
-        if T is None:
-            column, self.n = np.arange(n_full), n_full
-        else:
-            T = T.tocsr()
-            if not (np.all(T.data == 1.0) and np.all(np.diff(T.indptr) <= 1)):
-                raise AssertionError("reduction must map each DOF to at most one reduced DOF")
-            column = np.full(n_full, -1)
-            column[np.diff(T.indptr) == 1] = T.indices
-            self.n = T.shape[1]
-        self.column = column
+        self.column, self.n = reduced_columns(T, model.n_dofs)
         self.spare = self.n * self.n
         self.n_links = len(model.links)
 
@@ -106,12 +97,10 @@ class _DensePlan:
         return link_entries(link.length, link.elements, s)
 
     def slots(self, rows, cols) -> np.ndarray:
-        r, c = self.column[rows], self.column[cols]
-        return np.where((r >= 0) & (c >= 0), r * self.n + c, self.spare)
+        return dense_slots(self.column, self.n, rows, cols)
 
     def scatter(self, slots, values) -> np.ndarray:
-        summed = np.bincount(slots, weights=values, minlength=self.spare + 1)
-        return summed[:self.spare].reshape(self.n, self.n)
+        return dense_sum(slots, values, self.n)
 
     def _source_values(self, model: FrameModel) -> np.ndarray:
         """(2, shares): each share's local K and M value. They depend on the link lengths only,

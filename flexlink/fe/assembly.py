@@ -117,6 +117,50 @@ def assemble(model: FrameModel) -> tuple[sp.csr_matrix, sp.csr_matrix]:
     return K, M
 
 
+def reduced_columns(T, n_full: int) -> tuple[np.ndarray, int]:
+    """(column (n_full,), n_reduced): each full DOF's reduced DOF under u = T q, -1 where it is
+    grounded. T (from ``reduction``, None: nothing rigid) is 0/1 with at most one 1 per row,
+    so T^T A T only renumbers and drops A's entries."""
+    if T is None:
+        return np.arange(n_full), n_full
+    T = T.tocsr()
+    if not (np.all(T.data == 1.0) and np.all(np.diff(T.indptr) <= 1)):
+        raise AssertionError("reduction must map each DOF to at most one reduced DOF")
+    column = np.full(n_full, -1)
+    column[np.diff(T.indptr) == 1] = T.indices
+    return column, T.shape[1]
+
+
+def dense_slots(column: np.ndarray, n: int, rows, cols) -> np.ndarray:
+    """Flat index r n + c in the reduced n x n matrix of each full entry (rows, cols), or n^2
+    (a spare slot, dropped) where either DOF is grounded; ``column`` from ``reduced_columns``."""
+    r, c = column[rows], column[cols]
+    return np.where((r >= 0) & (c >= 0), r * n + c, n * n)
+
+
+def dense_sum(slots, values, n: int) -> np.ndarray:
+    """The n x n dense matrix of ``values`` summed into their ``dense_slots``."""
+    summed = np.bincount(slots, weights=values, minlength=n * n + 1)
+    return summed[:n * n].reshape(n, n)
+
+
+def assemble_reduced_dense(model: FrameModel, T) -> tuple[np.ndarray, np.ndarray]:
+    """Dense (T^T K T, T^T M T) of ``assemble``'s K and M, with T from ``reduction``, scattered
+    straight from the element entries (no sparse matrix built): for the small models the dense
+    eigen solver takes, where scipy.sparse's bookkeeping costs more than the solve."""
+    column, n = reduced_columns(T, model.n_dofs)
+    rows, cols, values = rotated_entries(*placed_link_entries(model))
+    k_rows, k_cols, k_vals = spring_entries(model)
+    m_rows, m_cols, m_vals = point_mass_entries(model)
+    link = dense_slots(column, n, rows, cols)
+    size = n * n + 1  # M's slots follow K's: one bincount for both
+    slots = np.concatenate([link, dense_slots(column, n, k_rows, k_cols),
+                            link + size, dense_slots(column, n, m_rows, m_cols) + size])
+    summed = np.bincount(slots, weights=np.concatenate([values[0], k_vals, values[1], m_vals]),
+                         minlength=2 * size)
+    return summed[:n * n].reshape(n, n), summed[size:size + n * n].reshape(n, n)
+
+
 def reduction(model: FrameModel) -> sp.csr_matrix | None:
     """T (n_full x n_reduced) with u = T q that enforces the rigid (infinite) springs exactly:
     tied DOFs share one unknown, grounded DOFs have none. None when nothing is rigid."""

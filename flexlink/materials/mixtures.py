@@ -30,6 +30,8 @@ from __future__ import annotations
 
 import dataclasses
 import functools
+import os
+import stat as statmode
 import tomllib
 from importlib import resources
 from importlib.resources.abc import Traversable
@@ -96,20 +98,29 @@ class Lamina:
 def load_constituent(name_or_path: str | Path) -> Constituent:
     """Read the shipped material ``<name>`` (``materials/<name>.toml``) or a given .toml path
     into a Constituent."""
-    path: Traversable = Path(name_or_path)
-    if path.suffix != ".toml":
-        path = shipped_materials() / f"{name_or_path}.toml"
+    path = _material_path(str(name_or_path))
+    try:  # one stat: whether the file is there, and the cache key below
+        stat = os.stat(str(path))
+    except OSError:  # no such file, or inside a zipped package (no file to stat)
+        stat = None
+    if stat is not None and statmode.S_ISREG(stat.st_mode):
+        return _cached_constituent(str(path), stat.st_mtime_ns, stat.st_size)
     if not path.is_file():
         shipped = shipped_materials()
         known = sorted(p.name.removesuffix(".toml") for p in shipped.iterdir()
                        if p.name.endswith(".toml")) if shipped.is_dir() else []
         raise InputError(f"no material file {path}", field="material",
                          expected=f"one of {known} or a path to a .toml file")
-    try:
-        stat = Path(str(path)).stat()
-    except OSError:  # e.g. inside a zipped package: no file to stat, read it every time
-        return _read_constituent(path)
-    return _cached_constituent(str(path), stat.st_mtime_ns, stat.st_size)
+    return _read_constituent(path)  # e.g. inside a zipped package: read it every time
+
+
+@functools.lru_cache(maxsize=64)
+def _material_path(name_or_path: str) -> Traversable:
+    """Where ``load_constituent`` looks for ``name_or_path``: a .toml path as given, else the
+    shipped ``<name>.toml``. Cached: finding the shipped folder costs an import attempt, and a
+    calibration asks for the same few names thousands of times."""
+    path = Path(name_or_path)
+    return path if path.suffix == ".toml" else shipped_materials() / f"{name_or_path}.toml"
 
 
 @functools.lru_cache(maxsize=64)
