@@ -103,6 +103,17 @@ def not_blank(picture: np.ndarray) -> None:
     assert background < 0.97 * picture.shape[0] * picture.shape[1]
 
 
+def most_changed(visit, page, plot, first, looks: int = 6) -> int:
+    """The most pixels of ``plot`` changed from ``first`` over ``looks`` looks 150 ms apart
+    (a fifth of the drawn period and more): on a busy machine one look may land on a frame
+    close to the first."""
+    best = 0
+    for _ in range(looks):
+        page.wait_for_timeout(150)
+        best = max(best, changed(first, visit.pixels(plot)))
+    return best
+
+
 def test_desktop_page_animates_and_reacts_without_errors_or_network(browser, report, tmp_path):
     visit = Visit(browser, report, DESKTOP)
     page = visit.page
@@ -110,9 +121,7 @@ def test_desktop_page_animates_and_reacts_without_errors_or_network(browser, rep
     page.locator(plot).scroll_into_view_if_needed()
     page.wait_for_function("window.flexlinkReport.players.case1.frames > 3")
     first = visit.pixels(plot)
-    page.wait_for_timeout(300)  # about a fifth of the drawn period
-    second = visit.pixels(plot)
-    assert changed(first, second) > 200, "the animation did not move"
+    assert most_changed(visit, page, plot, first) > 200, "the animation did not move"
 
     page.click("#player-case1 button.play")  # pause: the picture holds still
     assert page.inner_text("#player-case1 button.play") == "Play"
@@ -159,8 +168,7 @@ def test_phone_width_page_fits_and_reads(browser, report, tmp_path):
     page.locator("#modeplot-case1").scroll_into_view_if_needed()
     page.wait_for_function("window.flexlinkReport.players.case1.frames > 3")
     first = visit.pixels("#modeplot-case1")
-    page.wait_for_timeout(300)
-    assert changed(first, visit.pixels("#modeplot-case1")) > 100
+    assert most_changed(visit, page, "#modeplot-case1", first) > 100, "the animation did not move"
     shot = tmp_path / "phone.png"
     page.screenshot(path=str(shot))
     from PIL import Image
