@@ -8,21 +8,14 @@ import sys
 import click
 
 from flexlink.commands._failures import names_scene
-from flexlink.commands._options import dumps, json_option, out_option
+from flexlink.commands._options import dumps, json_option, mesh_options, out_option
 
 
 @click.command("export")
 @click.argument("scenes", nargs=-1, required=True, type=click.Path())
 @click.option("-n", "--modes", "n_modes", default=4, show_default=True,
               type=click.IntRange(1, 200), help="Number of elastic modes to export.")
-@click.option("-e", "--elements", default=None, type=click.IntRange(1, 100000),
-              help="Elements per link (default: the scene's mesh.elements_per_link if it pins "
-                   "one, else the coarsest mesh meeting --tol).")
-@click.option("--tol", default=None, type=click.FloatRange(0, 1, min_open=True),
-              help="Relative frequency tolerance of the default mesh (as in `flexlink modes`) "
-                   "[default: 1e-6].")
-@click.option("--method", type=click.Choice(["auto", "dense", "sparse"]), default="auto",
-              show_default=True, help="Eigen solver.")
+@mesh_options()
 @click.option("--subdivide", default=4, show_default=True, type=click.IntRange(1, 64),
               help="Segments per element (the element's own shape functions between nodes).")
 @click.option("--phases", default=24, show_default=True, type=click.IntRange(2, 1000),

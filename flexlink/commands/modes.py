@@ -6,7 +6,7 @@ import logging
 
 import click
 
-from flexlink.commands._options import dumps, json_option, out_option
+from flexlink.commands._options import dumps, json_option, mesh_options, out_option
 from flexlink.commands._sensitivity import scene_sensitivity, sensitivity_options
 
 
@@ -14,15 +14,7 @@ from flexlink.commands._sensitivity import scene_sensitivity, sensitivity_option
 @click.argument("scenes", nargs=-1, required=True, type=click.Path())
 @click.option("-n", "--modes", "n_modes", default=4, show_default=True,
               type=click.IntRange(1, 200), help="Number of elastic modes to report.")
-@click.option("-e", "--elements", default=None, type=click.IntRange(1, 100000),
-              help="Elements per link (default: the scene's mesh.elements_per_link if it pins "
-                   "one, else the coarsest mesh meeting --tol).")
-@click.option("--tol", default=None, type=click.FloatRange(0, 1, min_open=True),
-              help="Relative frequency tolerance of the default mesh: the coarsest of 8, 16, "
-                   "32, ... elements/link whose Richardson error estimate meets it "
-                   "[default: 1e-6].")
-@click.option("--method", type=click.Choice(["auto", "dense", "sparse"]), default="auto",
-              show_default=True, help="Eigen solver.")
+@mesh_options()
 @sensitivity_options
 @json_option
 @out_option

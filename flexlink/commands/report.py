@@ -8,7 +8,7 @@ import logging
 import click
 
 from flexlink.commands._failures import names_scene
-from flexlink.commands._options import dumps, json_option, out_option
+from flexlink.commands._options import dumps, json_option, mesh_options, out_option
 from flexlink.commands._sensitivity import scene_sensitivity, sensitivity_options
 
 
@@ -16,14 +16,7 @@ from flexlink.commands._sensitivity import scene_sensitivity, sensitivity_option
 @click.argument("scenes", nargs=-1, required=True, type=click.Path())
 @click.option("-n", "--modes", "n_modes", default=4, show_default=True,
               type=click.IntRange(1, 50), help="Elastic modes per scene.")
-@click.option("-e", "--elements", default=None, type=click.IntRange(1, 100000),
-              help="Elements per link (default: the scene's mesh.elements_per_link if it pins "
-                   "one, else the coarsest mesh meeting --tol).")
-@click.option("--tol", default=None, type=click.FloatRange(0, 1, min_open=True),
-              help="Relative frequency tolerance of the default mesh (as in `flexlink modes`) "
-                   "[default: 1e-6].")
-@click.option("--method", type=click.Choice(["auto", "dense", "sparse"]), default="auto",
-              show_default=True, help="Eigen solver.")
+@mesh_options()
 @click.option("--cycle-poses", default=120, show_default=True, type=click.IntRange(0, 100000),
               help="Crank angles of each scene's cycle map (0: no cycle map).")
 @sensitivity_options
