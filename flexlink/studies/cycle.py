@@ -148,6 +148,23 @@ def modal_map_csv(result: ModalMap) -> str:
     return "\n".join(lines) + "\n"
 
 
+def cycle_axes(ax, deg: np.ndarray, mu90: dict, hits, title: str) -> None:
+    """What every cycle plot shows besides its lines: the mu = 90 deg poses (vertical), the
+    resonating harmonics (horizontal, red), one revolution of crank angle [deg], the title and
+    the legend."""
+    for k, (pair, angles) in enumerate(mu90.items()):
+        for i, a in enumerate(angles):
+            ax.axvline(math.degrees(a), color="0.4", ls=":" if k else "--", lw=1,
+                       label=f"mu = 90 deg ({pair})" if i == 0 else None)
+    for f in sorted({h.frequency for h in hits}):
+        ax.axhline(f, color="red", ls="-.", lw=0.8)
+    ax.set_xlabel("crank angle [deg]")
+    ax.set_ylabel("natural frequency [Hz]")
+    ax.set_xlim(deg[0], deg[0] + 360)
+    ax.set_title(title)
+    ax.legend(fontsize=8)
+
+
 def plot_map(result: ModalMap, path, crank_speed: float | None = None,
              hits: list[Resonance] = ()) -> None:
     """PNG of frequency against input angle, one line per mode; vertical lines mark the poses
@@ -164,18 +181,8 @@ def plot_map(result: ModalMap, path, crank_speed: float | None = None,
     deg = np.degrees(result.q)
     for j in range(result.frequencies.shape[1]):
         ax.plot(deg, result.frequencies[:, j], label=f"mode {j + 1}")
-    for k, (pair, angles) in enumerate(result.mu90.items()):
-        for i, a in enumerate(angles):
-            ax.axvline(math.degrees(a), color="0.4", ls=":" if k else "--", lw=1,
-                       label=f"mu = 90 deg ({pair})" if i == 0 else None)
-    for f in sorted({h.frequency for h in hits}):
-        ax.axhline(f, color="red", ls="-.", lw=0.8)
-    ax.set_xlabel("crank angle [deg]")
-    ax.set_ylabel("natural frequency [Hz]")
-    ax.set_xlim(deg[0], deg[0] + 360)
-    ax.set_title(result.scene + (f" (crank {crank_speed * 60 / (2 * math.pi):g} rev/min)"
-                                 if crank_speed else ""))
-    ax.legend(fontsize=8)
+    cycle_axes(ax, deg, result.mu90, hits, result.scene + (
+        f" (crank {crank_speed * 60 / (2 * math.pi):g} rev/min)" if crank_speed else ""))
     ax.grid(alpha=0.3)
     fig.tight_layout()
     buffer = io.BytesIO()

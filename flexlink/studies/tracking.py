@@ -29,7 +29,7 @@ from flexlink.analysis.modal import pose_modes
 from flexlink.fe.model import layout
 from flexlink.kinematics.linkage import crossings
 from flexlink.scene import Scene
-from flexlink.studies.cycle import kinematic_cycle, transmission_angles
+from flexlink.studies.cycle import cycle_axes, kinematic_cycle, transmission_angles
 
 SPARE = 2  # modes solved beyond the tracked lines at every pose
 VEER_GAP = 0.1
@@ -207,18 +207,8 @@ def plot_tracked(result: TrackedMap, path, crank_speed: float | None = None, hit
             y = [f[e.pose, [e.lines[0] - 1, e.lines[1] - 1]].mean() for e in events]
             ax.scatter(x, y, marker=marker, s=60, color="k", facecolors="none" if marker == "o"
                        else None, zorder=3, label=kind)
-    for k, (pair, angles) in enumerate(result.mu90.items()):
-        for i, a in enumerate(angles):
-            ax.axvline(math.degrees(a), color="0.4", ls=":" if k else "--", lw=1,
-                       label=f"mu = 90 deg ({pair})" if i == 0 else None)
-    for h in sorted({h.frequency for h in hits}):
-        ax.axhline(h, color="red", ls="-.", lw=0.8)
-    ax.set_xlabel("crank angle [deg]")
-    ax.set_ylabel("natural frequency [Hz]")
-    ax.set_xlim(deg[0], deg[0] + 360)
-    ax.set_title(result.scene + " (modes tracked by MAC)" + (
+    cycle_axes(ax, deg, result.mu90, hits, result.scene + " (modes tracked by MAC)" + (
         f", crank {crank_speed * 60 / (2 * math.pi):g} rev/min" if crank_speed else ""))
-    ax.legend(fontsize=8)
     ax.grid(alpha=0.3)
     fig.tight_layout()
     fig.savefig(path, dpi=120)
