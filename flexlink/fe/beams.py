@@ -72,3 +72,26 @@ def pinned_bending_frequencies(section, length: float, elements: int, n: int = 1
     if len(bending) < n:
         raise NumericalError(f"found {len(bending)} bending modes of the {n} asked for")
     return np.sqrt(lam[bending[:n]]) / (2 * math.pi)
+
+
+def timoshenko_pinned(section, length: float, n: int = 1) -> float:
+    """Closed-form flexural frequency [Hz] of mode ``n`` of a pinned-pinned Timoshenko beam:
+    with w = W sin(a x), psi = Psi cos(a x), a = n pi / L, the equations
+    kGA (w'' - psi') = rhoA w_tt and EI psi'' + kGA (w' - psi) = rhoI psi_tt give
+    det [[kGA a^2 - rhoA w^2, -kGA a], [-kGA a, EI a^2 + kGA - rhoI w^2]] = 0, a quadratic
+    in w^2 whose lower root is the flexural mode."""
+    a = n * math.pi / length
+    s = section
+    kGA, EI, rA, rI = s.kGA, s.EI, s.mass_per_length, s.rotary_inertia
+    # (kGA a^2 - rA x)(EI a^2 + kGA - rI x) - (kGA a)^2 = 0, x = omega^2
+    c2 = rA * rI
+    c1 = -(rA * (EI * a * a + kGA) + rI * kGA * a * a)
+    c0 = kGA * a * a * EI * a * a
+    # the lower root written without cancellation (c2 c0 << c1^2 on slender beams)
+    x = 2 * c0 / (-c1 + math.sqrt(c1 * c1 - 4 * c2 * c0))
+    return math.sqrt(x) / (2 * math.pi)
+
+
+def euler_bernoulli_pinned(section, length: float, n: int = 1) -> float:
+    """Closed-form frequency [Hz] of mode ``n`` of a pinned-pinned Euler-Bernoulli beam."""
+    return (n * math.pi / length) ** 2 * math.sqrt(section.EI / section.mass_per_length) / (2 * math.pi)

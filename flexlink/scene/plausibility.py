@@ -9,12 +9,11 @@ that really means it sets ``[checks] plausibility = "warn"``.
 from __future__ import annotations
 
 import dataclasses
-import functools
 import logging
 import math
 
 from flexlink.errors import InputError
-from flexlink.fe.beams import pinned_bending_frequencies
+from flexlink.fe.beams import euler_bernoulli_pinned, timoshenko_pinned
 
 log = logging.getLogger(__name__)
 
@@ -116,37 +115,32 @@ def timoshenko_drop(section, length: float) -> float:
     return 1.0 - 1.0 / math.sqrt(1.0 + a * (1.0 + section.E / (5.0 / 6.0 * section.G)))
 
 
-WARNING_ELEMENTS = 32  # per link for the computed drop: Timoshenko's O(h^2) error ~1e-4 there
-
-
-@functools.lru_cache(maxsize=256)
-def computed_timoshenko_drop(section, length: float) -> float:
+def exact_timoshenko_drop(section, length: float) -> float:
     """1 - f_T / f_EB: the relative drop of the link's first bending frequency as a
-    pinned-pinned beam when its elements get shear strain and rotary inertia, both computed
-    with flexlink's own elements (``fe.beams``; test_timoshenko.py checks them against the
-    closed forms). Cached: sections are immutable and a sweep meets the same link many times."""
-    f = [pinned_bending_frequencies(dataclasses.replace(section, beam=theory), length,
-                                    WARNING_ELEMENTS)[0]
-         for theory in ("euler-bernoulli", "timoshenko")]
-    return 1.0 - f[1] / f[0]
+    pinned-pinned beam [-] once shear strain and rotary inertia count, from the exact
+    solutions of both theories (``fe.beams.timoshenko_pinned``, ``euler_bernoulli_pinned``),
+    which flexlink's Timoshenko and Euler-Bernoulli elements converge to
+    (tests/test_timoshenko.py). Exact where ``timoshenko_drop`` is a first-order estimate, and
+    a few microseconds: scenes are loaded thousands of times in a calibration."""
+    return 1.0 - timoshenko_pinned(section, length) / euler_bernoulli_pinned(section, length)
 
 
 def model_warnings(model) -> list[str]:
     """Links outside Euler-Bernoulli theory: stubby (L/h < SLENDER_LIMIT), or so soft in shear
     (E/G large, as in fabric composites) that Timoshenko theory lowers the first bending
-    frequency by more than SHEAR_WARN. The closed-form estimate picks the links; the drop
-    quoted is computed with the Timoshenko element on that link."""
+    frequency by more than SHEAR_WARN. The first-order estimate picks the links; the drop
+    quoted is the exact one of Timoshenko theory for that link (``exact_timoshenko_drop``)."""
     out = []
     for link in model.links:
         s = link.section
         ratio, drop = link.length / s.depth, timoshenko_drop(s, link.length)
         if ratio < SLENDER_LIMIT or drop > SHEAR_WARN:
-            computed = computed_timoshenko_drop(s, link.length)
+            exact = exact_timoshenko_drop(s, link.length)
             out.append(f"link {link.name}: slenderness L/h = {ratio:.3g} with E/G = {s.E / s.G:.3g} "
                        "is outside Euler-Bernoulli theory (no shear strain, no rotary inertia): "
-                       "Timoshenko elements put its first bending frequency as a pinned-pinned "
-                       f"beam {100 * computed:.3g} % lower (computed; [model] beam = "
-                       "\"timoshenko\" uses them for the whole scene)")
+                       "Timoshenko theory puts its first bending frequency as a pinned-pinned "
+                       f"beam {100 * exact:.3g} % lower (exact solution; [model] beam = "
+                       "\"timoshenko\" uses Timoshenko elements for the whole scene)")
     return out
 
 

@@ -24,33 +24,11 @@ import scipy.linalg
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from flexlink.fe.beams import pinned_bending_frequencies
+from flexlink.fe.beams import (euler_bernoulli_pinned, pinned_bending_frequencies,
+                               timoshenko_pinned)
 from flexlink.fe.model import Section
 
 BENDING_SHAPE = 0.9  # least correlation of the mid-line uy with sin(pi x / L) for mode 1
-
-
-def timoshenko_pinned(section: Section, length: float, n: int = 1) -> float:
-    """Closed-form flexural frequency [Hz] of mode ``n`` of a pinned-pinned Timoshenko beam:
-    with w = W sin(a x), psi = Psi cos(a x), a = n pi / L, the equations
-    kGA (w'' - psi') = rhoA w_tt and EI psi'' + kGA (w' - psi) = rhoI psi_tt give
-    det [[kGA a^2 - rhoA w^2, -kGA a], [-kGA a, EI a^2 + kGA - rhoI w^2]] = 0, a quadratic
-    in w^2 whose lower root is the flexural mode."""
-    a = n * math.pi / length
-    s = section
-    kGA, EI, rA, rI = s.kGA, s.EI, s.mass_per_length, s.rotary_inertia
-    # (kGA a^2 - rA x)(EI a^2 + kGA - rI x) - (kGA a)^2 = 0, x = omega^2
-    c2 = rA * rI
-    c1 = -(rA * (EI * a * a + kGA) + rI * kGA * a * a)
-    c0 = kGA * a * a * EI * a * a
-    # the lower root written without cancellation (c2 c0 << c1^2 on slender beams)
-    x = 2 * c0 / (-c1 + math.sqrt(c1 * c1 - 4 * c2 * c0))
-    return math.sqrt(x) / (2 * math.pi)
-
-
-def euler_bernoulli_pinned(section: Section, length: float, n: int = 1) -> float:
-    """Closed-form frequency [Hz] of mode ``n`` of a pinned-pinned Euler-Bernoulli beam."""
-    return (n * math.pi / length) ** 2 * math.sqrt(section.EI / section.mass_per_length) / (2 * math.pi)
 
 
 def _plane_stress_matrices(length, depth, E, G, nu, density, nx, ny):
