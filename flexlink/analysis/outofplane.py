@@ -11,12 +11,16 @@ from __future__ import annotations
 import dataclasses
 import functools
 
-from flexlink.analysis.solve import ModalResult, lowest_elastic, require_elastic, solve_modes
+from flexlink.analysis.solve import (AUTO_DENSE_MAX, ModalResult, lowest_elastic,
+                                     require_elastic, solve_modes)
 from flexlink.fe.assembly import reduction
+from flexlink.fe.model import FrameModel
 from flexlink.fe.pose import pose_model
 from flexlink.fe.rigid import rigidified
-from flexlink.fe.strip import (assemble_out_of_plane, out_of_plane_eigen_scale,
-                               out_of_plane_springs, strip_stiffness_scale)
+from flexlink.fe.strip import (StripProperties, assemble_out_of_plane,
+                               assemble_out_of_plane_reduced_dense, link_strips,
+                               out_of_plane_eigen_scale, out_of_plane_springs,
+                               strip_stiffness_scale)
 from flexlink.scene import Scene
 
 
@@ -25,19 +29,39 @@ def tilt_stiffnesses(scene: Scene) -> dict[str, float]:
     return dict(scene.options.tilt)
 
 
-def out_of_plane_modes(topology, points, tilt: dict[str, float], n_modes: int,
-                       method: str = "auto") -> ModalResult:
-    """The lowest ``n_modes`` elastic out-of-plane modes of ``topology`` at joint ``points``
-    [m], and every rigid-body/mechanism mode below them."""
+def out_of_plane_model(topology, points, tilt: dict[str, float]
+                       ) -> tuple[FrameModel, tuple[StripProperties, ...]]:
+    """(model, its ``link_strips``): ``topology``'s mesh at joint ``points`` [m] with the
+    out-of-plane bearing springs (``tilt``: Ktilt [N m/rad] per joint)."""
     planar = pose_model(topology, points, warn=False)  # its mesh; its springs are replaced
+    strips = link_strips(planar)
     springs = out_of_plane_springs(planar, topology, tilt)
     # very stiff out-of-plane springs become exact constraints too, judged against the strip
     # elements' own stiffness (w: translational; rx, ry: rotational)
     model = rigidified(dataclasses.replace(planar, springs=springs),
-                       scales=strip_stiffness_scale(planar), rotational=springs.dof_a % 3 != 0)
-    K, M = assemble_out_of_plane(model, model.springs)
-    solve = functools.partial(solve_modes, K, M, T=reduction(model),
-                              lambda_ref=out_of_plane_eigen_scale(model), method=method)
+                       scales=strip_stiffness_scale(planar, strips),
+                       rotational=springs.dof_a % 3 != 0)
+    return model, strips
+
+
+def out_of_plane_modes(topology, points, tilt: dict[str, float], n_modes: int,
+                       method: str = "auto") -> ModalResult:
+    """The lowest ``n_modes`` elastic out-of-plane modes of ``topology`` at joint ``points``
+    [m], and every rigid-body/mechanism mode below them."""
+    model, strips = out_of_plane_model(topology, points, tilt)
+    T = reduction(model)
+    n = model.n_dofs if T is None else T.shape[1]
+    # Small models, which the dense solver takes anyway (solve.pick_method), are assembled
+    # straight into dense reduced K and M, as in modal.pose_modes: scipy.sparse's bookkeeping
+    # costs several times their eigen solve. Same matrices, same checks.
+    dense = method in ("auto", "dense") and n <= AUTO_DENSE_MAX
+    if dense:
+        K, M = assemble_out_of_plane_reduced_dense(model, model.springs, T, strips)
+    else:
+        K, M = assemble_out_of_plane(model, model.springs)
+    solve = functools.partial(solve_modes, K, M, T=T,
+                              lambda_ref=out_of_plane_eigen_scale(model, strips), method=method,
+                              reduced=dense)
     return require_elastic(lowest_elastic(solve, n_modes), n_modes)
 
 

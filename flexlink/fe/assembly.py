@@ -144,6 +144,19 @@ def dense_sum(slots, values, n: int) -> np.ndarray:
     return summed[:n * n].reshape(n, n)
 
 
+def reduced_dense_pair(T, n_full: int, stiffness, mass) -> tuple[np.ndarray, np.ndarray]:
+    """Dense (T^T K T, T^T M T), T from ``reduction`` (None: nothing rigid), of K and M of size
+    ``n_full`` given as entries ``stiffness``, ``mass`` = (rows, cols, values), repeated pairs
+    summed; one ``np.bincount`` for both (M's slots follow K's)."""
+    column, n = reduced_columns(T, n_full)
+    size = n * n + 1
+    slots = np.concatenate([dense_slots(column, n, stiffness[0], stiffness[1]),
+                            dense_slots(column, n, mass[0], mass[1]) + size])
+    summed = np.bincount(slots, weights=np.concatenate([stiffness[2], mass[2]]),
+                         minlength=2 * size)
+    return summed[:n * n].reshape(n, n), summed[size:size + n * n].reshape(n, n)
+
+
 def assemble_reduced_dense(model: FrameModel, T) -> tuple[np.ndarray, np.ndarray]:
     """Dense (T^T K T, T^T M T) of ``assemble``'s K and M, with T from ``reduction``, scattered
     straight from the element entries (no sparse matrix built): for the small models the dense

@@ -35,12 +35,11 @@ out-of-plane part. Lumped joint masses act on w.
 from __future__ import annotations
 
 import dataclasses
-import math
 
 import numpy as np
 import scipy.sparse as sp
 
-from flexlink.fe.assembly import springs_stiffness_entries
+from flexlink.fe.assembly import reduced_dense_pair, springs_stiffness_entries
 from flexlink.fe.model import GROUND, FrameModel, Section, Springs
 
 DOF_NAMES = ("w", "rx", "ry")
@@ -67,22 +66,37 @@ class StripProperties:
                    rhoIp=s.density * s.area * (b * b + t * t) / 12.0)
 
 
-def strip_element_matrices(l: float, p: StripProperties) -> tuple[np.ndarray, np.ndarray]:
-    """6x6 local (K, M) of one element, DOF order (w1, tx1, ty1, w2, tx2, ty2)."""
-    kb = p.EI / l**3 * np.array([[12, 6 * l, -12, 6 * l], [6 * l, 4 * l * l, -6 * l, 2 * l * l],
-                                 [-12, -6 * l, 12, -6 * l], [6 * l, 2 * l * l, -6 * l, 4 * l * l]])
-    mb = p.rhoA * l / 420 * np.array(
-        [[156, 22 * l, 54, -13 * l], [22 * l, 4 * l * l, 13 * l, -3 * l * l],
-         [54, 13 * l, 156, -22 * l], [-13 * l, -3 * l * l, -22 * l, 4 * l * l]])
-    # (w, w') -> (w, ty) with w' = -ty: flip the sign of the slope rows and columns
-    flip = np.diag([1.0, -1.0, 1.0, -1.0])
-    kb, mb = flip @ kb @ flip, flip @ mb @ flip
-    bend, twist = [0, 2, 3, 5], [1, 4]
-    k, m = np.zeros((6, 6)), np.zeros((6, 6))
-    k[np.ix_(bend, bend)], m[np.ix_(bend, bend)] = kb, mb
-    k[np.ix_(twist, twist)] = p.GJ / l * np.array([[1.0, -1.0], [-1.0, 1.0]])
-    m[np.ix_(twist, twist)] = p.rhoIp * l / 6 * np.array([[2.0, 1.0], [1.0, 2.0]])
-    return k, m
+_BEND, _TWIST = np.array([0, 2, 3, 5]), np.array([1, 4])  # local DOFs of each part
+# (w, w') -> (w, ty) with w' = -ty: the slope rows and columns change sign
+_SLOPE_FLIP = np.outer([1.0, -1.0, 1.0, -1.0], [1.0, -1.0, 1.0, -1.0])
+
+
+def _placed(bend, twist) -> np.ndarray:
+    """(..., 6, 6) with the bending (..., 4, 4) and torsion (..., 2, 2) parts at their DOFs."""
+    out = np.zeros(bend.shape[:-2] + (6, 6))
+    out[..., _BEND[:, None], _BEND[None, :]] = bend * _SLOPE_FLIP
+    out[..., _TWIST[:, None], _TWIST[None, :]] = twist
+    return out
+
+
+def strip_element_matrices(l, p: StripProperties) -> tuple[np.ndarray, np.ndarray]:
+    """Local (K, M) of elements of length ``l`` [m], DOF order (w1, tx1, ty1, w2, tx2, ty2):
+    6 x 6 each for a scalar ``l``, (e, 6, 6) for lengths (e,) and ``p`` fields scalar or (e,)."""
+    l = np.asarray(l, dtype=float)
+    one = np.ones_like(l)
+
+    def stacked(rows, scale):  # (4 or 2 nested lists of (e,) or scalars) x scale -> (..., n, n)
+        return np.moveaxis(np.array(rows), (0, 1), (-2, -1)) * np.asarray(scale)[..., None, None]
+
+    kb = stacked([[12 * one, 6 * l, -12 * one, 6 * l], [6 * l, 4 * l * l, -6 * l, 2 * l * l],
+                  [-12 * one, -6 * l, 12 * one, -6 * l], [6 * l, 2 * l * l, -6 * l, 4 * l * l]],
+                 p.EI / l**3)
+    mb = stacked([[156 * one, 22 * l, 54 * one, -13 * l], [22 * l, 4 * l * l, 13 * l, -3 * l * l],
+                  [54 * one, 13 * l, 156 * one, -22 * l], [-13 * l, -3 * l * l, -22 * l, 4 * l * l]],
+                 p.rhoA * l / 420)
+    kt = stacked([[one, -one], [-one, one]], p.GJ / l)
+    mt = stacked([[2 * one, one], [one, 2 * one]], p.rhoIp * l / 6)
+    return _placed(kb, kt), _placed(mb, mt)
 
 
 def strip_chain_matrices(length: float, elements: int, p: StripProperties):
@@ -97,10 +111,46 @@ def strip_chain_matrices(length: float, elements: int, p: StripProperties):
     return K, M
 
 
-def strip_node_rotation(angle: float) -> np.ndarray:
-    """3x3 R with local (w, tx, ty) = R @ global (w, rx, ry) for a link at ``angle`` [rad]."""
-    c, s = math.cos(angle), math.sin(angle)
-    return np.array([[1.0, 0.0, 0.0], [0.0, c, s], [0.0, -s, c]])
+def strip_node_rotation(angle) -> np.ndarray:
+    """R with local (w, tx, ty) = R @ global (w, rx, ry) for a link at ``angle`` [rad]: 3 x 3,
+    or (e, 3, 3) for angles (e,)."""
+    angle = np.asarray(angle, dtype=float)
+    c, s = np.cos(angle), np.sin(angle)
+    zero, one = np.zeros_like(c), np.ones_like(c)
+    R = np.array([[one, zero, zero], [zero, c, s], [zero, -s, c]])
+    return np.moveaxis(R, (0, 1), (-2, -1))
+
+
+def link_strips(model: FrameModel) -> tuple[StripProperties, ...]:
+    """``StripProperties`` of each of ``model``'s links, in link order."""
+    return tuple(StripProperties.of(link.section) for link in model.links)
+
+
+def strip_entries(model: FrameModel, strips: tuple[StripProperties, ...]):
+    """Every element's (K, M) in the global (w, rx, ry) DOFs as entries, all elements at once:
+    (rows, cols (36 e,), values (2, 36 e) = K and M); repeated (row, col) pairs are to be summed.
+    ``strips``: ``link_strips(model)``. Links own consecutive node ranges (``build_model``)."""
+    links = model.links
+    counts = np.array([link.elements for link in links])
+
+    def per_element(values):
+        return np.repeat(np.asarray(values, dtype=float), counts)
+
+    props = StripProperties(*(per_element([getattr(p, f.name) for p in strips])
+                              for f in dataclasses.fields(StripProperties)))
+    k, m = strip_element_matrices(per_element([link.length / link.elements for link in links]),
+                                  props)
+    R = strip_node_rotation(per_element([link.angle for link in links]))
+    T = np.zeros(k.shape)
+    T[:, :3, :3] = T[:, 3:, 3:] = R
+    Tt = np.swapaxes(T, 1, 2)
+    first_element = np.cumsum(counts) - counts
+    node = np.arange(counts.sum()) + np.repeat(
+        np.array([link.first_node for link in links]) - first_element, counts)
+    dofs = 3 * node[:, None] + np.arange(6)  # (e, 6): the element's two nodes
+    rows = np.broadcast_to(dofs[:, :, None], k.shape).ravel()
+    cols = np.broadcast_to(dofs[:, None, :], k.shape).ravel()
+    return rows, cols, np.stack([(Tt @ k @ T).ravel(), (Tt @ m @ T).ravel()])
 
 
 def out_of_plane_springs(model: FrameModel, topology, tilt: dict[str, float]) -> Springs:
@@ -124,6 +174,12 @@ def out_of_plane_springs(model: FrameModel, topology, tilt: dict[str, float]) ->
                    np.asarray(k, dtype=float), tuple(labels))
 
 
+def point_mass_entries(model: FrameModel):
+    """(rows, cols, values) of the lumped joint masses [kg], on w only."""
+    idx = np.array([3 * node for node, _ in model.point_masses], dtype=np.int64)
+    return idx, idx, np.array([m for _, m in model.point_masses], dtype=float)
+
+
 def assemble_out_of_plane(model: FrameModel, springs: Springs):
     """(K, M) CSR of the out-of-plane problem on ``model``'s mesh, not reduced."""
     k_blocks, m_blocks = [], []
@@ -138,27 +194,44 @@ def assemble_out_of_plane(model: FrameModel, springs: Springs):
     n = model.n_dofs
     K = K + sp.coo_matrix((vals, (rows, cols)), shape=(n, n)).tocsr()
     if model.point_masses:
-        idx = np.array([3 * node for node, _ in model.point_masses])
-        mass = np.array([m for _, m in model.point_masses])
-        M = M + sp.coo_matrix((mass, (idx, idx)), shape=(n, n)).tocsr()
+        rows, cols, vals = point_mass_entries(model)
+        M = M + sp.coo_matrix((vals, (rows, cols)), shape=(n, n)).tocsr()
     return K, M
 
 
-def out_of_plane_eigen_scale(model: FrameModel) -> float:
-    """Smallest weak-axis bending or torsion eigenvalue scale of the links [rad^2/s^2]."""
+def assemble_out_of_plane_reduced_dense(model: FrameModel, springs: Springs, T,
+                                        strips: tuple[StripProperties, ...]):
+    """Dense (T^T K T, T^T M T) of ``assemble_out_of_plane``'s K and M, with T from
+    ``assembly.reduction`` and ``strips`` = ``link_strips(model)``, scattered straight from the
+    element entries (no sparse matrix built): for the small models the dense eigen solver
+    takes, where scipy.sparse's bookkeeping costs more than the solve."""
+    rows, cols, values = strip_entries(model, strips)
+    s_rows, s_cols, s_vals = springs_stiffness_entries(springs)
+    m_rows, m_cols, m_vals = point_mass_entries(model)
+    return reduced_dense_pair(
+        T, model.n_dofs,
+        (np.concatenate([rows, s_rows]), np.concatenate([cols, s_cols]),
+         np.concatenate([values[0], s_vals])),
+        (np.concatenate([rows, m_rows]), np.concatenate([cols, m_cols]),
+         np.concatenate([values[1], m_vals])))
+
+
+def out_of_plane_eigen_scale(model: FrameModel, strips=None) -> float:
+    """Smallest weak-axis bending or torsion eigenvalue scale of the links [rad^2/s^2].
+    ``strips``: ``link_strips(model)``, if the caller has them."""
     scales = []
-    for link in model.links:
-        p = StripProperties.of(link.section)
+    for link, p in zip(model.links, strips or link_strips(model)):
         scales += [p.EI / (p.rhoA * link.length**4), p.GJ / (p.rhoIp * link.length**2)]
     return min(scales)
 
 
-def strip_stiffness_scale(model: FrameModel) -> tuple[float, float]:
+def strip_stiffness_scale(model: FrameModel, strips=None) -> tuple[float, float]:
     """(translational [N/m], rotational [N m/rad]) stiffness of the stiffest out-of-plane
-    element: 12 EI / h^3 on w; 4 EI / h (bending) or GJ / h (twist) on a rotation."""
+    element: 12 EI / h^3 on w; 4 EI / h (bending) or GJ / h (twist) on a rotation.
+    ``strips``: ``link_strips(model)``, if the caller has them."""
     trans, rot = 0.0, 0.0
-    for link in model.links:
-        p, h = StripProperties.of(link.section), link.length / link.elements
+    for link, p in zip(model.links, strips or link_strips(model)):
+        h = link.length / link.elements
         trans = max(trans, 12 * p.EI / h**3)
         rot = max(rot, 4 * p.EI / h, p.GJ / h)
     return trans, rot

@@ -1,0 +1,93 @@
+"""The out-of-plane family's dense path (``outofplane.out_of_plane_modes`` on small models)
+against the sparse path it replaces for them: per-link CSR assembly (``np.kron`` rotations,
+``block_diag``), T^T K T in scipy.sparse, the same ``solve_modes`` checks.
+
+The two paths share only the element closed forms (``strip_element_matrices``); rotation,
+placement and reduction are computed independently, so the reduced matrices agree to
+summation-order round-off (1e-14 of the largest entry is a few hundred eps) and the
+frequencies to 1e-9 relative, the brief's bound.
+"""
+
+import functools
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from flexlink.analysis import outofplane
+from flexlink.analysis import solve as sv
+from flexlink.fe.assembly import reduction
+from flexlink.fe.strip import (assemble_out_of_plane, assemble_out_of_plane_reduced_dense,
+                               out_of_plane_eigen_scale)
+from flexlink.scene import load_scene
+
+ROOT = Path(__file__).resolve().parent.parent
+SCENES = [ROOT / "cases" / f"case{i}.toml" for i in (1, 2, 3, 4)] + [ROOT / "scenes" / "wiper.toml"]
+TILTS = {"rigid Ktilt": {}, "finite Ktilt": {"joints.Ktilt": "5 N*m/rad"}}
+
+
+def joint_masses(path) -> dict[str, str]:
+    """0.02 kg on every joint of the scene at ``path``."""
+    return {f"joints.{j.name}.mass": "0.02 kg" for j in load_scene(path).joints}
+
+
+def scene_model(path, elements, overrides):
+    scene = load_scene(path, overrides=overrides)
+    return outofplane.out_of_plane_model(scene.topology(elements), scene.rigid_pose().joints,
+                                         outofplane.tilt_stiffnesses(scene))
+
+
+def sparse_path(path, elements, overrides, n_modes):
+    """What ``out_of_plane_modes`` did before the dense path: sparse K, M reduced by T in
+    scipy.sparse, solved densely."""
+    model, _ = scene_model(path, elements, overrides)
+    K, M = assemble_out_of_plane(model, model.springs)
+    solve = functools.partial(sv.solve_modes, K, M, T=reduction(model),
+                              lambda_ref=out_of_plane_eigen_scale(model), method="dense")
+    return sv.require_elastic(sv.lowest_elastic(solve, n_modes), n_modes)
+
+
+@pytest.mark.parametrize("path", SCENES, ids=lambda p: p.stem)
+@pytest.mark.parametrize("elements", [2, 6, 12])
+@pytest.mark.parametrize("tilt", TILTS.values(), ids=TILTS.keys())
+@pytest.mark.parametrize("masses", [False, True], ids=["", "joint masses"])
+def test_dense_path_equals_the_sparse_path(path, elements, tilt, masses, monkeypatch):
+    overrides = {**tilt, **(joint_masses(path) if masses else {})}
+    old = sparse_path(path, elements, overrides, 6)
+    monkeypatch.setattr(outofplane, "assemble_out_of_plane", None)  # must not assemble sparse K
+    new = outofplane.analyze_out_of_plane(load_scene(path, overrides=overrides), 6, elements)
+    assert new.kinds == old.kinds and new.n_dofs == old.n_dofs <= sv.AUTO_DENSE_MAX
+    np.testing.assert_allclose(new.frequencies, old.frequencies, rtol=1e-9, atol=0)
+    # the same mass-normalised shapes, up to sign, on every full DOF (modes 1 to 6 are distinct)
+    elastic = [i for i, kind in enumerate(new.kinds) if kind == sv.ELASTIC]
+    a, b = new.shapes[:, elastic], old.shapes[:, elastic]
+    signs = np.sign(np.einsum("ij,ij->j", a, b))
+    np.testing.assert_allclose(a * signs, b, atol=1e-7 * np.abs(b).max())
+    assert new.backward_errors.max() <= 1e-10 and new.orthogonality_error <= 1e-6
+
+
+def test_the_cases_cover_a_model_without_constraints_and_masses():
+    """The finite-Ktilt cases have no rigid spring at all (T is None) and the mass overrides
+    reach the out-of-plane model, so both branches of the scatter are exercised."""
+    model, _ = scene_model(SCENES[0], 6, {**TILTS["finite Ktilt"], **joint_masses(SCENES[0])})
+    assert reduction(model) is None and len(model.point_masses) == 4
+    wiper, _ = scene_model(SCENES[4], 6, joint_masses(SCENES[4]))
+    assert reduction(wiper) is not None and wiper.point_masses
+
+
+def test_large_models_keep_the_sparse_path(monkeypatch):
+    monkeypatch.setattr(outofplane, "assemble_out_of_plane_reduced_dense", None)
+    modes = outofplane.analyze_out_of_plane(load_scene(SCENES[1]), 4, 96)
+    assert modes.n_dofs > sv.AUTO_DENSE_MAX and modes.solver == "sparse"
+
+
+@pytest.mark.parametrize("path", SCENES, ids=lambda p: p.stem)
+@pytest.mark.parametrize("tilt", TILTS.values(), ids=TILTS.keys())
+def test_dense_reduced_matrices_equal_the_sparse_reduction(path, tilt):
+    model, strips = scene_model(path, 6, {**tilt, **joint_masses(path)})
+    K, M = assemble_out_of_plane(model, model.springs)
+    T = reduction(model)
+    Kd, Md = assemble_out_of_plane_reduced_dense(model, model.springs, T, strips)
+    for dense, sparse in ((Kd, K), (Md, M)):
+        reduced = (sparse if T is None else T.T @ sparse @ T).toarray()
+        np.testing.assert_allclose(dense, reduced, rtol=0, atol=1e-14 * abs(dense).max())
