@@ -66,17 +66,14 @@ class StripProperties:
                    rhoIp=s.density * s.area * (b * b + t * t) / 12.0)
 
 
-_BEND, _TWIST = np.array([0, 2, 3, 5]), np.array([1, 4])  # local DOFs of each part
-# (w, w') -> (w, ty) with w' = -ty: the slope rows and columns change sign
-_SLOPE_FLIP = np.outer([1.0, -1.0, 1.0, -1.0], [1.0, -1.0, 1.0, -1.0])
-
-
-def _placed(bend, twist) -> np.ndarray:
-    """(..., 6, 6) with the bending (..., 4, 4) and torsion (..., 2, 2) parts at their DOFs."""
-    out = np.zeros(bend.shape[:-2] + (6, 6))
-    out[..., _BEND[:, None], _BEND[None, :]] = bend * _SLOPE_FLIP
-    out[..., _TWIST[:, None], _TWIST[None, :]] = twist
-    return out
+# The module docstring's element matrices with the element length l factored out of the slope
+# DOFs (an entry carries one l per slope index): DOF order (w1, w1', w2, w2'), (tx1, tx2)
+_BEND_K = np.array([[12, 6, -12, 6], [6, 4, -6, 2], [-12, -6, 12, -6], [6, 2, -6, 4]], float)
+_BEND_M = np.array([[156, 22, 54, -13], [22, 4, 13, -3], [54, 13, 156, -22],
+                    [-13, -3, -22, 4]], float)
+_TWIST_K = np.array([[1, -1], [-1, 1]], float)
+_TWIST_M = np.array([[2, 1], [1, 2]], float)
+_BEND, _TWIST = np.array([0, 2, 3, 5]), np.array([1, 4])  # their local DOFs in the element
 
 
 def strip_element_matrices(l, p: StripProperties) -> tuple[np.ndarray, np.ndarray]:
@@ -84,19 +81,19 @@ def strip_element_matrices(l, p: StripProperties) -> tuple[np.ndarray, np.ndarra
     6 x 6 each for a scalar ``l``, (e, 6, 6) for lengths (e,) and ``p`` fields scalar or (e,)."""
     l = np.asarray(l, dtype=float)
     one = np.ones_like(l)
+    # (w, w') -> (w, ty): w' = -ty, and the slope rows and columns carry l
+    slope = np.stack([one, -l, one, -l], -1)
+    slopes = slope[..., :, None] * slope[..., None, :]
 
-    def stacked(rows, scale):  # (4 or 2 nested lists of (e,) or scalars) x scale -> (..., n, n)
-        return np.moveaxis(np.array(rows), (0, 1), (-2, -1)) * np.asarray(scale)[..., None, None]
+    def scaled(factor, pattern):
+        return np.asarray(factor)[..., None, None] * pattern
 
-    kb = stacked([[12 * one, 6 * l, -12 * one, 6 * l], [6 * l, 4 * l * l, -6 * l, 2 * l * l],
-                  [-12 * one, -6 * l, 12 * one, -6 * l], [6 * l, 2 * l * l, -6 * l, 4 * l * l]],
-                 p.EI / l**3)
-    mb = stacked([[156 * one, 22 * l, 54 * one, -13 * l], [22 * l, 4 * l * l, 13 * l, -3 * l * l],
-                  [54 * one, 13 * l, 156 * one, -22 * l], [-13 * l, -3 * l * l, -22 * l, 4 * l * l]],
-                 p.rhoA * l / 420)
-    kt = stacked([[one, -one], [-one, one]], p.GJ / l)
-    mt = stacked([[2 * one, one], [one, 2 * one]], p.rhoIp * l / 6)
-    return _placed(kb, kt), _placed(mb, mt)
+    k, m = np.zeros(l.shape + (6, 6)), np.zeros(l.shape + (6, 6))
+    k[..., _BEND[:, None], _BEND] = scaled(p.EI / l**3, _BEND_K) * slopes
+    m[..., _BEND[:, None], _BEND] = scaled(p.rhoA * l / 420, _BEND_M) * slopes
+    k[..., _TWIST[:, None], _TWIST] = scaled(p.GJ / l, _TWIST_K)
+    m[..., _TWIST[:, None], _TWIST] = scaled(p.rhoIp * l / 6, _TWIST_M)
+    return k, m
 
 
 def strip_chain_matrices(length: float, elements: int, p: StripProperties):
@@ -131,26 +128,23 @@ def strip_entries(model: FrameModel, strips: tuple[StripProperties, ...]):
     (rows, cols (36 e,), values (2, 36 e) = K and M); repeated (row, col) pairs are to be summed.
     ``strips``: ``link_strips(model)``. Links own consecutive node ranges (``build_model``)."""
     links = model.links
-    counts = np.array([link.elements for link in links])
-
-    def per_element(values):
-        return np.repeat(np.asarray(values, dtype=float), counts)
-
-    props = StripProperties(*(per_element([getattr(p, f.name) for p in strips])
+    props = StripProperties(*(np.array([getattr(p, f.name) for p in strips])
                               for f in dataclasses.fields(StripProperties)))
-    k, m = strip_element_matrices(per_element([link.length / link.elements for link in links]),
+    k, m = strip_element_matrices(np.array([link.length / link.elements for link in links]),
                                   props)
-    R = strip_node_rotation(per_element([link.angle for link in links]))
     T = np.zeros(k.shape)
-    T[:, :3, :3] = T[:, 3:, 3:] = R
+    T[:, :3, :3] = T[:, 3:, 3:] = strip_node_rotation(np.array([link.angle for link in links]))
     Tt = np.swapaxes(T, 1, 2)
+    # a link's elements are equal: one rotated element per link, repeated along its chain
+    counts = np.array([link.elements for link in links])
+    values = np.repeat(np.stack([Tt @ k @ T, Tt @ m @ T]), counts, axis=1)  # (2, e, 6, 6)
     first_element = np.cumsum(counts) - counts
     node = np.arange(counts.sum()) + np.repeat(
         np.array([link.first_node for link in links]) - first_element, counts)
     dofs = 3 * node[:, None] + np.arange(6)  # (e, 6): the element's two nodes
-    rows = np.broadcast_to(dofs[:, :, None], k.shape).ravel()
-    cols = np.broadcast_to(dofs[:, None, :], k.shape).ravel()
-    return rows, cols, np.stack([(Tt @ k @ T).ravel(), (Tt @ m @ T).ravel()])
+    rows = np.broadcast_to(dofs[:, :, None], values.shape[1:]).ravel()
+    cols = np.broadcast_to(dofs[:, None, :], values.shape[1:]).ravel()
+    return rows, cols, values.reshape(2, -1)
 
 
 def out_of_plane_springs(model: FrameModel, topology, tilt: dict[str, float]) -> Springs:
