@@ -168,7 +168,7 @@ def out_of_plane_springs(model: FrameModel, topology, tilt: dict[str, float]) ->
                    np.asarray(k, dtype=float), tuple(labels))
 
 
-def point_mass_entries(model: FrameModel):
+def strip_mass_entries(model: FrameModel):
     """(rows, cols, values) of the lumped joint masses [kg], on w only."""
     idx = np.array([3 * node for node, _ in model.point_masses], dtype=np.int64)
     return idx, idx, np.array([m for _, m in model.point_masses], dtype=float)
@@ -188,7 +188,7 @@ def assemble_out_of_plane(model: FrameModel, springs: Springs):
     n = model.n_dofs
     K = K + sp.coo_matrix((vals, (rows, cols)), shape=(n, n)).tocsr()
     if model.point_masses:
-        rows, cols, vals = point_mass_entries(model)
+        rows, cols, vals = strip_mass_entries(model)
         M = M + sp.coo_matrix((vals, (rows, cols)), shape=(n, n)).tocsr()
     return K, M
 
@@ -201,7 +201,7 @@ def assemble_out_of_plane_reduced_dense(model: FrameModel, springs: Springs, T,
     takes, where scipy.sparse's bookkeeping costs more than the solve."""
     rows, cols, values = strip_entries(model, strips)
     s_rows, s_cols, s_vals = springs_stiffness_entries(springs)
-    m_rows, m_cols, m_vals = point_mass_entries(model)
+    m_rows, m_cols, m_vals = strip_mass_entries(model)
     return reduced_dense_pair(
         T, model.n_dofs,
         (np.concatenate([rows, s_rows]), np.concatenate([cols, s_cols]),
