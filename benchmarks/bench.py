@@ -433,13 +433,22 @@ def parallel(repeats: int) -> None:
           f"{os.getloadavg()[0]:.2f})")
 
 
+SECTIONS = ("1", "2", "2b", "3", "4", "5", "6")
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeats", type=int, default=7)
     parser.add_argument("--scaling-point", type=int, help=argparse.SUPPRESS)
     parser.add_argument("--full-calibration", action="store_true",
                         help="also time the shipped calibration report (minutes)")
+    parser.add_argument("--only", type=lambda text: set(text.split(",")), default=set(SECTIONS),
+                        help="comma-separated sections to run, e.g. 1,2b (default: all of "
+                             + ",".join(SECTIONS) + ")")
     args = parser.parse_args()
+    unknown = args.only - set(SECTIONS)
+    if unknown:
+        parser.error(f"unknown section(s) {', '.join(sorted(unknown))}: one of {', '.join(SECTIONS)}")
     if args.scaling_point:
         print(json.dumps(scaling_point(args.scaling_point)))
         return 0
@@ -448,15 +457,17 @@ def main() -> int:
     once = logbook.configure()  # each kind of warning once, repeats counted at the end
     print(f"flexlink benchmark: {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}, "
           f"{os.cpu_count()} cores, load average {os.getloadavg()[0]:.2f} at start")
-    agree = per_pose(args.repeats)
-    whole_cycle(max(3, args.repeats // 2))
-    converged_cycle(max(3, args.repeats // 2))
-    scaling()
-    startup(args.repeats)
-    calibration(args.full_calibration)
-    parallel(max(3, args.repeats // 2))
-    print(f"load average {os.getloadavg()[0]:.2f} at the end; frequencies agree with OpenSees "
-          f"to {TOLERANCE:g}: {'yes' if agree else 'NO'}")
+    few = max(3, args.repeats // 2)
+    agree = per_pose(args.repeats) if "1" in args.only else True
+    runs = {"2": lambda: whole_cycle(few), "2b": lambda: converged_cycle(few), "3": scaling,
+            "4": lambda: startup(args.repeats), "5": lambda: calibration(args.full_calibration),
+            "6": lambda: parallel(few)}
+    for section, run in runs.items():
+        if section in args.only:
+            run()
+    checked = (f"; frequencies agree with OpenSees to {TOLERANCE:g}: {'yes' if agree else 'NO'}"
+               if "1" in args.only else "")
+    print(f"load average {os.getloadavg()[0]:.2f} at the end{checked}")
     logbook.report_repeats(once)
     return 0 if agree else 1
 
