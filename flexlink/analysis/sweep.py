@@ -23,7 +23,8 @@ from flexlink.fe.pose import in_plane_eigen_scale
 from flexlink.fe.assembly import (assemble, dense_slots, dense_sum, placed_link_entries,
                                   point_mass_entries, reduced_columns, spring_entries)
 from flexlink.fe.assembly import reduction as rigid_reduction
-from flexlink.fe.craig_bampton import CUTOFF, CraigBamptonPlan, lowest_fixed_interface
+from flexlink.fe.craig_bampton import (CONVERGED, CUTOFF, CraigBamptonPlan,
+                                       lowest_fixed_interface)
 from flexlink.errors import InputError
 from flexlink.fe.beams import link_entries
 from flexlink.fe.model import FrameModel, Topology, layout
@@ -254,22 +255,31 @@ def _craig_bampton_sweep(topology: Topology, poses, n_modes: int, freqs: np.ndar
 
 
 def _craig_bampton_poses(plan: CraigBamptonPlan, angles, lengths, lambda_ref, n_modes: int):
-    """(elastic frequencies [Hz] (poses, n_modes), NaN where fewer; mechanism counts; the
-    eigenvalue [rad^2/s^2] the basis must reach for each pose: (CUTOFF omega_n)^2, inf when
-    fewer elastic modes were found and the basis is not yet complete, 0 once it is)."""
+    """(elastic frequencies [Hz] (poses, n_modes), NaN where fewer or not fitted; mechanism
+    counts; the eigenvalue [rad^2/s^2] the basis must reach for each pose). A pose fits the
+    basis when the reduced pencil's n_modes-th elastic eigenvalue (an upper bound of the exact
+    one: the reduction is a Ritz projection) times CUTOFF^2 is at most ``plan.lambda_cut``; its
+    truncation correction must then converge (``CONVERGED``), else it asks for a basis reaching
+    twice as high in frequency. Needs are inf when fewer elastic modes were found and the basis
+    is not yet complete, 0 once it is."""
     K, M = plan.stacked(angles, lengths)
     modes = stacked_modes(K, M, lambda_ref, checked=n_modes + SPARE_MODES)
     n_mechanism = modes.mechanisms
     pick = n_mechanism[:, None] + np.arange(n_modes)
     found = pick < plan.n
     pick = np.minimum(pick, plan.n - 1)
-    vals = np.take_along_axis(modes.eigenvalues, pick, axis=1)
-    vecs = np.take_along_axis(modes.vectors, pick[:, None, :], axis=2)
-    lam = np.sort(plan.corrected_stack(angles, lengths, vals, vecs), axis=1)
-    elastic = np.where(found, np.sqrt(np.clip(lam, 0.0, None)) / (2 * math.pi), np.nan)
+    elastic = np.full(pick.shape, np.nan)
     if math.isinf(plan.lambda_cut):
-        return elastic, n_mechanism, np.zeros(len(elastic))
-    need = np.where(found.all(axis=1), (CUTOFF * 2 * math.pi * elastic[:, -1]) ** 2, math.inf)
+        need = np.zeros(len(pick))
+    else:
+        highest = np.take_along_axis(modes.eigenvalues, pick[:, -1:], axis=1)[:, 0]
+        need = np.where(found.all(axis=1), CUTOFF**2 * highest, math.inf)
+    fits = need <= plan.lambda_cut
+    lam, change = plan.corrected_stack(angles[fits], lengths[fits], modes.eigenvalues[fits],
+                                       modes.vectors[fits], pick[fits])
+    need[np.flatnonzero(fits)[change.max(axis=1, initial=0.0) > CONVERGED]] = 4 * plan.lambda_cut
+    elastic[fits] = np.where(found[fits], np.sqrt(np.clip(np.sort(lam, axis=1), 0.0, None))
+                             / (2 * math.pi), np.nan)
     return elastic, n_mechanism, need
 
 
