@@ -448,7 +448,8 @@ def main() -> int:
     args = parser.parse_args()
     unknown = args.only - set(SECTIONS)
     if unknown:
-        parser.error(f"unknown section(s) {', '.join(sorted(unknown))}: one of {', '.join(SECTIONS)}")
+        parser.error(f"unknown section(s) {', '.join(sorted(unknown))}: "
+                     f"one of {', '.join(SECTIONS)}")
     if args.scaling_point:
         print(json.dumps(scaling_point(args.scaling_point)))
         return 0

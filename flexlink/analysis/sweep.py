@@ -23,8 +23,8 @@ from flexlink.fe.pose import in_plane_eigen_scale
 from flexlink.fe.assembly import (assemble, dense_slots, dense_sum, placed_link_entries,
                                   point_mass_entries, reduced_columns, spring_entries)
 from flexlink.fe.assembly import reduction as rigid_reduction
-from flexlink.fe.craig_bampton import (CONVERGED, CUTOFF, CraigBamptonPlan,
-                                       lowest_fixed_interface)
+from flexlink.fe.craig_bampton import CUTOFF, CraigBamptonPlan, lowest_fixed_interface
+from flexlink.fe.truncation import CONVERGED, corrected
 from flexlink.errors import InputError
 from flexlink.fe.beams import link_entries
 from flexlink.fe.model import FrameModel, Topology, layout
@@ -254,7 +254,19 @@ def _craig_bampton_sweep(topology: Topology, poses, n_modes: int, freqs: np.ndar
             todo, first = np.concatenate([todo, np.arange(1, len(poses))]), False
 
 
+CHUNK = 64  # poses solved together: all their temporaries stay within a few MB
+
+
 def _craig_bampton_poses(plan: CraigBamptonPlan, angles, lengths, lambda_ref, n_modes: int):
+    """``_craig_bampton_chunk`` for any number of poses, CHUNK at a time: the arrays of a whole
+    cycle at once (10 MB and more) cost more in fresh memory pages than in arithmetic."""
+    parts = [_craig_bampton_chunk(plan, angles[i:i + CHUNK], lengths[i:i + CHUNK],
+                                  lambda_ref[i:i + CHUNK], n_modes)
+             for i in range(0, len(angles), CHUNK)]
+    return tuple(np.concatenate(column) for column in zip(*parts))
+
+
+def _craig_bampton_chunk(plan: CraigBamptonPlan, angles, lengths, lambda_ref, n_modes: int):
     """(elastic frequencies [Hz] (poses, n_modes), NaN where fewer or not fitted; mechanism
     counts; the eigenvalue [rad^2/s^2] the basis must reach for each pose). A pose fits the
     basis when the reduced pencil's n_modes-th elastic eigenvalue (an upper bound of the exact
@@ -275,9 +287,11 @@ def _craig_bampton_poses(plan: CraigBamptonPlan, angles, lengths, lambda_ref, n_
         highest = np.take_along_axis(modes.eigenvalues, pick[:, -1:], axis=1)[:, 0]
         need = np.where(found.all(axis=1), CUTOFF**2 * highest, math.inf)
     fits = need <= plan.lambda_cut
-    lam, change = plan.corrected_stack(angles[fits], lengths[fits], modes.eigenvalues[fits],
-                                       modes.vectors[fits], pick[fits])
-    need[np.flatnonzero(fits)[change.max(axis=1, initial=0.0) > CONVERGED]] = 4 * plan.lambda_cut
+    lam, change = corrected(plan, angles[fits], lengths[fits], modes.eigenvalues[fits],
+                            modes.vectors[fits], pick[fits])
+    if not math.isinf(plan.lambda_cut):  # else nothing is truncated
+        unsure = ~(change.max(axis=1, initial=0.0) <= CONVERGED)  # NaN too
+        need[np.flatnonzero(fits)[unsure]] = 4 * plan.lambda_cut
     elastic[fits] = np.where(found[fits], np.sqrt(np.clip(np.sort(lam, axis=1), 0.0, None))
                              / (2 * math.pi), np.nan)
     return elastic, n_mechanism, need

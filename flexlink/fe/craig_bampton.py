@@ -10,9 +10,9 @@ interior mode gives the full model back exactly; the truncation is the only appr
 Per pose only the boundary DOFs rotate (the modal coordinates are scalars in the link frame),
 so a pose costs 2 small matrix products per link, one scatter and a dense eigen solve of
 (boundary DOFs + kept modes) unknowns, all done for every pose of a sweep at once
-(``CraigBamptonPlan.stacked``, ``corrected_stack``). Springs, joint masses and rigid constraints act on link
-end nodes only; they are taken from the full model's layout through a "boundary model"
-(``FrameModel`` with one element per link, whose nodes are the end nodes), so
+(``CraigBamptonPlan.stacked``, ``truncation.corrected``). Springs, joint masses and rigid
+constraints act on link end nodes only; they are taken from the full model's layout through a
+"boundary model" (``FrameModel`` with one element per link, whose nodes are the end nodes), so
 ``assembly.spring_entries``, ``point_mass_entries`` and ``reduction`` are reused unchanged.
 
 Axial (u) and bending (v, rz) DOFs of a straight link are uncoupled in its frame, so each family
@@ -23,16 +23,18 @@ DOFs, as ``link.chain_entries`` scales a unit element), and the reduced matrices
 same diagonal scaling (D on the boundary rotations only; the modal coordinates absorb the rest).
 
 Mode choice (``CUTOFF``): a link keeps every fixed-interface mode whose frequency is at most
-CUTOFF times the highest requested system frequency. ``sweep._craig_bampton_sweep`` checks this
-for every pose and solves the poses whose frequencies have grown past what the basis was chosen
-for again, on an enlarged basis.
+CUTOFF times the highest requested system frequency (that of the reduced pencil, an upper bound
+of the exact one). ``sweep._craig_bampton_sweep`` checks this for every pose and solves the
+poses whose frequencies have grown past what the basis was chosen for again, on an enlarged
+basis.
 
 Truncation correction: plain truncation converges slowly here (about 3e-5 relative on the sixth
 mode of Table II case 2 with a cut-off of 16 times its frequency), because the axial
 fixed-interface modes grow only like k^2. The truncated modes couple to the kept DOFs through
-the mass matrix only, so their effect is put back per eigenvalue (``CraigBamptonPlan.corrected``)
-from a short series of 6 x 6 residual-flexibility matrices per link, computed once; with it the
-same basis is within 1e-9 to 1e-7 of the full model (tests/test_craig_bampton.py).
+the mass matrix only, so their effect is put back (``truncation.corrected``) from a short series
+of 6 x 6 residual-flexibility matrices per link, computed once, with a few updates of each
+eigenvector; with it a basis of 3 times the highest frequency is within round-off of the full
+model (tests/test_craig_bampton.py).
 
 Mode shapes: ``CraigBamptonPlan.shapes`` expands reduced eigenvectors to the full mesh (boundary
 DOFs plus each link's basis); the truncation correction refines eigenvalues only, so those
@@ -56,9 +58,7 @@ from flexlink.fe.model import GROUND, FrameModel, LinkMesh, Springs, _Layout
 log = logging.getLogger(__name__)
 
 CUTOFF = 3.0  # fixed-interface modes kept up to this times the highest requested frequency
-SERIES = 8  # terms of the truncated modes' series in lambda / lambda_k (``flexibility_series``)
-UPDATES = 2  # eigenvector updates of the truncation correction (``corrected_stack``)
-CONVERGED = 1e-8  # largest relative change of an eigenvalue in the last update accepted
+SERIES = 6  # terms of the truncated modes' series in lambda / lambda_k (``ReducedLink``)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -115,7 +115,13 @@ class ReducedLink:
 
     K, M: reduced matrices; axial, rotation: which reduced DOFs scale how with the length (see
     the module docstring); basis (3 (elements + 1), 6 + n_modes): local displacements of the
-    whole chain from the reduced coordinates at the reference length."""
+    whole chain from the reduced coordinates at the reference length; flexibility
+    (2 families, SERIES, 6, 6): F_j = sum over truncated modes of c c^T m^j / k^(j + 1) at the
+    reference length (c: a truncated mode's mass coupling with the boundary DOFs, k, m: its
+    modal stiffness and mass; local frame). Eliminating the truncated modes adds
+    -lambda^2 sum_k c c^T / (k - lambda m) = -lambda^2 sum_j lambda^j F_j to the reduced dynamic
+    stiffness (``truncation.py``); every truncated mode has k / m > lambda_cut >= CUTOFF^2
+    lambda, so the terms left out are below CUTOFF^(-2 SERIES) of the first."""
 
     length: float
     K: np.ndarray
@@ -123,7 +129,7 @@ class ReducedLink:
     axial: np.ndarray  # bool per reduced DOF: axial family
     rotation: np.ndarray  # bool per reduced DOF: boundary rotation
     basis: np.ndarray
-    flexibility: np.ndarray  # (2 families, SERIES, 6, 6): see ``flexibility_series``
+    flexibility: np.ndarray
 
     @property
     def n_modes(self) -> int:
@@ -142,22 +148,6 @@ class ReducedLink:
             return self.K, self.M
         a, b = self.scales(length)
         return a[:, None] * self.K * a, b[:, None] * self.M * b
-
-    def flexibility_series(self, length) -> np.ndarray:
-        """(..., SERIES, 6, 6) F_j = sum over truncated modes of c c^T m^j / k^(j + 1) at
-        ``length`` [m] (a number or an array of any shape; c: a truncated mode's mass coupling
-        with the boundary DOFs, k, m: its modal stiffness and mass; local frame). Eliminating
-        the truncated modes adds -lambda^2 sum_k c c^T / (k - lambda m) =
-        -lambda^2 sum_j lambda^j F_j to the reduced dynamic stiffness; every truncated mode has
-        k / m > lambda_cut >= CUTOFF^2 lambda, so the terms left out are below
-        CUTOFF^(-2 SERIES) of the first."""
-        r = np.asarray(length, dtype=float) / self.length
-        beta = r[..., None] * np.where(self.rotation[:6], r[..., None], 1.0)  # coupling scale
-        power = np.arange(SERIES)[:, None, None]
-        r = r[..., None, None, None]
-        axial = self.flexibility[0] * r**power * r ** (power + 1)
-        bending = self.flexibility[1] * r**power * r ** (3 * (power + 1))
-        return beta[..., None, :, None] * beta[..., None, None, :] * (axial + bending)
 
 
 def reduce_link(length: float, elements: int, EA: float, EI: float, rhoA: float,
@@ -241,20 +231,6 @@ def boundary_model(lay: _Layout, model: FrameModel) -> FrameModel:
                                    for j, v in lay.joint_nodes.items()})
 
 
-def _rayleigh_functional(rayleigh: np.ndarray, terms: np.ndarray, lam: np.ndarray,
-                         iterations: int = 3) -> np.ndarray:
-    """lambda [rad^2/s^2] (P, k) solving rayleigh - lambda - lambda^2 sum_j lambda^j terms_j = 0
-    by Newton from ``lam``: ``rayleigh`` (P, k) = x^T K x / x^T M x, ``terms`` (P, SERIES, k)
-    = u^T F_j u / x^T M x (``CraigBamptonPlan.corrected_stack``)."""
-    power = np.arange(SERIES)[:, None]
-    for _ in range(iterations):
-        L = lam[:, None, :]
-        S = (L**power * terms).sum(axis=1)
-        dS = (power[1:] * L ** power[:-1] * terms[:, 1:]).sum(axis=1)
-        lam = lam + (rayleigh - lam - lam**2 * S) / (1 + 2 * lam * S + lam**2 * dS)
-    return lam
-
-
 class CraigBamptonPlan:
     """The reduced dense K and M of every pose of one topology (boundary DOFs after the exact
     rigid-joint reduction, then each link's modal coordinates), for a given cut-off
@@ -297,6 +273,11 @@ class CraigBamptonPlan:
             where = np.where(cols >= 0, cols, self.n)  # grounded -> the dropped last slot
             self._flat.append((where[:, None] * (self.n + 1) + where[None, :]).ravel())
         self.boundary_columns = np.array([cols[:6] for cols in columns])
+        # the truncated modes' series (``truncation.corrected``): per link, F_0 .. F_SERIES-1
+        # stacked (axial and bending blocks together: they do not overlap), at reference length
+        self.flexibility = np.stack([rl.flexibility.sum(axis=0).reshape(SERIES * 6, 6)
+                                     for rl in self.links])
+        self.reference_lengths = np.array([rl.length for rl in self.links])
         self.constant = []
         for rows, cols, vals in (spring_entries(bmodel), point_mass_entries(bmodel)):
             r, c = column[rows], column[cols]
@@ -337,66 +318,6 @@ class CraigBamptonPlan:
         K = K.reshape(poses, n + 1, n + 1)[:, :n, :n] + self.constant[0]
         M = M.reshape(poses, n + 1, n + 1)[:, :n, :n] + self.constant[1]
         return K, M
-
-    def corrected_stack(self, angles: np.ndarray, lengths: np.ndarray, eigenvalues: np.ndarray,
-                        vectors: np.ndarray, pick: np.ndarray,
-                        updates: int = UPDATES) -> tuple[np.ndarray, np.ndarray]:
-        """(eigenvalues [rad^2/s^2] (poses, k) with the truncated modes put back, the relative
-        change of each in the last vector update (poses, k)) for the reduced modes ``pick``
-        (poses, k) of each pose; ``angles``, ``lengths`` as in ``stacked``; ``eigenvalues``
-        (poses, n) and ``vectors`` (poses, n, n): every mode of each reduced pencil, with
-        X^T M X = I (``stacked.stacked_modes``).
-
-        Eliminating the truncated coordinates exactly leaves the nonlinear eigenproblem
-        (K - lambda M - lambda^2 G(lambda)) x = 0 on the kept ones, G(lambda) = sum_k c_k
-        c_k^T / (k_k - lambda m_k) (c_k: a truncated mode's mass coupling with the boundary
-        DOFs; it has no stiffness coupling), summed per link as ``flexibility_series``. In
-        the basis of the reduced pencil's modes, x = X a, it reads
-        (diag(w) - lambda I - lambda^2 X^T G X) a = 0. For each picked mode i, starting
-        from a = e_i: lambda from the Rayleigh functional of x (w(a) - lambda - lambda^2
-        x^T G x / a^T a = 0, Newton), then the other components of a from the same
-        equations at that lambda, a_j = lambda^2 (X^T G X a)_j / (w_j - lambda), ``updates``
-        times, and the Rayleigh functional once more. The Rayleigh functional is stationary,
-        so its error is of second order in the error of x; each update shrinks that error by
-        about max |a_j| (1e-2 at CUTOFF 3). The last change says whether it converged: a
-        close pair (w_j near lambda) or too small a basis shows there."""
-        vectors = np.asarray(vectors)
-        poses, n, _ = vectors.shape
-        padded = np.concatenate([vectors, np.zeros((poses, 1, n))], axis=1)  # -1: grounded
-        series = np.stack([rl.flexibility_series(lengths[:, i])
-                           for i, rl in enumerate(self.links)], axis=1)  # (P, L, SERIES, 6, 6)
-        c = np.cos(angles)[:, :, None, None]
-        s = np.sin(angles)[:, :, None, None]
-        u = padded[:, self.boundary_columns]  # (P, L, 6, n), global frame
-        U = np.empty_like(u)  # every mode's boundary DOFs in each link's frame
-        U[:, :, [0, 3]] = c * u[:, :, [0, 3]] + s * u[:, :, [1, 4]]
-        U[:, :, [1, 4]] = -s * u[:, :, [0, 3]] + c * u[:, :, [1, 4]]
-        U[:, :, [2, 5]] = u[:, :, [2, 5]]
-        w = np.asarray(eigenvalues, dtype=float)[:, :, None]
-        power = np.arange(SERIES)
-
-        def functional(a, lam):
-            """lambda of x = X a (Newton from ``lam``) and F_j u, (P, L, SERIES, 6, k)."""
-            local = U @ a[:, None]  # (P, L, 6, k): x at each link's ends, link frame
-            Fu = series @ local[:, :, None]
-            norm = (a * a).sum(axis=1)
-            terms = np.einsum("plim,pljim->pjm", local, Fu) / norm[:, None]  # u^T F_j u / a^T a
-            return _rayleigh_functional((a * a * w).sum(axis=1) / norm, terms, lam), Fu
-
-        a = np.zeros((poses, n, pick.shape[1]))
-        np.put_along_axis(a, pick[:, None, :], 1.0, axis=1)
-        lam, Fu = functional(a, np.take_along_axis(w[:, :, 0], pick, axis=1))
-        change = np.zeros_like(lam)
-        for _ in range(updates):
-            Gx = (lam[:, None, None, None, :] ** power[:, None, None] * Fu).sum(axis=2)
-            gap = w - lam[:, None, :]
-            a = lam[:, None, :] ** 2 * np.einsum("plim,plik->pmk", U, Gx) \
-                / np.where(gap == 0, 1.0, gap)  # a_i itself is set to 1 next
-            np.put_along_axis(a, pick[:, None, :], 1.0, axis=1)
-            before = lam
-            lam, Fu = functional(a, lam)
-            change = np.abs(lam - before) / np.abs(lam)
-        return lam, change
 
     def shapes(self, model: FrameModel, vectors: np.ndarray) -> np.ndarray:
         """Full-model displacement shapes (model.n_dofs, k) from reduced eigenvectors
