@@ -65,17 +65,22 @@ SERIES = 6  # terms of the truncated modes' series in lambda / lambda_k (``Reduc
 class _Family:
     """One DOF family (axial or bending) of a link, reduced with every interior mode kept.
 
-    boundary: local DOF indices of the family's end-node DOFs; K, M: reduced matrices over
-    (boundary, all interior modes in ascending eigenvalue), so keeping the lowest m modes is a
-    leading block; eigenvalues [rad^2/s^2] of the fixed-interface modes; basis: T (local family
-    DOFs x reduced DOFs) to recover full shapes."""
+    boundary: local DOF indices of the family's end-node DOFs; slots: their places among the
+    link's 6 boundary DOFs; K, M: reduced matrices over (boundary, all interior modes in
+    ascending eigenvalue), so keeping the lowest m modes is a leading block; eigenvalues
+    [rad^2/s^2] of the fixed-interface modes; basis: T (local family DOFs x reduced DOFs) to
+    recover full shapes; tail (modes + 1, SERIES, boundary, boundary): tail[m, j] = sum over
+    the modes from the m-th on of c c^T / lambda^(j + 1) (c: a mode's mass coupling with the
+    boundary DOFs, its modal mass being 1), the series of the modes truncated after m."""
 
     dofs: np.ndarray
     boundary: np.ndarray
+    slots: np.ndarray
     K: np.ndarray
     M: np.ndarray
     eigenvalues: np.ndarray
     basis: np.ndarray
+    tail: np.ndarray
 
 
 @functools.lru_cache(maxsize=64)
@@ -103,8 +108,13 @@ def _families(length: float, elements: int, EA: float, EI: float, rhoA: float):
         else:
             lam = np.zeros(0)
         Kr, Mr = T.T @ Kff @ T, T.T @ Mff @ T
-        out.append(_Family(dofs=dofs, boundary=b, K=(Kr + Kr.T) / 2, M=(Mr + Mr.T) / 2,
-                           eigenvalues=lam, basis=T))
+        Mr = (Mr + Mr.T) / 2
+        c = Mr[:nb, nb:]
+        terms = np.einsum("ak,bk,jk->kjab", c, c, lam ** -(np.arange(SERIES)[:, None] + 1.0))
+        tail = np.zeros((len(lam) + 1, SERIES, nb, nb))
+        tail[:-1] = np.cumsum(terms[::-1], axis=0)[::-1]  # smallest terms first
+        out.append(_Family(dofs=dofs, boundary=b, slots=np.searchsorted(np.flatnonzero(end), b),
+                           K=(Kr + Kr.T) / 2, M=Mr, eigenvalues=lam, basis=T, tail=tail))
     return tuple(out)
 
 
@@ -116,12 +126,13 @@ class ReducedLink:
     K, M: reduced matrices; axial, rotation: which reduced DOFs scale how with the length (see
     the module docstring); basis (3 (elements + 1), 6 + n_modes): local displacements of the
     whole chain from the reduced coordinates at the reference length; flexibility
-    (2 families, SERIES, 6, 6): F_j = sum over truncated modes of c c^T m^j / k^(j + 1) at the
+    (SERIES, 6, 6): F_j = sum over truncated modes of c c^T m^j / k^(j + 1) at the
     reference length (c: a truncated mode's mass coupling with the boundary DOFs, k, m: its
     modal stiffness and mass; local frame). Eliminating the truncated modes adds
     -lambda^2 sum_k c c^T / (k - lambda m) = -lambda^2 sum_j lambda^j F_j to the reduced dynamic
     stiffness (``truncation.py``); every truncated mode has k / m > lambda_cut >= CUTOFF^2
-    lambda, so the terms left out are below CUTOFF^(-2 SERIES) of the first."""
+    lambda, so the terms left out are below CUTOFF^(-2 SERIES) of the first. Axial and bending
+    truncated modes act on separate boundary DOFs (0, 3 and 1, 2, 4, 5), so F_j holds both."""
 
     length: float
     K: np.ndarray
@@ -154,49 +165,41 @@ def reduce_link(length: float, elements: int, EA: float, EI: float, rhoA: float,
                 lambda_cut: float) -> ReducedLink:
     """Craig-Bampton reduction keeping the fixed-interface modes with eigenvalue <= lambda_cut
     [rad^2/s^2] (both families)."""
-    axial, bending = _families(float(length), int(elements), EA, EI, rhoA)
-    parts = []  # (family, kept modes)
-    for fam in (axial, bending):
-        parts.append((fam, int(np.searchsorted(fam.eigenvalues, lambda_cut, side="right"))))
+    families = _families(float(length), int(elements), EA, EI, rhoA)
+    kept = [int(np.searchsorted(f.eigenvalues, lambda_cut, side="right")) for f in families]
     # reduced DOF order: the 6 boundary DOFs in local node order, then axial, then bending modes
-    n_local = 3 * (int(elements) + 1)
-    boundary_local = np.array([0, 1, 2, n_local - 3, n_local - 2, n_local - 1])
-    n = 6 + sum(m for _, m in parts)
+    n = 6 + sum(kept)
     K, M = np.zeros((n, n)), np.zeros((n, n))
-    basis = np.zeros((n_local, n))
+    basis = np.zeros((3 * (int(elements) + 1), n))
     axial_mask = np.zeros(n, dtype=bool)
+    flexibility = np.zeros((SERIES, 6, 6))
     next_mode = 6
-    for index, (fam, m) in enumerate(parts):
-        nb = len(fam.boundary)
-        slots = np.concatenate([np.searchsorted(boundary_local, fam.boundary),
-                                next_mode + np.arange(m)])
-        keep = np.arange(nb + m)
-        K[np.ix_(slots, slots)] = fam.K[np.ix_(keep, keep)]
-        M[np.ix_(slots, slots)] = fam.M[np.ix_(keep, keep)]
-        basis[np.ix_(fam.dofs, slots)] = fam.basis[:, keep]
+    for index, (fam, m) in enumerate(zip(families, kept)):
+        slots = np.concatenate([fam.slots, next_mode + np.arange(m)])
+        size = len(slots)
+        K[np.ix_(slots, slots)] = fam.K[:size, :size]
+        M[np.ix_(slots, slots)] = fam.M[:size, :size]
+        basis[np.ix_(fam.dofs, slots)] = fam.basis[:, :size]
         axial_mask[slots] = index == 0
+        flexibility[:, fam.slots[:, None], fam.slots] = fam.tail[m]
         next_mode += m
     rotation = np.zeros(n, dtype=bool)
     rotation[[2, 5]] = True
-    flexibility = np.zeros((2, SERIES, 6, 6))
-    for index, (fam, m) in enumerate(parts):
-        nb = len(fam.boundary)
-        coupling = np.zeros((6, len(fam.eigenvalues) - m))  # modal masses are 1 (eigh)
-        coupling[np.searchsorted(boundary_local, fam.boundary)] = fam.M[:nb, nb + m:]
-        for j in range(SERIES):
-            flexibility[index, j] = (coupling / fam.eigenvalues[m:] ** (j + 1)) @ coupling.T
     for A in (K, M, basis, axial_mask, rotation, flexibility):
         A.flags.writeable = False
     return ReducedLink(length=float(length), K=K, M=M, axial=axial_mask, rotation=rotation,
                        basis=basis, flexibility=flexibility)
 
 
-def lowest_fixed_interface(length: float, elements: int, EA: float, EI: float,
-                           rhoA: float) -> float:
-    """Lowest fixed-interface eigenvalue [rad^2/s^2] of a link (inf for a one-element link)."""
-    lams = [f.eigenvalues[0] for f in _families(float(length), int(elements), EA, EI, rhoA)
-            if len(f.eigenvalues)]
-    return min(lams) if lams else math.inf
+def fixed_interface_bound(links, k: int) -> float:
+    """The k-th lowest fixed-interface eigenvalue [rad^2/s^2] of the ``links`` (LinkMesh) taken
+    together (inf when they have fewer). Clamping every link end leaves exactly these modes, and
+    constraining DOFs raises each eigenvalue (interlacing), so the linkage's k-th eigenvalue is
+    at most this, and so is any Craig-Bampton reduction's keeping the lowest k of them."""
+    lams = np.sort(np.concatenate([f.eigenvalues for l in links for f in _families(
+        float(l.length), int(l.elements), l.section.EA, l.section.EI,
+        l.section.mass_per_length)]))
+    return float(lams[k - 1]) if len(lams) >= k else math.inf
 
 
 def boundary_model(lay: _Layout, model: FrameModel) -> FrameModel:
@@ -234,15 +237,24 @@ def boundary_model(lay: _Layout, model: FrameModel) -> FrameModel:
 class CraigBamptonPlan:
     """The reduced dense K and M of every pose of one topology (boundary DOFs after the exact
     rigid-joint reduction, then each link's modal coordinates), for a given cut-off
-    ``lambda_cut`` [rad^2/s^2]. Built from one model of the topology."""
+    ``lambda_cut`` [rad^2/s^2]. Built from one model of the topology; ``reach``: the lowest
+    truncated fixed-interface eigenvalue [rad^2/s^2] (inf: none truncated) at its lengths."""
 
     def __init__(self, model: FrameModel, lay: _Layout, lambda_cut: float):
         self.lambda_cut = lambda_cut
         self.links = []
+        kept, truncated = [0.0], [math.inf]
         for link in model.links:
             s = link.section
             self.links.append(reduce_link(link.length, link.elements, s.EA, s.EI,
                                           s.mass_per_length, lambda_cut))
+            for fam in _families(float(link.length), int(link.elements), s.EA, s.EI,
+                                 s.mass_per_length):
+                m = int(np.searchsorted(fam.eigenvalues, lambda_cut, side="right"))
+                kept += list(fam.eigenvalues[:m][-1:])
+                truncated += list(fam.eigenvalues[m:m + 1])
+        # the same basis for any cut-off in [highest kept, reach) [rad^2/s^2], at these lengths
+        self.highest_kept, self.reach = max(kept), min(truncated)
         bmodel = boundary_model(lay, model)
         T = reduction(bmodel)
         n_b = bmodel.n_dofs
@@ -274,8 +286,8 @@ class CraigBamptonPlan:
             self._flat.append((where[:, None] * (self.n + 1) + where[None, :]).ravel())
         self.boundary_columns = np.array([cols[:6] for cols in columns])
         # the truncated modes' series (``truncation.corrected``): per link, F_0 .. F_SERIES-1
-        # stacked (axial and bending blocks together: they do not overlap), at reference length
-        self.flexibility = np.stack([rl.flexibility.sum(axis=0).reshape(SERIES * 6, 6)
+        # stacked, at reference length
+        self.flexibility = np.stack([rl.flexibility.reshape(SERIES * 6, 6)
                                      for rl in self.links])
         self.reference_lengths = np.array([rl.length for rl in self.links])
         self.constant = []
