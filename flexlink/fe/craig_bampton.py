@@ -146,18 +146,18 @@ class ReducedLink:
     def n_modes(self) -> int:
         return self.K.shape[0] - 6
 
-    def scales(self, lengths) -> tuple[np.ndarray, np.ndarray]:
-        """(a, b), each (..., 6 + n_modes): the link at ``lengths`` [m] (any shape) has
-        K = a a^T * K_ref and M = b b^T * M_ref, elementwise (exact rescaling, module docstring)."""
-        r = (np.asarray(lengths, dtype=float) / self.length)[..., None]
-        turn = np.where(self.rotation, r, 1.0)
-        return np.where(self.axial, r**-0.5, r**-1.5) * turn, np.sqrt(r) * turn
+    def powers(self) -> np.ndarray:
+        """(2, 6 + n_modes): the link at r times its reference length has K = a a^T * K_ref and
+        M = b b^T * M_ref, elementwise, with a = r^powers[0], b = r^powers[1] (exact rescaling,
+        module docstring)."""
+        turn = self.rotation.astype(float)
+        return np.stack([np.where(self.axial, -0.5, -1.5) + turn, 0.5 + turn])
 
     def matrices(self, length: float) -> tuple[np.ndarray, np.ndarray]:
         """(K, M) of the same link at ``length`` [m], exact rescaling of the reference ones."""
         if length == self.length:
             return self.K, self.M
-        a, b = self.scales(length)
+        a, b = (length / self.length) ** self.powers()
         return a[:, None] * self.K * a, b[:, None] * self.M * b
 
 
@@ -277,13 +277,21 @@ class CraigBamptonPlan:
         self.columns = columns
         self.boundary = bmodel
         self.boundary_column = column
-        self._flat = []  # per link: its reduced entries' slots in the (n + 1)^2 stack
-        for cols in columns:
+        # every link's reduced matrices padded to one size, K over M, with the slot of each
+        # entry in the (n + 1)-square stack (grounded DOFs and padding: the dropped last row)
+        size = max(rl.K.shape[0] for rl in self.links)
+        self._reference = np.zeros((2, len(self.links), size, size))
+        self._power = np.zeros((2, len(self.links), size))  # entries scale as r^(p_i + p_j)
+        where = np.full((len(self.links), size), self.n)
+        for index, (rl, cols) in enumerate(zip(self.links, columns)):
             kept = cols[cols >= 0]
             if len(np.unique(kept)) != len(kept):
                 raise AssertionError("two DOFs of one link share a reduced DOF")
-            where = np.where(cols >= 0, cols, self.n)  # grounded -> the dropped last slot
-            self._flat.append((where[:, None] * (self.n + 1) + where[None, :]).ravel())
+            m = rl.K.shape[0]
+            self._reference[:, index, :m, :m] = rl.K, rl.M
+            self._power[:, index, :m] = rl.powers()
+            where[index, :m] = np.where(cols >= 0, cols, self.n)
+        self._slots = (where[:, :, None] * (self.n + 1) + where[:, None, :]).ravel()
         self.boundary_columns = np.array([cols[:6] for cols in columns])
         # the truncated modes' series (``truncation.corrected``): per link, F_0 .. F_SERIES-1
         # stacked, at reference length
@@ -307,29 +315,27 @@ class CraigBamptonPlan:
     def stacked(self, angles: np.ndarray, lengths: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Reduced dense K and M, each (poses, n, n), of the plan's topology at many poses at
         once: ``angles`` [rad] and ``lengths`` [m], each (poses, links), in the plan's link
-        order. Per link, its rescaled reduced matrices are rotated on their boundary DOFs
-        (Q^T K Q) for all poses together and added into a (n + 1)-square stack whose last
-        row and column collect the grounded DOFs and are dropped."""
+        order. Every link's rescaled reduced matrices are rotated on their boundary DOFs
+        (Q^T K Q) for all poses together and summed into a (n + 1)-square stack by one
+        ``np.bincount``; its last row and column collect the grounded DOFs and are dropped."""
         angles, lengths = np.atleast_2d(angles), np.atleast_2d(lengths)
         poses, n = angles.shape[0], self.n
-        K = np.zeros((poses, (n + 1) ** 2))
-        M = np.zeros((poses, (n + 1) ** 2))
-        for index, (rl, flat) in enumerate(zip(self.links, self._flat)):
-            a, b = rl.scales(lengths[:, index])
-            Kl = a[:, :, None] * rl.K * a[:, None, :]
-            Ml = b[:, :, None] * rl.M * b[:, None, :]
-            c, s = np.cos(angles[:, index]), np.sin(angles[:, index])
-            size = rl.K.shape[0]
-            Q = np.broadcast_to(np.eye(size), (poses, size, size)).copy()
-            Q[:, [0, 3], [0, 3]] = Q[:, [1, 4], [1, 4]] = c[:, None]
-            Q[:, [0, 3], [1, 4]], Q[:, [1, 4], [0, 3]] = s[:, None], -s[:, None]
-            Qt = Q.transpose(0, 2, 1)
-            # slots are distinct within a link except the dropped one (checked in __init__)
-            K[:, flat] += (Qt @ Kl @ Q).reshape(poses, -1)
-            M[:, flat] += (Qt @ Ml @ Q).reshape(poses, -1)
-        K = K.reshape(poses, n + 1, n + 1)[:, :n, :n] + self.constant[0]
-        M = M.reshape(poses, n + 1, n + 1)[:, :n, :n] + self.constant[1]
-        return K, M
+        r = lengths / self.reference_lengths  # (P, L)
+        scale = r[None, :, :, None] ** self._power[:, None]  # (2, P, L, size): a and b
+        A = scale[..., :, None] * self._reference[:, None] * scale[..., None, :]
+        c, s = np.cos(angles)[..., None], np.sin(angles)[..., None]
+        for x in (0, 3):  # Q^T A Q, Q turning each end's (u, v) into the link frame
+            rows = A[..., x, :].copy()
+            A[..., x, :] = c * rows - s * A[..., x + 1, :]
+            A[..., x + 1, :] = s * rows + c * A[..., x + 1, :]
+            cols = A[..., x].copy()
+            A[..., x] = c * cols - s * A[..., x + 1]
+            A[..., x + 1] = s * cols + c * A[..., x + 1]
+        stack = (n + 1) ** 2
+        slots = np.arange(2 * poses)[:, None] * stack + self._slots
+        summed = np.bincount(slots.ravel(), weights=A.ravel(), minlength=2 * poses * stack)
+        K, M = summed.reshape(2, poses, n + 1, n + 1)[:, :, :n, :n]
+        return K + self.constant[0], M + self.constant[1]
 
     def shapes(self, model: FrameModel, vectors: np.ndarray) -> np.ndarray:
         """Full-model displacement shapes (model.n_dofs, k) from reduced eigenvectors
