@@ -49,17 +49,20 @@ def _fail(message: str, bad: np.ndarray) -> NumericalError:
                           f"({int(bad.sum())} pose(s) in all)")
 
 
-def stacked_modes(K: np.ndarray, M: np.ndarray, lambda_ref: np.ndarray,
-                  checked: int) -> StackedModes:
+def stacked_modes(K: np.ndarray, M: np.ndarray, lambda_ref: np.ndarray, checked: int,
+                  factor: np.ndarray | None = None) -> StackedModes:
     """All modes of each pencil of the stacks ``K``, ``M`` (P, n, n); ``lambda_ref`` (P,): each
     pose's own eigenvalue scale [rad^2/s^2] (``pose.in_plane_eigen_scale``); the lowest
-    ``checked`` modes of each pose are checked (module docstring)."""
-    try:
-        L = np.linalg.cholesky(M)
-    except np.linalg.LinAlgError:
-        raise NumericalError("a reduced mass matrix of the sweep is not positive definite") \
-            from None
-    Li = np.linalg.inv(L)
+    ``checked`` modes of each pose are checked (module docstring). ``factor``: F^-1 (P, n, n)
+    with F^-1 M F^-T = I when the caller knows a cheaper one (``CraigBamptonPlan.mass_factor``);
+    by default the inverse of M's Cholesky factor."""
+    if factor is None:
+        try:
+            factor = np.linalg.inv(np.linalg.cholesky(M))
+        except np.linalg.LinAlgError:
+            raise NumericalError("a reduced mass matrix of the sweep is not positive "
+                                 "definite") from None
+    Li = factor
     A = Li @ K @ Li.transpose(0, 2, 1)
     vals, V = np.linalg.eigh((A + A.transpose(0, 2, 1)) / 2)
     X = Li.transpose(0, 2, 1) @ V

@@ -284,7 +284,8 @@ def _craig_bampton_chunk(plan: CraigBamptonPlan, angles, lengths, lambda_ref, n_
     converge (``CONVERGED``; True where nothing was corrected). Needs are inf when fewer elastic
     modes were found and the basis is not yet complete, 0 once it is."""
     K, M = plan.stacked(angles, lengths)
-    modes = stacked_modes(K, M, lambda_ref, checked=n_modes + SPARE_MODES)
+    modes = stacked_modes(K, M, lambda_ref, checked=n_modes + SPARE_MODES,
+                          factor=plan.mass_factor(M))
     n_mechanism = modes.mechanisms
     pick = n_mechanism[:, None] + np.arange(n_modes)
     found = pick < plan.n

@@ -51,6 +51,7 @@ import math
 import numpy as np
 import scipy.linalg as la
 
+from flexlink.errors import NumericalError
 from flexlink.fe.assembly import point_mass_entries, reduction, spring_entries
 from flexlink.fe.link import link_matrices
 from flexlink.fe.model import GROUND, FrameModel, LinkMesh, Springs, _Layout
@@ -108,13 +109,17 @@ def _families(length: float, elements: int, EA: float, EI: float, rhoA: float):
         else:
             lam = np.zeros(0)
         Kr, Mr = T.T @ Kff @ T, T.T @ Mff @ T
-        Mr = (Mr + Mr.T) / 2
+        Kr, Mr = (Kr + Kr.T) / 2, (Mr + Mr.T) / 2
+        # exact in exact arithmetic (the static modes are K-orthogonal to the fixed-interface
+        # modes, which are M-orthonormal): set so, for ``CraigBamptonPlan.mass_factor``
+        Kr[:nb, nb:] = Kr[nb:, :nb] = 0.0
+        Kr[nb:, nb:], Mr[nb:, nb:] = np.diag(lam), np.eye(len(lam))
         c = Mr[:nb, nb:]
         terms = np.einsum("ak,bk,jk->kjab", c, c, lam ** -(np.arange(SERIES)[:, None] + 1.0))
         tail = np.zeros((len(lam) + 1, SERIES, nb, nb))
         tail[:-1] = np.cumsum(terms[::-1], axis=0)[::-1]  # smallest terms first
         out.append(_Family(dofs=dofs, boundary=b, slots=np.searchsorted(np.flatnonzero(end), b),
-                           K=(Kr + Kr.T) / 2, M=Mr, eigenvalues=lam, basis=T, tail=tail))
+                           K=Kr, M=Mr, eigenvalues=lam, basis=T, tail=tail))
     return tuple(out)
 
 
@@ -336,6 +341,28 @@ class CraigBamptonPlan:
         summed = np.bincount(slots.ravel(), weights=A.ravel(), minlength=2 * poses * stack)
         K, M = summed.reshape(2, poses, n + 1, n + 1)[:, :, :n, :n]
         return K + self.constant[0], M + self.constant[1]
+
+    def mass_factor(self, M: np.ndarray) -> np.ndarray:
+        """F^-1 (P, n, n) with F^-1 M F^-T = I for a stack M (P, n, n) of this plan's mass
+        matrices, from their structure: M = [[B, C], [C^T, D]] over (boundary DOFs, modal
+        coordinates) with D diagonal (the modes of a link are M-orthonormal, those of two
+        links do not couple), so M = F F^T with F = [[L, C D^-1/2], [0, D^1/2]], L L^T =
+        B - C D^-1 C^T: a Cholesky factor and an inverse of the boundary size only."""
+        nb = self.n_boundary
+        C = M[:, :nb, nb:]
+        d = np.einsum("pii->pi", M[:, nb:, nb:])
+        CD = C / d[:, None, :]
+        try:
+            L = np.linalg.cholesky(M[:, :nb, :nb] - CD @ C.transpose(0, 2, 1))
+        except np.linalg.LinAlgError:
+            raise NumericalError("a reduced mass matrix of the sweep is not positive "
+                                 "definite") from None
+        Li = np.linalg.inv(L)
+        out = np.zeros_like(M)
+        out[:, :nb, :nb] = Li
+        out[:, :nb, nb:] = -Li @ CD
+        out[:, nb + np.arange(self.n - nb), nb + np.arange(self.n - nb)] = d**-0.5
+        return out
 
     def shapes(self, model: FrameModel, vectors: np.ndarray) -> np.ndarray:
         """Full-model displacement shapes (model.n_dofs, k) from reduced eigenvectors
