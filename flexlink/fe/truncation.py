@@ -38,14 +38,20 @@ _AXIAL = np.array([True, False, False, True, False, False])  # a link's boundary
 _ROTATION = np.array([False, False, True, False, False, True])
 
 
-def _turned(u: np.ndarray, c: np.ndarray, s: np.ndarray) -> np.ndarray:
-    """Boundary displacements u (L, 6, ...) turned by the angle of cosine c, sine s (L, 1, ...):
-    global to link frame with s = sin(angle), back with s = -sin(angle)."""
-    out = u.copy()
+def _boundary_rows(plan: CraigBamptonPlan, angles: np.ndarray, d: np.ndarray,
+                   vectors: np.ndarray) -> np.ndarray:
+    """D u for every reduced mode (P, 6 L, n): each link's boundary DOFs of each mode, turned
+    into the link's frame and scaled by D (``d`` (L, 6, P)); grounded DOFs are 0."""
+    columns = plan.boundary_columns.ravel()
+    u = vectors[:, np.maximum(columns, 0)] * (columns >= 0)[:, None]
+    u = u.reshape(len(u), -1, 6, u.shape[-1])  # (P, L, 6, n), global frame
+    c = np.cos(angles)[:, :, None]
+    s = np.sin(angles)[:, :, None]
+    local = u.copy()
     for x in (0, 3):  # each end's u and v
-        out[:, x] = c[:, 0] * u[:, x] + s[:, 0] * u[:, x + 1]
-        out[:, x + 1] = c[:, 0] * u[:, x + 1] - s[:, 0] * u[:, x]
-    return out
+        local[:, :, x] = c * u[:, :, x] + s * u[:, :, x + 1]
+        local[:, :, x + 1] = c * u[:, :, x + 1] - s * u[:, :, x]
+    return (local * d.transpose(2, 0, 1)[..., None]).reshape(len(u), -1, u.shape[-1])
 
 
 def _horner(lam: np.ndarray, terms: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -79,24 +85,17 @@ def corrected(plan: CraigBamptonPlan, angles: np.ndarray, lengths: np.ndarray,
     X^T M X = I (``stacked.stacked_modes``)."""
     poses, n, _ = vectors.shape
     k, links = pick.shape[1], len(plan.links)
-    # per link (L, 1 or 6, P, 1): length ratio, D, Gamma^j, the link's cosine and sine
-    r = np.ascontiguousarray(np.asarray(lengths, dtype=float).T / plan.reference_lengths[:, None])
-    r = r[:, None, :, None]
-    d = r * np.where(_ROTATION[:, None, None], r, 1.0) \
-        * np.where(_AXIAL[:, None, None], r**0.5, r**1.5)
-    g_power = np.where(_AXIAL[:, None, None], r**2, r**4)[:, None] \
-        ** np.arange(SERIES)[:, None, None, None]  # (L, SERIES, 6, P, 1)
-    c = np.ascontiguousarray(np.cos(angles).T)[:, None, :, None]
-    s = np.ascontiguousarray(np.sin(angles).T)[:, None, :, None]
-    # every mode's boundary DOFs, global frame (P, 6 L, n); grounded ones are 0
-    columns = plan.boundary_columns.ravel()
-    Xb = vectors[:, np.maximum(columns, 0)] * (columns >= 0)[:, None]
+    r = np.asarray(lengths, dtype=float).T[:, None, :] / plan.reference_lengths[:, None, None]
+    d = r * np.where(_ROTATION[:, None], r, 1.0) * np.where(_AXIAL[:, None], r**0.5, r**1.5)
+    g_power = np.broadcast_to(  # Gamma^j, (L, SERIES, 6, P, k)
+        np.where(_AXIAL[:, None], r**2, r**4)[:, None, :, :, None]
+        ** np.arange(SERIES)[:, None, None, None], (links, SERIES, 6, poses, k)).copy()
+    Xb = _boundary_rows(plan, angles, d, vectors)  # (P, 6 L, n): D u of every mode
     w = np.asarray(eigenvalues, dtype=float)[:, :, None]
 
     def functional(a, lam):
-        """lambda of x = X a (Newton from ``lam``), D u and F_j,ref D u (L, SERIES, 6, P, k)."""
-        u = (Xb @ a).transpose(1, 0, 2).reshape(links, 6, poses, k)
-        u = d * _turned(u, c, s)  # link frame, scaled
+        """lambda of x = X a (Newton from ``lam``) and F_j,ref D u (L, SERIES, 6, P, k)."""
+        u = np.ascontiguousarray((Xb @ a).transpose(1, 0, 2)).reshape(links, 6, poses, k)
         Fu = (plan.flexibility @ u.reshape(links, 6, -1)).reshape(links, SERIES, 6, poses, k)
         norm = (a * a).sum(axis=1)
         terms = np.einsum("ljapk,ljapk,lapk->jpk", Fu, g_power, u) / norm
@@ -107,8 +106,8 @@ def corrected(plan: CraigBamptonPlan, angles: np.ndarray, lengths: np.ndarray,
     lam, Fu = functional(a, np.take_along_axis(w[:, :, 0], pick, axis=1))
     change = np.zeros_like(lam)
     for _ in range(updates):
-        lam_power = lam ** np.arange(SERIES)[:, None, None]  # (SERIES, P, k)
-        Gx = _turned(d * np.einsum("ljapk,ljapk,jpk->lapk", Fu, g_power, lam_power), c, -s)
+        # X^T G x: G x = D sum_j lambda^j Gamma^j F_j,ref D u in each link's frame
+        Gx = np.einsum("ljapk,ljapk,jpk->lapk", Fu, g_power, lam ** np.arange(SERIES)[:, None, None])
         h = Xb.transpose(0, 2, 1) @ Gx.reshape(6 * links, poses, k).transpose(1, 0, 2)
         gap = w - lam[:, None, :]
         a = lam[:, None, :] ** 2 * h / np.where(gap == 0, 1.0, gap)
