@@ -206,6 +206,11 @@ def pose_geometry(topology: Topology, poses) -> tuple[np.ndarray, np.ndarray]:
     return np.arctan2(d[..., 1], d[..., 0]), np.hypot(d[..., 0], d[..., 1])
 
 
+CHUNK = 64  # poses solved together: all their temporaries stay within a few MB
+SAMPLE = 64  # poses of a sweep whose needs set the basis of the others
+MARGIN = 1.1  # basis for the eigenvalue a sweep's sample needs times this
+
+
 def _craig_bampton_sweep(topology: Topology, poses, n_modes: int, freqs: np.ndarray,
                          mechanism: np.ndarray) -> None:
     """``modal_sweep`` through ``CraigBamptonPlan``, all poses at once, filling ``freqs`` and
@@ -255,11 +260,6 @@ def _craig_bampton_sweep(topology: Topology, poses, n_modes: int, freqs: np.ndar
             lambda_cut = max(MARGIN * need[~fits].max(initial=0.0),
                              4 * plan.reach if not converged.all() else 0.0)
             todo = todo[~fits]
-
-
-CHUNK = 64  # poses solved together: all their temporaries stay within a few MB
-SAMPLE = 64  # poses of a sweep whose needs set the basis of the others
-MARGIN = 1.1  # basis for the eigenvalue a sweep's sample needs times this
 
 
 def _craig_bampton_poses(plan: CraigBamptonPlan, angles, lengths, lambda_ref, n_modes: int):

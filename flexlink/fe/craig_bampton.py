@@ -246,7 +246,6 @@ class CraigBamptonPlan:
     truncated fixed-interface eigenvalue [rad^2/s^2] (inf: none truncated) at its lengths."""
 
     def __init__(self, model: FrameModel, lay: _Layout, lambda_cut: float):
-        self.lambda_cut = lambda_cut
         self.links = []
         kept, truncated = [0.0], [math.inf]
         for link in model.links:

@@ -107,7 +107,8 @@ def corrected(plan: CraigBamptonPlan, angles: np.ndarray, lengths: np.ndarray,
     change = np.zeros_like(lam)
     for _ in range(updates):
         # X^T G x: G x = D sum_j lambda^j Gamma^j F_j,ref D u in each link's frame
-        Gx = np.einsum("ljapk,ljapk,jpk->lapk", Fu, g_power, lam ** np.arange(SERIES)[:, None, None])
+        lam_power = lam ** np.arange(SERIES)[:, None, None]
+        Gx = np.einsum("ljapk,ljapk,jpk->lapk", Fu, g_power, lam_power)
         h = Xb.transpose(0, 2, 1) @ Gx.reshape(6 * links, poses, k).transpose(1, 0, 2)
         gap = w - lam[:, None, :]
         a = lam[:, None, :] ** 2 * h / np.where(gap == 0, 1.0, gap)
