@@ -2,8 +2,10 @@
 
 A stack of pencils (K_p, M_p), each n x n with M_p positive definite, is solved as numpy solves
 a stack: M_p = L_p L_p^T (Cholesky), A_p = L_p^-1 K_p L_p^-T, A_p = V_p diag(w_p) V_p^T (eigh),
-X_p = L_p^-T V_p, so X_p^T M_p X_p = I. One call per step for all poses replaces a Python-level
-solve per pose, whose fixed cost is several times the arithmetic at a few dozen DOFs.
+X_p = L_p^-T V_p, so X_p^T M_p X_p = I (any factor M_p = L_p L_p^T will do; a caller that
+knows the structure of M passes a cheaper one). One call per step for all poses replaces a
+Python-level solve per pose, whose fixed cost is several times the arithmetic at a few dozen
+DOFs.
 
 Each answer is checked as ``solve.solve_modes`` checks one (same thresholds): finite, no
 eigenvalue below -zero, normwise backward error <= 1e-10, M-orthogonality to 1e-6, and no
@@ -49,17 +51,20 @@ def _fail(message: str, bad: np.ndarray) -> NumericalError:
                           f"({int(bad.sum())} pose(s) in all)")
 
 
-def stacked_modes(K: np.ndarray, M: np.ndarray, lambda_ref: np.ndarray,
-                  checked: int) -> StackedModes:
+def stacked_modes(K: np.ndarray, M: np.ndarray, lambda_ref: np.ndarray, checked: int,
+                  factor: np.ndarray | None = None) -> StackedModes:
     """All modes of each pencil of the stacks ``K``, ``M`` (P, n, n); ``lambda_ref`` (P,): each
     pose's own eigenvalue scale [rad^2/s^2] (``pose.in_plane_eigen_scale``); the lowest
-    ``checked`` modes of each pose are checked (module docstring)."""
-    try:
-        L = np.linalg.cholesky(M)
-    except np.linalg.LinAlgError:
-        raise NumericalError("a reduced mass matrix of the sweep is not positive definite") \
-            from None
-    Li = np.linalg.inv(L)
+    ``checked`` modes of each pose are checked (module docstring). ``factor``: F^-1 (P, n, n)
+    with F^-1 M F^-T = I when the caller knows a cheaper one (``CraigBamptonPlan.mass_factor``);
+    by default the inverse of M's Cholesky factor."""
+    if factor is None:
+        try:
+            factor = np.linalg.inv(np.linalg.cholesky(M))
+        except np.linalg.LinAlgError:
+            raise NumericalError("a reduced mass matrix of the sweep is not positive "
+                                 "definite") from None
+    Li = factor  # L^-1
     A = Li @ K @ Li.transpose(0, 2, 1)
     vals, V = np.linalg.eigh((A + A.transpose(0, 2, 1)) / 2)
     X = Li.transpose(0, 2, 1) @ V

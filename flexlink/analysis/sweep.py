@@ -23,7 +23,8 @@ from flexlink.fe.pose import in_plane_eigen_scale
 from flexlink.fe.assembly import (assemble, dense_slots, dense_sum, placed_link_entries,
                                   point_mass_entries, reduced_columns, spring_entries)
 from flexlink.fe.assembly import reduction as rigid_reduction
-from flexlink.fe.craig_bampton import CUTOFF, CraigBamptonPlan, lowest_fixed_interface
+from flexlink.fe.craig_bampton import CUTOFF, CraigBamptonPlan, fixed_interface_bound
+from flexlink.fe.truncation import CONVERGED, corrected
 from flexlink.errors import InputError
 from flexlink.fe.beams import link_entries
 from flexlink.fe.model import FrameModel, Topology, layout
@@ -205,6 +206,11 @@ def pose_geometry(topology: Topology, poses) -> tuple[np.ndarray, np.ndarray]:
     return np.arctan2(d[..., 1], d[..., 0]), np.hypot(d[..., 0], d[..., 1])
 
 
+CHUNK = 64  # poses solved together: all their temporaries stay within a few MB
+SAMPLE = 64  # poses of a sweep whose needs set the basis of the others
+MARGIN = 1.1  # basis for the eigenvalue a sweep's sample needs times this
+
+
 def _craig_bampton_sweep(topology: Topology, poses, n_modes: int, freqs: np.ndarray,
                          mechanism: np.ndarray) -> None:
     """``modal_sweep`` through ``CraigBamptonPlan``, all poses at once, filling ``freqs`` and
@@ -213,11 +219,12 @@ def _craig_bampton_sweep(topology: Topology, poses, n_modes: int, freqs: np.ndar
     truncation correction for every pose together; no model object is built per pose.
 
     The basis keeps every fixed-interface mode up to CUTOFF times the highest requested
-    frequency. The first pose alone is solved with CUTOFF times the lowest fixed-interface
-    frequency of any link; if its highest requested frequency does not fit, the basis is
-    rebuilt for it with room to spare (a factor 1.2 in frequency), and it is solved again with
-    all the other poses. Any pose whose highest requested frequency outgrows the basis (or
-    with fewer elastic modes than requested) is solved again, with the others like it, on a
+    frequency. A sample spread over the sweep (every ceil(poses / SAMPLE)-th pose) is solved
+    first, on the basis of CUTOFF^2 times the n_modes-th fixed-interface eigenvalue of all links
+    together (a bound on what it needs: ``fixed_interface_bound``); the other poses are then
+    solved on the basis the sample needs, with MARGIN to spare. Any pose whose highest requested
+    frequency outgrows its basis (or with fewer elastic modes than requested, or whose
+    truncation correction did not converge) is solved again, with the others like it, on a
     basis rebuilt for the largest of them. Every pose's answer thus comes from a basis that
     fits it."""
     if any(spec.section.beam != "euler-bernoulli" for spec in topology.links):
@@ -234,43 +241,72 @@ def _craig_bampton_sweep(topology: Topology, poses, n_modes: int, freqs: np.ndar
         pose_model(topology, poses[bad], fixed, warn=False)  # raises, naming the link
     lambda_ref = np.min([s.EI / (s.mass_per_length * lengths[:, i] ** 4)
                          for i, s in enumerate(spec.section for spec in topology.links)], axis=0)
-    lambda_cut = CUTOFF**2 * min(lowest_fixed_interface(l.length, l.elements, l.section.EA,
-                                                        l.section.EI, l.section.mass_per_length)
-                                 for l in model.links)
-    todo, first, plan = np.arange(1), True, None
+    lambda_cut = CUTOFF**2 * fixed_interface_bound(model.links, n_modes)
+    sample = np.zeros(len(poses), dtype=bool)
+    sample[::-(-len(poses) // SAMPLE)] = True
+    todo, rest, plan = np.flatnonzero(sample), np.flatnonzero(~sample), None
     while todo.size:
-        if plan is None or plan.lambda_cut != lambda_cut:
+        if plan is None or not plan.highest_kept <= lambda_cut < plan.reach:
             plan = CraigBamptonPlan(model, fixed, lambda_cut)
-        elastic, n_mechanism, need = _craig_bampton_poses(plan, angles[todo], lengths[todo],
-                                                          lambda_ref[todo], n_modes)
-        fits = need <= plan.lambda_cut
+        elastic, n_mechanism, need, converged = _craig_bampton_poses(
+            plan, angles[todo], lengths[todo], lambda_ref[todo], n_modes)
+        fits = (need <= plan.reach) & converged
         freqs[todo[fits], :n_modes] = elastic[fits]
         mechanism[todo[fits]] = n_mechanism[fits]
-        if not fits.all():
-            lambda_cut = 1.2**2 * need[~fits].max()
-        todo = todo[~fits]
-        if first:  # the basis is fitted to the first pose (if need be): on to the others
-            todo, first = np.concatenate([todo, np.arange(1, len(poses))]), False
+        if rest is not None:  # the sample's needs set the basis of the other poses
+            lambda_cut = MARGIN * need.max()
+            todo, rest = np.concatenate([todo[~fits], rest]), None
+        else:  # the basis for what is left: what it needs, 4 times as much if unconverged
+            lambda_cut = max(MARGIN * need[~fits].max(initial=0.0),
+                             4 * plan.reach if not converged.all() else 0.0)
+            todo = todo[~fits]
 
 
 def _craig_bampton_poses(plan: CraigBamptonPlan, angles, lengths, lambda_ref, n_modes: int):
-    """(elastic frequencies [Hz] (poses, n_modes), NaN where fewer; mechanism counts; the
-    eigenvalue [rad^2/s^2] the basis must reach for each pose: (CUTOFF omega_n)^2, inf when
-    fewer elastic modes were found and the basis is not yet complete, 0 once it is)."""
+    """``_craig_bampton_chunk`` for any number of poses, CHUNK at a time: the arrays of a whole
+    cycle at once (10 MB and more) cost more in fresh memory pages than in arithmetic."""
+    parts = [_craig_bampton_chunk(plan, angles[i:i + CHUNK], lengths[i:i + CHUNK],
+                                  lambda_ref[i:i + CHUNK], n_modes)
+             for i in range(0, len(angles), CHUNK)]
+    return tuple(np.concatenate(column) for column in zip(*parts))
+
+
+def _craig_bampton_chunk(plan: CraigBamptonPlan, angles, lengths, lambda_ref, n_modes: int):
+    """(elastic frequencies [Hz] (poses, n_modes), NaN where fewer or not fitted; mechanism
+    counts; the reach [rad^2/s^2] each pose needs of the basis, at the plan's link lengths;
+    whether its truncation correction converged).
+
+    A pose fits the basis when every truncated fixed-interface mode lies at least CUTOFF^2 times
+    above its n_modes-th elastic eigenvalue, taken from the reduced pencil (an upper bound of
+    the exact one: the reduction is a Ritz projection); at r times a link's reference length its
+    fixed-interface eigenvalues are r^-2 (axial) or r^-4 (bending) times the reference ones, so
+    the need is scaled up by the largest of r^2, r^4. Its truncation correction must also
+    converge (``CONVERGED``; True where nothing was corrected). Needs are inf when fewer elastic
+    modes were found and the basis is not yet complete, 0 once it is."""
     K, M = plan.stacked(angles, lengths)
-    modes = stacked_modes(K, M, lambda_ref, checked=n_modes + SPARE_MODES)
+    modes = stacked_modes(K, M, lambda_ref, checked=n_modes + SPARE_MODES,
+                          factor=plan.mass_factor(M))
     n_mechanism = modes.mechanisms
     pick = n_mechanism[:, None] + np.arange(n_modes)
     found = pick < plan.n
     pick = np.minimum(pick, plan.n - 1)
-    vals = np.take_along_axis(modes.eigenvalues, pick, axis=1)
-    vecs = np.take_along_axis(modes.vectors, pick[:, None, :], axis=2)
-    lam = np.sort(plan.corrected_stack(angles, lengths, vals, vecs), axis=1)
-    elastic = np.where(found, np.sqrt(np.clip(lam, 0.0, None)) / (2 * math.pi), np.nan)
-    if math.isinf(plan.lambda_cut):
-        return elastic, n_mechanism, np.zeros(len(elastic))
-    need = np.where(found.all(axis=1), (CUTOFF * 2 * math.pi * elastic[:, -1]) ** 2, math.inf)
-    return elastic, n_mechanism, need
+    elastic = np.full(pick.shape, np.nan)
+    if math.isinf(plan.reach):
+        need = np.zeros(len(pick))
+    else:
+        highest = np.take_along_axis(modes.eigenvalues, pick[:, -1:], axis=1)[:, 0]
+        r = lengths / plan.reference_lengths
+        stretch = np.maximum(r**2, r**4).max(axis=1)
+        need = np.where(found.all(axis=1), CUTOFF**2 * highest * stretch, math.inf)
+    fits = need <= plan.reach
+    converged = np.ones(len(need), dtype=bool)
+    lam, change = corrected(plan, angles[fits], lengths[fits], modes.eigenvalues[fits],
+                            modes.vectors[fits], pick[fits])
+    if not math.isinf(plan.reach):  # else nothing is truncated
+        converged[fits] = change.max(axis=1, initial=0.0) <= CONVERGED  # NaN is not
+    elastic[fits] = np.where(found[fits], np.sqrt(np.clip(np.sort(lam, axis=1), 0.0, None))
+                             / (2 * math.pi), np.nan)
+    return elastic, n_mechanism, need, converged
 
 
 def parallel_modal_sweep(topology: Topology, poses: Iterable[Mapping[str, tuple[float, float]]],

@@ -10,9 +10,9 @@ interior mode gives the full model back exactly; the truncation is the only appr
 Per pose only the boundary DOFs rotate (the modal coordinates are scalars in the link frame),
 so a pose costs 2 small matrix products per link, one scatter and a dense eigen solve of
 (boundary DOFs + kept modes) unknowns, all done for every pose of a sweep at once
-(``CraigBamptonPlan.stacked``, ``corrected_stack``). Springs, joint masses and rigid constraints act on link
-end nodes only; they are taken from the full model's layout through a "boundary model"
-(``FrameModel`` with one element per link, whose nodes are the end nodes), so
+(``CraigBamptonPlan.stacked``, ``truncation.corrected``). Springs, joint masses and rigid
+constraints act on link end nodes only; they are taken from the full model's layout through a
+"boundary model" (``FrameModel`` with one element per link, whose nodes are the end nodes), so
 ``assembly.spring_entries``, ``point_mass_entries`` and ``reduction`` are reused unchanged.
 
 Axial (u) and bending (v, rz) DOFs of a straight link are uncoupled in its frame, so each family
@@ -23,16 +23,18 @@ DOFs, as ``link.chain_entries`` scales a unit element), and the reduced matrices
 same diagonal scaling (D on the boundary rotations only; the modal coordinates absorb the rest).
 
 Mode choice (``CUTOFF``): a link keeps every fixed-interface mode whose frequency is at most
-CUTOFF times the highest requested system frequency. ``sweep._craig_bampton_sweep`` checks this
-for every pose and solves the poses whose frequencies have grown past what the basis was chosen
-for again, on an enlarged basis.
+CUTOFF times the highest requested system frequency (that of the reduced pencil, an upper bound
+of the exact one). ``sweep._craig_bampton_sweep`` checks this for every pose and solves the
+poses whose frequencies have grown past what the basis was chosen for again, on an enlarged
+basis.
 
 Truncation correction: plain truncation converges slowly here (about 3e-5 relative on the sixth
 mode of Table II case 2 with a cut-off of 16 times its frequency), because the axial
 fixed-interface modes grow only like k^2. The truncated modes couple to the kept DOFs through
-the mass matrix only, so their effect is put back per eigenvalue (``CraigBamptonPlan.corrected``)
-from a short series of 6 x 6 residual-flexibility matrices per link, computed once; with it the
-same basis is within 1e-9 to 1e-7 of the full model (tests/test_craig_bampton.py).
+the mass matrix only, so their effect is put back (``truncation.corrected``) from a short series
+of 6 x 6 residual-flexibility matrices per link, computed once, with a few updates of each
+eigenvector; with it a basis of 3 times the highest frequency is within round-off of the full
+model (tests/test_craig_bampton.py).
 
 Mode shapes: ``CraigBamptonPlan.shapes`` expands reduced eigenvectors to the full mesh (boundary
 DOFs plus each link's basis); the truncation correction refines eigenvalues only, so those
@@ -49,31 +51,37 @@ import math
 import numpy as np
 import scipy.linalg as la
 
+from flexlink.errors import NumericalError
 from flexlink.fe.assembly import point_mass_entries, reduction, spring_entries
 from flexlink.fe.link import link_matrices
 from flexlink.fe.model import GROUND, FrameModel, LinkMesh, Springs, _Layout
 
 log = logging.getLogger(__name__)
 
-CUTOFF = 14.0  # fixed-interface modes kept up to this times the highest requested frequency
-SERIES = 4  # terms of the truncated modes' series in lambda / lambda_k (``flexibility_series``)
+CUTOFF = 3.0  # fixed-interface modes kept up to this times the highest requested frequency
+SERIES = 6  # terms of the truncated modes' series in lambda / lambda_k (``ReducedLink``)
 
 
 @dataclasses.dataclass(frozen=True)
 class _Family:
     """One DOF family (axial or bending) of a link, reduced with every interior mode kept.
 
-    boundary: local DOF indices of the family's end-node DOFs; K, M: reduced matrices over
-    (boundary, all interior modes in ascending eigenvalue), so keeping the lowest m modes is a
-    leading block; eigenvalues [rad^2/s^2] of the fixed-interface modes; basis: T (local family
-    DOFs x reduced DOFs) to recover full shapes."""
+    boundary: local DOF indices of the family's end-node DOFs; slots: their places among the
+    link's 6 boundary DOFs; K, M: reduced matrices over (boundary, all interior modes in
+    ascending eigenvalue), so keeping the lowest m modes is a leading block; eigenvalues
+    [rad^2/s^2] of the fixed-interface modes; basis: T (local family DOFs x reduced DOFs) to
+    recover full shapes; tail (modes + 1, SERIES, boundary, boundary): tail[m, j] = sum over
+    the modes from the m-th on of c c^T / lambda^(j + 1) (c: a mode's mass coupling with the
+    boundary DOFs, its modal mass being 1), the series of the modes truncated after m."""
 
     dofs: np.ndarray
     boundary: np.ndarray
+    slots: np.ndarray
     K: np.ndarray
     M: np.ndarray
     eigenvalues: np.ndarray
     basis: np.ndarray
+    tail: np.ndarray
 
 
 @functools.lru_cache(maxsize=64)
@@ -101,8 +109,17 @@ def _families(length: float, elements: int, EA: float, EI: float, rhoA: float):
         else:
             lam = np.zeros(0)
         Kr, Mr = T.T @ Kff @ T, T.T @ Mff @ T
-        out.append(_Family(dofs=dofs, boundary=b, K=(Kr + Kr.T) / 2, M=(Mr + Mr.T) / 2,
-                           eigenvalues=lam, basis=T))
+        Kr, Mr = (Kr + Kr.T) / 2, (Mr + Mr.T) / 2
+        # exact in exact arithmetic (the static modes are K-orthogonal to the fixed-interface
+        # modes, which are M-orthonormal): set so, for ``CraigBamptonPlan.mass_factor``
+        Kr[:nb, nb:] = Kr[nb:, :nb] = 0.0
+        Kr[nb:, nb:], Mr[nb:, nb:] = np.diag(lam), np.eye(len(lam))
+        c = Mr[:nb, nb:]
+        terms = np.einsum("ak,bk,jk->kjab", c, c, lam ** -(np.arange(SERIES)[:, None] + 1.0))
+        tail = np.zeros((len(lam) + 1, SERIES, nb, nb))
+        tail[:-1] = np.cumsum(terms[::-1], axis=0)[::-1]  # smallest terms first
+        out.append(_Family(dofs=dofs, boundary=b, slots=np.searchsorted(np.flatnonzero(end), b),
+                           K=Kr, M=Mr, eigenvalues=lam, basis=T, tail=tail))
     return tuple(out)
 
 
@@ -113,7 +130,14 @@ class ReducedLink:
 
     K, M: reduced matrices; axial, rotation: which reduced DOFs scale how with the length (see
     the module docstring); basis (3 (elements + 1), 6 + n_modes): local displacements of the
-    whole chain from the reduced coordinates at the reference length."""
+    whole chain from the reduced coordinates at the reference length; flexibility
+    (SERIES, 6, 6): F_j = sum over truncated modes of c c^T m^j / k^(j + 1) at the
+    reference length (c: a truncated mode's mass coupling with the boundary DOFs, k, m: its
+    modal stiffness and mass; local frame). Eliminating the truncated modes adds
+    -lambda^2 sum_k c c^T / (k - lambda m) = -lambda^2 sum_j lambda^j F_j to the reduced dynamic
+    stiffness (``truncation.py``); every truncated mode has k / m > lambda_cut >= CUTOFF^2
+    lambda, so the terms left out are below CUTOFF^(-2 SERIES) of the first. Axial and bending
+    truncated modes act on separate boundary DOFs (0, 3 and 1, 2, 4, 5), so F_j holds both."""
 
     length: float
     K: np.ndarray
@@ -121,90 +145,66 @@ class ReducedLink:
     axial: np.ndarray  # bool per reduced DOF: axial family
     rotation: np.ndarray  # bool per reduced DOF: boundary rotation
     basis: np.ndarray
-    flexibility: np.ndarray  # (2 families, SERIES, 6, 6): see ``flexibility_series``
+    flexibility: np.ndarray
 
     @property
     def n_modes(self) -> int:
         return self.K.shape[0] - 6
 
-    def scales(self, lengths) -> tuple[np.ndarray, np.ndarray]:
-        """(a, b), each (..., 6 + n_modes): the link at ``lengths`` [m] (any shape) has
-        K = a a^T * K_ref and M = b b^T * M_ref, elementwise (exact rescaling, module docstring)."""
-        r = (np.asarray(lengths, dtype=float) / self.length)[..., None]
-        turn = np.where(self.rotation, r, 1.0)
-        return np.where(self.axial, r**-0.5, r**-1.5) * turn, np.sqrt(r) * turn
+    def powers(self) -> np.ndarray:
+        """(2, 6 + n_modes): the link at r times its reference length has K = a a^T * K_ref and
+        M = b b^T * M_ref, elementwise, with a = r^powers[0], b = r^powers[1] (exact rescaling,
+        module docstring)."""
+        turn = self.rotation.astype(float)
+        return np.stack([np.where(self.axial, -0.5, -1.5) + turn, 0.5 + turn])
 
     def matrices(self, length: float) -> tuple[np.ndarray, np.ndarray]:
         """(K, M) of the same link at ``length`` [m], exact rescaling of the reference ones."""
         if length == self.length:
             return self.K, self.M
-        a, b = self.scales(length)
+        a, b = (length / self.length) ** self.powers()
         return a[:, None] * self.K * a, b[:, None] * self.M * b
-
-    def flexibility_series(self, length) -> np.ndarray:
-        """(..., SERIES, 6, 6) F_j = sum over truncated modes of c c^T m^j / k^(j + 1) at
-        ``length`` [m] (a number or an array of any shape; c: a truncated mode's mass coupling
-        with the boundary DOFs, k, m: its modal stiffness and mass; local frame). Eliminating
-        the truncated modes adds -lambda^2 sum_k c c^T / (k - lambda m) =
-        -lambda^2 sum_j lambda^j F_j to the reduced dynamic stiffness; every truncated mode has
-        k / m > lambda_cut >= CUTOFF^2 lambda, so the terms left out are below
-        CUTOFF^(-2 SERIES) of the first."""
-        r = np.asarray(length, dtype=float) / self.length
-        beta = r[..., None] * np.where(self.rotation[:6], r[..., None], 1.0)  # coupling scale
-        power = np.arange(SERIES)[:, None, None]
-        r = r[..., None, None, None]
-        axial = self.flexibility[0] * r**power * r ** (power + 1)
-        bending = self.flexibility[1] * r**power * r ** (3 * (power + 1))
-        return beta[..., None, :, None] * beta[..., None, None, :] * (axial + bending)
 
 
 def reduce_link(length: float, elements: int, EA: float, EI: float, rhoA: float,
                 lambda_cut: float) -> ReducedLink:
     """Craig-Bampton reduction keeping the fixed-interface modes with eigenvalue <= lambda_cut
     [rad^2/s^2] (both families)."""
-    axial, bending = _families(float(length), int(elements), EA, EI, rhoA)
-    parts = []  # (family, kept modes)
-    for fam in (axial, bending):
-        parts.append((fam, int(np.searchsorted(fam.eigenvalues, lambda_cut, side="right"))))
+    families = _families(float(length), int(elements), EA, EI, rhoA)
+    kept = [int(np.searchsorted(f.eigenvalues, lambda_cut, side="right")) for f in families]
     # reduced DOF order: the 6 boundary DOFs in local node order, then axial, then bending modes
-    n_local = 3 * (int(elements) + 1)
-    boundary_local = np.array([0, 1, 2, n_local - 3, n_local - 2, n_local - 1])
-    n = 6 + sum(m for _, m in parts)
+    n = 6 + sum(kept)
     K, M = np.zeros((n, n)), np.zeros((n, n))
-    basis = np.zeros((n_local, n))
+    basis = np.zeros((3 * (int(elements) + 1), n))
     axial_mask = np.zeros(n, dtype=bool)
+    flexibility = np.zeros((SERIES, 6, 6))
     next_mode = 6
-    for index, (fam, m) in enumerate(parts):
-        nb = len(fam.boundary)
-        slots = np.concatenate([np.searchsorted(boundary_local, fam.boundary),
-                                next_mode + np.arange(m)])
-        keep = np.arange(nb + m)
-        K[np.ix_(slots, slots)] = fam.K[np.ix_(keep, keep)]
-        M[np.ix_(slots, slots)] = fam.M[np.ix_(keep, keep)]
-        basis[np.ix_(fam.dofs, slots)] = fam.basis[:, keep]
+    for index, (fam, m) in enumerate(zip(families, kept)):
+        slots = np.concatenate([fam.slots, next_mode + np.arange(m)])
+        size = len(slots)
+        K[np.ix_(slots, slots)] = fam.K[:size, :size]
+        M[np.ix_(slots, slots)] = fam.M[:size, :size]
+        basis[np.ix_(fam.dofs, slots)] = fam.basis[:, :size]
         axial_mask[slots] = index == 0
+        flexibility[:, fam.slots[:, None], fam.slots] = fam.tail[m]
         next_mode += m
     rotation = np.zeros(n, dtype=bool)
     rotation[[2, 5]] = True
-    flexibility = np.zeros((2, SERIES, 6, 6))
-    for index, (fam, m) in enumerate(parts):
-        nb = len(fam.boundary)
-        coupling = np.zeros((6, len(fam.eigenvalues) - m))  # modal masses are 1 (eigh)
-        coupling[np.searchsorted(boundary_local, fam.boundary)] = fam.M[:nb, nb + m:]
-        for j in range(SERIES):
-            flexibility[index, j] = (coupling / fam.eigenvalues[m:] ** (j + 1)) @ coupling.T
     for A in (K, M, basis, axial_mask, rotation, flexibility):
         A.flags.writeable = False
     return ReducedLink(length=float(length), K=K, M=M, axial=axial_mask, rotation=rotation,
                        basis=basis, flexibility=flexibility)
 
 
-def lowest_fixed_interface(length: float, elements: int, EA: float, EI: float,
-                           rhoA: float) -> float:
-    """Lowest fixed-interface eigenvalue [rad^2/s^2] of a link (inf for a one-element link)."""
-    lams = [f.eigenvalues[0] for f in _families(float(length), int(elements), EA, EI, rhoA)
-            if len(f.eigenvalues)]
-    return min(lams) if lams else math.inf
+def fixed_interface_bound(links, k: int) -> float:
+    """The k-th lowest fixed-interface eigenvalue [rad^2/s^2] of the ``links`` (LinkMesh) taken
+    together (inf when they have fewer). Clamping every link end leaves exactly these modes, and
+    constraining DOFs raises each eigenvalue (interlacing), so the linkage's k-th eigenvalue is
+    at most this, and so is any Craig-Bampton reduction's keeping the lowest k of them."""
+    lams = np.sort(np.concatenate([f.eigenvalues for l in links for f in _families(
+        float(l.length), int(l.elements), l.section.EA, l.section.EI,
+        l.section.mass_per_length)]))
+    return float(lams[k - 1]) if len(lams) >= k else math.inf
 
 
 def boundary_model(lay: _Layout, model: FrameModel) -> FrameModel:
@@ -242,15 +242,23 @@ def boundary_model(lay: _Layout, model: FrameModel) -> FrameModel:
 class CraigBamptonPlan:
     """The reduced dense K and M of every pose of one topology (boundary DOFs after the exact
     rigid-joint reduction, then each link's modal coordinates), for a given cut-off
-    ``lambda_cut`` [rad^2/s^2]. Built from one model of the topology."""
+    ``lambda_cut`` [rad^2/s^2]. Built from one model of the topology; ``reach``: the lowest
+    truncated fixed-interface eigenvalue [rad^2/s^2] (inf: none truncated) at its lengths."""
 
     def __init__(self, model: FrameModel, lay: _Layout, lambda_cut: float):
-        self.lambda_cut = lambda_cut
         self.links = []
+        kept, truncated = [0.0], [math.inf]
         for link in model.links:
             s = link.section
             self.links.append(reduce_link(link.length, link.elements, s.EA, s.EI,
                                           s.mass_per_length, lambda_cut))
+            for fam in _families(float(link.length), int(link.elements), s.EA, s.EI,
+                                 s.mass_per_length):
+                m = int(np.searchsorted(fam.eigenvalues, lambda_cut, side="right"))
+                kept += list(fam.eigenvalues[:m][-1:])
+                truncated += list(fam.eigenvalues[m:m + 1])
+        # the same basis for any cut-off in [highest kept, reach) [rad^2/s^2], at these lengths
+        self.highest_kept, self.reach = max(kept), min(truncated)
         bmodel = boundary_model(lay, model)
         T = reduction(bmodel)
         n_b = bmodel.n_dofs
@@ -273,14 +281,27 @@ class CraigBamptonPlan:
         self.columns = columns
         self.boundary = bmodel
         self.boundary_column = column
-        self._flat = []  # per link: its reduced entries' slots in the (n + 1)^2 stack
-        for cols in columns:
+        # every link's reduced matrices padded to one size, K over M, with the slot of each
+        # entry in the (n + 1)-square stack (grounded DOFs and padding: the dropped last row)
+        size = max(rl.K.shape[0] for rl in self.links)
+        self._reference = np.zeros((2, len(self.links), size, size))
+        self._power = np.zeros((2, len(self.links), size))  # entries scale as r^(p_i + p_j)
+        where = np.full((len(self.links), size), self.n)
+        for index, (rl, cols) in enumerate(zip(self.links, columns)):
             kept = cols[cols >= 0]
             if len(np.unique(kept)) != len(kept):
                 raise AssertionError("two DOFs of one link share a reduced DOF")
-            where = np.where(cols >= 0, cols, self.n)  # grounded -> the dropped last slot
-            self._flat.append((where[:, None] * (self.n + 1) + where[None, :]).ravel())
+            m = rl.K.shape[0]
+            self._reference[:, index, :m, :m] = rl.K, rl.M
+            self._power[:, index, :m] = rl.powers()
+            where[index, :m] = np.where(cols >= 0, cols, self.n)
+        self._slots = (where[:, :, None] * (self.n + 1) + where[:, None, :]).ravel()
         self.boundary_columns = np.array([cols[:6] for cols in columns])
+        # the truncated modes' series (``truncation.corrected``): per link, F_0 .. F_SERIES-1
+        # stacked, at reference length
+        self.flexibility = np.stack([rl.flexibility.reshape(SERIES * 6, 6)
+                                     for rl in self.links])
+        self.reference_lengths = np.array([rl.length for rl in self.links])
         self.constant = []
         for rows, cols, vals in (spring_entries(bmodel), point_mass_entries(bmodel)):
             r, c = column[rows], column[cols]
@@ -298,74 +319,49 @@ class CraigBamptonPlan:
     def stacked(self, angles: np.ndarray, lengths: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Reduced dense K and M, each (poses, n, n), of the plan's topology at many poses at
         once: ``angles`` [rad] and ``lengths`` [m], each (poses, links), in the plan's link
-        order. Per link, its rescaled reduced matrices are rotated on their boundary DOFs
-        (Q^T K Q) for all poses together and added into a (n + 1)-square stack whose last
-        row and column collect the grounded DOFs and are dropped."""
+        order. Every link's rescaled reduced matrices are rotated on their boundary DOFs
+        (Q^T K Q) for all poses together and summed into a (n + 1)-square stack by one
+        ``np.bincount``; its last row and column collect the grounded DOFs and are dropped."""
         angles, lengths = np.atleast_2d(angles), np.atleast_2d(lengths)
         poses, n = angles.shape[0], self.n
-        K = np.zeros((poses, (n + 1) ** 2))
-        M = np.zeros((poses, (n + 1) ** 2))
-        for index, (rl, flat) in enumerate(zip(self.links, self._flat)):
-            a, b = rl.scales(lengths[:, index])
-            Kl = a[:, :, None] * rl.K * a[:, None, :]
-            Ml = b[:, :, None] * rl.M * b[:, None, :]
-            c, s = np.cos(angles[:, index]), np.sin(angles[:, index])
-            size = rl.K.shape[0]
-            Q = np.broadcast_to(np.eye(size), (poses, size, size)).copy()
-            Q[:, [0, 3], [0, 3]] = Q[:, [1, 4], [1, 4]] = c[:, None]
-            Q[:, [0, 3], [1, 4]], Q[:, [1, 4], [0, 3]] = s[:, None], -s[:, None]
-            Qt = Q.transpose(0, 2, 1)
-            # slots are distinct within a link except the dropped one (checked in __init__)
-            K[:, flat] += (Qt @ Kl @ Q).reshape(poses, -1)
-            M[:, flat] += (Qt @ Ml @ Q).reshape(poses, -1)
-        K = K.reshape(poses, n + 1, n + 1)[:, :n, :n] + self.constant[0]
-        M = M.reshape(poses, n + 1, n + 1)[:, :n, :n] + self.constant[1]
-        return K, M
+        r = lengths / self.reference_lengths  # (P, L)
+        scale = r[None, :, :, None] ** self._power[:, None]  # (2, P, L, size): a and b
+        A = scale[..., :, None] * self._reference[:, None] * scale[..., None, :]
+        c, s = np.cos(angles)[..., None], np.sin(angles)[..., None]
+        for x in (0, 3):  # Q^T A Q, Q turning each end's (u, v) into the link frame
+            rows = A[..., x, :].copy()
+            A[..., x, :] = c * rows - s * A[..., x + 1, :]
+            A[..., x + 1, :] = s * rows + c * A[..., x + 1, :]
+            cols = A[..., x].copy()
+            A[..., x] = c * cols - s * A[..., x + 1]
+            A[..., x + 1] = s * cols + c * A[..., x + 1]
+        stack = (n + 1) ** 2
+        slots = np.arange(2 * poses)[:, None] * stack + self._slots
+        summed = np.bincount(slots.ravel(), weights=A.ravel(), minlength=2 * poses * stack)
+        K, M = summed.reshape(2, poses, n + 1, n + 1)[:, :, :n, :n]
+        return K + self.constant[0], M + self.constant[1]
 
-    def corrected(self, model: FrameModel, eigenvalues: np.ndarray, vectors: np.ndarray,
-                  iterations: int = 3) -> np.ndarray:
-        """``corrected_stack`` for one model: eigenvalues (k,), vectors (n, k)."""
-        angles = np.array([[link.angle for link in model.links]])
-        lengths = np.array([[link.length for link in model.links]])
-        return self.corrected_stack(angles, lengths, np.asarray(eigenvalues)[None],
-                                    np.asarray(vectors)[None], iterations)[0]
-
-    def corrected_stack(self, angles: np.ndarray, lengths: np.ndarray, eigenvalues: np.ndarray,
-                        vectors: np.ndarray, iterations: int = 3) -> np.ndarray:
-        """Eigenvalues [rad^2/s^2] (poses, k) with the truncated modes put back to leading
-        order; ``angles``, ``lengths`` as in ``stacked``, ``vectors`` (poses, n, k) with
-        x^T M x = 1.
-
-        Eliminating the truncated coordinates exactly leaves the nonlinear eigenproblem
-        (K - lambda M - lambda^2 sum_k c_k c_k^T / (k_k - lambda m_k)) x = 0 on the kept ones
-        (c_k: a truncated mode's mass coupling with the boundary DOFs; it has no stiffness
-        coupling). For each reduced eigenvector x (x^T M x = 1, x^T K x = lambda_r) the
-        Rayleigh functional solves lambda_r - lambda - lambda^2 sum_k (c_k^T x)^2 /
-        (k_k - lambda m_k) = 0 (Newton from lambda_r); being stationary, its error is of second
-        order in the error of x, where plain truncation has first order."""
-        vectors = np.asarray(vectors)
-        poses, _, k = vectors.shape
-        padded = np.concatenate([vectors, np.zeros((poses, 1, k))], axis=1)  # -1: grounded
-        series = np.stack([rl.flexibility_series(lengths[:, i])
-                           for i, rl in enumerate(self.links)], axis=1)  # (P, L, SERIES, 6, 6)
-        c = np.cos(angles)[:, :, None, None]
-        s = np.sin(angles)[:, :, None, None]
-        u = padded[:, self.boundary_columns]  # (P, L, 6, k), global frame
-        local = np.empty_like(u)  # boundary DOFs in each link's frame
-        local[:, :, [0, 3]] = c * u[:, :, [0, 3]] + s * u[:, :, [1, 4]]
-        local[:, :, [1, 4]] = -s * u[:, :, [0, 3]] + c * u[:, :, [1, 4]]
-        local[:, :, [2, 5]] = u[:, :, [2, 5]]
-        terms = np.einsum("plim,pljim->pjm", local, series @ local[:, :, None])  # u^T F_j u
-        lam = np.array(eigenvalues, dtype=float)
-        start = lam.copy()
-        power = np.arange(SERIES)[:, None]
-        for _ in range(iterations):
-            L = lam[:, None, :]
-            S = (L**power * terms).sum(axis=1)
-            dS = (power[1:] * L ** power[:-1] * terms[:, 1:]).sum(axis=1)
-            f = start - lam - lam**2 * S
-            lam = lam + f / (1 + 2 * lam * S + lam**2 * dS)
-        return lam
+    def mass_factor(self, M: np.ndarray) -> np.ndarray:
+        """F^-1 (P, n, n) with F^-1 M F^-T = I for a stack M (P, n, n) of this plan's mass
+        matrices, from their structure: M = [[B, C], [C^T, D]] over (boundary DOFs, modal
+        coordinates) with D diagonal (the modes of a link are M-orthonormal, those of two
+        links do not couple), so M = F F^T with F = [[L, C D^-1/2], [0, D^1/2]], L L^T =
+        B - C D^-1 C^T: a Cholesky factor and an inverse of the boundary size only."""
+        nb = self.n_boundary
+        C = M[:, :nb, nb:]
+        d = np.einsum("pii->pi", M[:, nb:, nb:])
+        CD = C / d[:, None, :]
+        try:
+            L = np.linalg.cholesky(M[:, :nb, :nb] - CD @ C.transpose(0, 2, 1))
+        except np.linalg.LinAlgError:
+            raise NumericalError("a reduced mass matrix of the sweep is not positive "
+                                 "definite") from None
+        Li = np.linalg.inv(L)
+        out = np.zeros_like(M)
+        out[:, :nb, :nb] = Li
+        out[:, :nb, nb:] = -Li @ CD
+        out[:, nb + np.arange(self.n - nb), nb + np.arange(self.n - nb)] = d**-0.5
+        return out
 
     def shapes(self, model: FrameModel, vectors: np.ndarray) -> np.ndarray:
         """Full-model displacement shapes (model.n_dofs, k) from reduced eigenvectors
