@@ -20,6 +20,7 @@ from flexlink.scene import load_scene
 from flexlink.studies.calibration import (FreeParameter, Problem, cross_validation, fit_many,
                                           leave_one_out_problems)
 from flexlink.studies.comparison import StudySettings, run_study
+from flexlink.studies.jacobian import CaseModes
 
 CASES = Path(__file__).resolve().parent.parent / "cases"
 A = {"s1": np.array([3.0, 8.0, 24.0, 60.0]), "s2": np.array([4.5, 12.0, 30.0, 70.0])}  # [Hz m^2]
@@ -39,6 +40,18 @@ def law(scene, n_modes, elements=None, method="auto"):
     return f, ("in-plane",) * n_modes
 
 
+def law_case(scene, n_modes, elements=None):
+    """Stand-in for studies.jacobian.case_modes: the law's frequencies, no model parts."""
+    return CaseModes(law(scene, n_modes)[0], (), tuple((0, k) for k in range(n_modes)))
+
+
+def law_sensitivities(load, values, names, cases, n_modes, elements, cache):
+    """Stand-in for studies.jacobian.log_frequency_sensitivities: d ln f / d ln L1 = -2."""
+    D = np.zeros((len(cases), n_modes, len(names)))
+    D[..., list(names).index("L1")] = -2.0
+    return D
+
+
 def ex(name):
     return A[name] / L_EX**2 * np.exp(E[name])
 
@@ -50,8 +63,11 @@ def fe(name):
 @pytest.fixture
 def scenes(tmp_path, monkeypatch):
     """Two scene files (Table II cases 1 and 2 as written) whose reference columns are the law's
-    values; the law stands in for the FE model in calibration and uncertainty."""
+    values; the law stands in for the FE model in calibration and uncertainty, and its
+    derivative for the model's eigenvalue sensitivities (tests/test_jacobian.py checks those)."""
     monkeypatch.setattr(calibration, "elastic_modes", law)
+    monkeypatch.setattr(calibration, "case_modes", law_case)
+    monkeypatch.setattr(calibration, "log_frequency_sensitivities", law_sensitivities)
     monkeypatch.setattr(uncertainty, "elastic_modes", law)
     paths = []
     for name, case in (("s1", 1), ("s2", 2)):

@@ -48,6 +48,12 @@ def out_of_plane_modes(topology, points, tilt: dict[str, float], n_modes: int,
                        method: str = "auto") -> ModalResult:
     """The lowest ``n_modes`` elastic out-of-plane modes of ``topology`` at joint ``points``
     [m], and every rigid-body/mechanism mode below them."""
+    return out_of_plane_solution(topology, points, tilt, n_modes, method)[1]
+
+
+def out_of_plane_solution(topology, points, tilt: dict[str, float], n_modes: int,
+                          method: str = "auto") -> tuple[FrameModel, ModalResult]:
+    """(the out-of-plane model, ``out_of_plane_modes``): for callers that need the model too."""
     model, strips = out_of_plane_model(topology, points, tilt)
     T = reduction(model)
     n = model.n_dofs if T is None else T.shape[1]
@@ -62,7 +68,7 @@ def out_of_plane_modes(topology, points, tilt: dict[str, float], n_modes: int,
     solve = functools.partial(solve_modes, K, M, T=T,
                               lambda_ref=out_of_plane_eigen_scale(model, strips), method=method,
                               reduced=dense)
-    return require_elastic(lowest_elastic(solve, n_modes), n_modes)
+    return model, require_elastic(lowest_elastic(solve, n_modes), n_modes)
 
 
 def analyze_out_of_plane(scene: Scene, n_modes: int = 4, elements_per_link: int | None = None,
