@@ -91,6 +91,7 @@ def best_l1(names):
 def test_fit_and_its_standard_error_by_hand(scenes):
     [fit] = fit_many([Problem(scenes, (L1_FREE,))], starts=2, seed=0, n_jobs=1)
     assert fit.values[0] == pytest.approx(best_l1(["s1", "s2"]), rel=1e-7)
+    assert fit.converged == (True, True)  # a linear problem: both starts stop at a tolerance
     # residuals r = e - mean(e) (m = 8, p = 1); Jacobian column d r / d ln L1 = -2 everywhere:
     # var(ln L1) = s^2 / (4 m), s^2 = sum r^2 / (m - p)
     e = np.concatenate([E["s1"], E["s2"]])

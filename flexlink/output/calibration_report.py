@@ -82,6 +82,18 @@ def _failure_lines(s: dict) -> list[str]:
             _table(["comparison", "case", "mode", "why"], rows), ""]
 
 
+def _convergence_text(fit: dict) -> str:
+    """Which starts stopped at the least-squares evaluation limit, not at a tolerance."""
+    converged = fit.get("starts_converged") or []
+    stopped = converged.count(False)
+    if not stopped:
+        return " Every start converged."
+    best = ("including the best one, whose inputs are therefore not a converged optimum"
+            if not converged[fit["best_start"]] else "not the best one")
+    return (f" {stopped} of {len(converged)} starts stopped at the evaluation limit, not at a "
+            f"tolerance ({best}).")
+
+
 def family_section(s: dict, plots: dict[str, str]) -> str:
     fam, cases = s["family"], s["cases"]
     e = s["errors_mean_abs_pct"]
@@ -109,7 +121,8 @@ def family_section(s: dict, plots: dict[str, str]) -> str:
                 _table(["input", "assumed", "fitted", "std. error", "bounds", "at bound"], rows), "",
                 f"Best of {len(costs)} starts; costs (0.5 sum ln-residual^2) of all starts: "
                 + ", ".join(f"{c:.3g}" for c in sorted(costs)) + "; "
-                f"{fit['evaluations']} function evaluations (without Jacobians).", ""]
+                f"{fit['evaluations']} function evaluations (without Jacobians)."
+                + _convergence_text(fit), ""]
     corr = s["fit_Ex"]["correlation"]
     if corr is not None:
         names = [p["name"] for p in s["fit_Ex"]["parameters"]]

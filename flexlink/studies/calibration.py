@@ -6,8 +6,11 @@ relative, inputs spanning decades (stiffnesses, masses) are handled like lengths
 standard error of x is a relative standard error of p. The residuals are
     "frequencies": ln f_model - ln f_ref, per case and mode (mode order pairing only), or
     "ratios":      ln(f_k / f_1)_model - ln(f_k / f_1)_ref, k = 2..n (scale-free shape test).
-Standard errors come from the Jacobian at the optimum, cov = s^2 (J^T J)^+, with
-s^2 = sum r^2 / (m - p); they mean little for inputs sitting on a bound or when m <= p.
+The Jacobian d r / d ln p comes from each mode's eigenvalue sensitivity (``studies.jacobian``),
+not from a full evaluation per input. Standard errors come from it at the optimum,
+cov = s^2 (J^T J)^+, with s^2 = sum r^2 / (m - p); they mean little for inputs sitting on a
+bound or when m <= p. A start that stops at the evaluation limit is not a converged optimum;
+the fit records which did (``FitResult.converged``) and the report says so.
 """
 
 from __future__ import annotations
@@ -255,7 +258,8 @@ class _Residuals:
 
 
 def _solve_from(problem: Problem, reference: np.ndarray, x0: np.ndarray):
-    """One local least-squares run from ``x0`` (ln p); returns (x, cost, jac, nfev)."""
+    """One local least-squares run from ``x0`` (ln p); returns (x, cost, jac, nfev, whether it
+    converged: False when it stopped at the evaluation limit)."""
     from scipy.optimize import least_squares
 
     fit = _Residuals(problem, reference)
@@ -263,7 +267,7 @@ def _solve_from(problem: Problem, reference: np.ndarray, x0: np.ndarray):
     result = least_squares(fit.residuals, x0, jac=fit.jacobian, bounds=problem.bounds,
                            method="trf", ftol=1e-6, xtol=1e-6, gtol=1e-6,
                            max_nfev=40 * (len(x0) + 1))
-    return result.x, float(result.cost), result.jac, int(result.nfev)
+    return result.x, float(result.cost), result.jac, int(result.nfev), bool(result.status > 0)
 
 
 class _PredictionErrors:
@@ -298,6 +302,8 @@ class FitResult(_PredictionErrors):
     reference: np.ndarray
     evaluations: int
     reasons: tuple[tuple[int, str], ...] = ()
+    converged: tuple[bool, ...] = ()  # per start: False = stopped at the evaluation limit
+    best: int = 0  # the start whose result this is
 
     def as_dict(self) -> dict:
         """JSON-ready (NaN and inf become None)."""
@@ -313,6 +319,7 @@ class FitResult(_PredictionErrors):
                                                  else [None] * len(self.values))],
             "correlation": self.correlation, "cost": self.cost,
             "start_costs": self.start_costs, "evaluations": self.evaluations,
+            "starts_converged": list(self.converged), "best_start": self.best,
             "predicted_Hz": self.predicted, "reference_Hz": self.reference,
             "errors_pct": self.errors_pct, "mean_abs_error_pct": self.mean_abs_error_pct,
             "failed": self.failures([case_label(p) for p in self.problem.scenes]),
@@ -343,7 +350,8 @@ def start_points(problem: Problem, starts: int, rng: np.random.Generator) -> lis
 
 def _summarise(problem: Problem, reference: np.ndarray, runs) -> FitResult:
     costs = np.array([r[1] for r in runs])
-    x, cost, J, _ = runs[int(np.argmin(costs))]
+    best = int(np.argmin(costs))
+    x, cost, J = runs[best][:3]
     m, p = J.shape
     lo, hi = problem.bounds
     at_bound = (x - lo < 1e-3 * (hi - lo)) | (hi - x < 1e-3 * (hi - lo))
@@ -364,7 +372,8 @@ def _summarise(problem: Problem, reference: np.ndarray, runs) -> FitResult:
     return FitResult(problem=problem, values=values, rel_se=rel_se, correlation=correlation,
                      at_bound=at_bound, cost=cost, start_costs=costs, predicted=predicted,
                      reference=reference, evaluations=int(sum(r[3] for r in runs)),
-                     reasons=tuple(reasons.items()))
+                     reasons=tuple(reasons.items()), converged=tuple(r[4] for r in runs),
+                     best=best)
 
 
 def fit_many(problems: list[Problem], starts: int = 8, seed: int = 0, n_jobs: int = -1,
