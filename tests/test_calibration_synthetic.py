@@ -45,7 +45,7 @@ def law_case(scene, n_modes, elements=None):
     return CaseModes(law(scene, n_modes)[0], (), tuple((0, k) for k in range(n_modes)))
 
 
-def law_sensitivities(load, values, names, cases, n_modes, elements, cache):
+def law_sensitivities(load, values, names, cases, n_modes, elements, cache, upper=None):
     """Stand-in for studies.jacobian.log_frequency_sensitivities: d ln f / d ln L1 = -2."""
     D = np.zeros((len(cases), n_modes, len(names)))
     D[..., list(names).index("L1")] = -2.0

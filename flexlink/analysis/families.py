@@ -20,11 +20,12 @@ import numpy as np
 
 from flexlink.analysis.modal import analyze
 from flexlink.analysis.outofplane import out_of_plane_model, out_of_plane_solution, tilt_stiffnesses
-from flexlink.fe.assembly import (placed_link_entries, point_mass_entries, rotated_entries,
-                                  springs_stiffness_entries)
+from flexlink.fe.assembly import node_rotation, point_mass_entries, springs_stiffness_entries
+from flexlink.fe.beams import link_entries
 from flexlink.fe.model import FrameModel
 from flexlink.fe.pose import pose_model
-from flexlink.fe.strip import link_strips, strip_entries, strip_mass_entries
+from flexlink.fe.strip import (StripProperties, link_strips, strip_element_matrices,
+                               strip_mass_entries, strip_node_rotation)
 from flexlink.scene import Scene
 
 FAMILIES = ("planar", "out-of-plane", "3d")
@@ -93,17 +94,43 @@ def part_model(scene: Scene, part: str, elements: int | None = None) -> FrameMod
 def quadratic_forms(part: str, model: FrameModel, shapes: np.ndarray
                     ) -> tuple[np.ndarray, np.ndarray]:
     """(s^T K s, s^T M s) for each column s of ``shapes`` (model.n_dofs, k) on ``part``'s K
-    and M of ``model`` (finite springs only: rigid ones are constraints the shapes obey)."""
-    if part == IN_PLANE:
-        rows, cols, values = rotated_entries(*placed_link_entries(model))
-        m_rows, m_cols, m_vals = point_mass_entries(model)
-    else:
-        rows, cols, values = strip_entries(model, link_strips(model))
-        m_rows, m_cols, m_vals = strip_mass_entries(model)
-    s_rows, s_cols, s_vals = springs_stiffness_entries(model.springs)
+    and M of ``model`` (finite springs only: rigid ones are constraints the shapes obey).
 
-    def form(r, c, v):
-        return (v[:, None] * shapes[r] * shapes[c]).sum(axis=0)
+    Each link's element entries act on its nodes' displacements in the link frame (every node
+    belongs to one link), so the shapes are rotated per node and the local entries used as
+    they are: a ninth of the rotated entries the assembly sums."""
+    local = np.empty_like(shapes)
+    q_K, q_M = np.zeros(shapes.shape[1]), np.zeros(shapes.shape[1])
+    if part != IN_PLANE:  # equal elements: one 6 x 6 pair per link
+        strips = link_strips(model)
+        props = StripProperties(*(np.array([getattr(p, f.name) for p in strips])
+                                  for f in dataclasses.fields(StripProperties)))
+        k_links, m_links = strip_element_matrices(
+            np.array([link.length / link.elements for link in model.links]), props)
+    for index, link in enumerate(model.links):
+        nodes = link.nodes
+        R = (node_rotation(link.angle) if part == IN_PLANE
+             else strip_node_rotation(link.angle))
+        block = shapes[3 * nodes[0]:3 * nodes[-1] + 3].reshape(len(nodes), 3, -1)
+        chain = np.einsum("ij,njk->nik", R, block)
+        local[3 * nodes[0]:3 * nodes[-1] + 3] = chain.reshape(-1, shapes.shape[1])
+        if part == IN_PLANE:
+            rows, cols, k, m = link_entries(link.length, link.elements, link.section)
+            flat = chain.reshape(-1, shapes.shape[1])
+            q_K += (k[:, None] * flat[rows] * flat[cols]).sum(axis=0)
+            q_M += (m[:, None] * flat[rows] * flat[cols]).sum(axis=0)
+        else:  # on each element's two nodes
+            pairs = np.concatenate([chain[:-1], chain[1:]], axis=1).transpose(2, 0, 1)
+            q_K += ((pairs @ k_links[index]) * pairs).sum(axis=(1, 2))
+            q_M += ((pairs @ m_links[index]) * pairs).sum(axis=(1, 2))
+    q_K += _spring_form(model, shapes)
+    m_rows, m_cols, m_vals = (point_mass_entries(model) if part == IN_PLANE
+                              else strip_mass_entries(model))
+    q_M += (m_vals[:, None] * shapes[m_rows] * shapes[m_cols]).sum(axis=0)
+    return q_K, q_M
 
-    return (form(rows, cols, values[0]) + form(s_rows, s_cols, s_vals),
-            form(rows, cols, values[1]) + form(m_rows, m_cols, m_vals))
+
+def _spring_form(model: FrameModel, shapes: np.ndarray) -> np.ndarray:
+    """sum over the finite springs of k (s_a - s_b)^2, per shape (s_b = 0 for ground)."""
+    rows, cols, vals = springs_stiffness_entries(model.springs)
+    return (vals[:, None] * shapes[rows] * shapes[cols]).sum(axis=0)

@@ -247,7 +247,7 @@ class _Residuals:
         D = log_frequency_sensitivities(
             lambda i, values: self.problem.scene(self.problem.scenes[i], values), np.exp(x),
             self.names, self._evaluate(x), self.problem.n_modes, self.problem.elements,
-            self.followers)
+            self.followers, self.problem.bounds[1])
         D[np.isnan(predicted)] = 0.0
         if self.problem.target == "ratios":
             J = D[:, 1:] - D[:, :1]

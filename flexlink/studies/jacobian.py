@@ -134,13 +134,16 @@ def _constraints(model: FrameModel) -> tuple:
 
 def log_frequency_sensitivities(load, values: np.ndarray, names: tuple[str, ...],
                                 cases: list[CaseModes | None], n_modes: int,
-                                elements: int | None, followers_cache: dict) -> np.ndarray:
+                                elements: int | None, followers_cache: dict,
+                                upper: np.ndarray | None = None) -> np.ndarray:
     """d ln f / d ln p, shape (cases, n_modes, inputs), at ``values`` [SI] of the free inputs
     ``names``; ``load(case, values)`` -> scene; ``cases``: each case's ``case_modes`` at
     ``values`` (None where it failed: zero rows). ``followers_cache``: {(case, input):
-    ``followers``}, filled on first use."""
+    ``followers``}, filled on first use. ``upper``: ln of the inputs' upper bounds, which a
+    differencing step does not cross (default none)."""
     D = np.zeros((len(cases), n_modes, len(names)))
     x = np.log(values)
+    upper = np.full(len(x), np.inf) if upper is None else upper
     for i, case in enumerate(cases):
         if case is None or not case.pairs:
             continue
@@ -158,7 +161,7 @@ def log_frequency_sensitivities(load, values: np.ndarray, names: tuple[str, ...]
                     dm = _mass_forms(part.part, part.model, masses, part.shapes)
                     column.append(0.5 * (dq / q - dm / m))
             else:
-                column = _differenced(load, i, case, forms, x, j, elements,
+                column = _differenced(load, i, case, forms, x, upper, j, elements,
                                       rayleigh=name in SECTION)
             if column is None:  # the step failed: leave the column at zero, as the fit's own
                 continue        # penalty does not tell a direction either
@@ -166,16 +169,18 @@ def log_frequency_sensitivities(load, values: np.ndarray, names: tuple[str, ...]
     return D
 
 
-def _step(x: float) -> float:
-    return STEP * max(1.0, abs(x))
+def _step(x: float, upper: float) -> float:
+    """The forward step in x = ln p, turned back where it would leave the upper bound."""
+    h = STEP * max(1.0, abs(x))
+    return -h if x + h > upper else h
 
 
-def _differenced(load, i: int, case: CaseModes, forms, x: np.ndarray, j: int,
-                 elements: int | None, rayleigh: bool):
+def _differenced(load, i: int, case: CaseModes, forms, x: np.ndarray, upper: np.ndarray,
+                 j: int, elements: int | None, rayleigh: bool):
     """Per part, d ln f / d x_j of its modes by a forward step, on the Rayleigh quotients of
     their shapes if ``rayleigh`` and the step leaves the constraints as they are, else on full
     evaluations; None if the stepped scene fails."""
-    h = _step(x[j])
+    h = _step(x[j], upper[j])
     stepped = x.copy()
     stepped[j] += h
     try:
