@@ -65,11 +65,16 @@ def family_modes(scene: Scene, n_modes: int, elements: int | None = None,
     return tuple(out)
 
 
-def paired(parts: tuple[FamilyModes, ...], n_modes: int) -> list[tuple[float, int, int]]:
-    """The lowest ``n_modes`` modes over all parts, ascending: (frequency [Hz], index into
-    ``parts``, index into that part's modes); fewer if the parts have fewer."""
+def paired(parts: tuple[FamilyModes, ...], n_modes: int
+           ) -> tuple[np.ndarray, tuple[tuple[int, int], ...]]:
+    """The lowest ``n_modes`` modes over all parts, ascending: their frequencies [Hz] (NaN
+    where the parts have fewer) and, per mode found, (index into ``parts``, index into that
+    part's modes)."""
     found = sorted((f, p, k) for p, part in enumerate(parts) for k, f in enumerate(part.frequencies))
-    return found[:n_modes]
+    found = found[:n_modes]
+    freqs = np.full(n_modes, np.nan)
+    freqs[:len(found)] = [f for f, _, _ in found]
+    return freqs, tuple((p, k) for _, p, k in found)
 
 
 def elastic_modes(scene: Scene, n_modes: int, elements: int | None = None,
@@ -77,10 +82,8 @@ def elastic_modes(scene: Scene, n_modes: int, elements: int | None = None,
     """The lowest ``n_modes`` elastic frequencies [Hz] of the scene's family (NaN where fewer
     were found) and, per mode, whether it is an in-plane or out-of-plane mode."""
     parts = family_modes(scene, n_modes, elements, method)
-    found = paired(parts, n_modes)
-    freqs = np.full(n_modes, np.nan)
-    freqs[:len(found)] = [f for f, _, _ in found]
-    return freqs, tuple(parts[p].part for _, p, _ in found)
+    freqs, pairs = paired(parts, n_modes)
+    return freqs, tuple(parts[p].part for p, _ in pairs)
 
 
 def part_model(scene: Scene, part: str, elements: int | None = None) -> FrameModel:

@@ -20,12 +20,9 @@ import dataclasses
 import math
 
 import numpy as np
-import scipy.linalg
-import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from flexlink.fe.beams import (euler_bernoulli_pinned, pinned_bending_frequencies,
-                               timoshenko_pinned)
+from flexlink.fe.beams import euler_bernoulli_pinned, timoshenko_pinned
 from flexlink.fe.model import Section
 
 BENDING_SHAPE = 0.9  # least correlation of the mid-line uy with sin(pi x / L) for mode 1

@@ -39,11 +39,10 @@ import numpy as np
 
 from flexlink.analysis.families import (IN_PLANE, FamilyModes, elastic_modes, family_modes,
                                         paired, part_model, quadratic_forms)
-from flexlink.errors import FlexlinkError
-from flexlink.fe.model import GROUND, FrameModel, layout
-from flexlink.fe.strip import out_of_plane_springs
-from flexlink.fe.model import build_model
 from flexlink.analysis.outofplane import tilt_stiffnesses
+from flexlink.errors import FlexlinkError
+from flexlink.fe.model import GROUND, FrameModel, build_model, layout
+from flexlink.fe.strip import out_of_plane_springs
 
 log = logging.getLogger(__name__)
 
@@ -66,10 +65,8 @@ class CaseModes:
 def case_modes(scene, n_modes: int, elements: int | None) -> CaseModes:
     """``families.elastic_modes`` of ``scene``, keeping what the sensitivities need."""
     parts = family_modes(scene, n_modes, elements)
-    found = paired(parts, n_modes)
-    freqs = np.full(n_modes, np.nan)
-    freqs[:len(found)] = [f for f, _, _ in found]
-    return CaseModes(freqs, parts, tuple((p, k) for _, p, k in found))
+    frequencies, pairs = paired(parts, n_modes)
+    return CaseModes(frequencies, parts, pairs)
 
 
 def _part_springs(scene, part: str, elements: int | None) -> tuple[np.ndarray, np.ndarray]:
