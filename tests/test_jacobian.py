@@ -65,3 +65,24 @@ def test_a_joint_with_its_own_stiffness_does_not_follow_the_global_key():
     labels = fit._evaluate(x)[0].parts[0].model.springs.labels
     followed = {label.split()[0] for label, on in zip(labels, springs) if on}
     assert followed == {"A", "B", "O4"} and not masses.any()
+
+
+def test_followers_probe_downwards_where_the_upward_probe_fails():
+    """At the top of a range the scaled-up load fails: the probe goes down instead and finds
+    the same springs."""
+    from flexlink.errors import InputError
+    from flexlink.studies.jacobian import followers
+
+    problem = cal.Problem(scenes=SCENES[:1], parameters=default_free("planar"), elements=4,
+                          fixed=(("model.family", "planar"),))
+    values = np.exp(np.mean(problem.bounds, axis=0))
+    kt = [p.name for p in problem.parameters].index("Kt")
+
+    def capped(v):
+        if v[kt] > values[kt]:
+            raise InputError("above the range", field="joints.Kt")
+        return problem.scene(SCENES[0], v)
+
+    free = followers(lambda v: problem.scene(SCENES[0], v), values, kt, ["in-plane"], 4)
+    down = followers(capped, values, kt, ["in-plane"], 4)
+    assert down is not None and np.array_equal(free[0][0], down[0][0]) and free[0][0].any()

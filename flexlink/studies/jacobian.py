@@ -83,11 +83,21 @@ def _part_springs(scene, part: str, elements: int | None) -> tuple[np.ndarray, n
 
 def followers(load, values: np.ndarray, index: int, parts, elements: int | None):
     """Per part: (bool per spring, bool per joint mass) set by free input ``index``, found by
-    loading with that input times PROBE (``load(values)`` -> scene). None if the input changes
-    anything but in proportion (then it is not linear in springs and masses)."""
-    probe = values.copy()
-    probe[index] *= PROBE
-    base_scene, probe_scene = load(values), load(probe)
+    loading with that input times PROBE, or divided by it where that load fails (a range's
+    end); ``load(values)`` -> scene. None if neither loads, or if the input changes anything
+    but in proportion (then it is not linear in springs and masses): its column is then
+    differenced on full evaluations."""
+    base_scene, probe_scene = load(values), None
+    for factor in (PROBE, 1.0 / PROBE):
+        probe = values.copy()
+        probe[index] *= factor
+        try:
+            probe_scene = load(probe)
+            break
+        except FlexlinkError:
+            continue
+    if probe_scene is None:
+        return None
     out = []
     for part in parts:
         (k0, m0), (k1, m1) = (_part_springs(s, part, elements) for s in (base_scene, probe_scene))
@@ -98,7 +108,7 @@ def followers(load, values: np.ndarray, index: int, parts, elements: int | None)
             with np.errstate(invalid="ignore", divide="ignore"):
                 ratio = np.where(a == b, 1.0, b / a)
             moved = ratio != 1.0
-            if not np.allclose(ratio[moved], PROBE, rtol=1e-9, atol=0.0):
+            if not np.allclose(ratio[moved], factor, rtol=1e-9, atol=0.0):
                 return None
             marks.append(moved)
         out.append(tuple(marks))
@@ -151,6 +161,11 @@ def log_frequency_sensitivities(load, values: np.ndarray, names: tuple[str, ...]
                 followers_cache[key] = followers(lambda v: load(i, v), values, j,
                                                  [p.part for p in case.parts], elements)
             marks = followers_cache.get(key) if name in LINEAR else None
+            if marks is not None and not all(
+                    len(springs) == len(p.model.springs.stiffness)
+                    and len(masses) == len(p.model.point_masses)
+                    for p, (springs, masses) in zip(case.parts, marks)):
+                marks = None  # this evaluation's model is laid out otherwise: difference it
             if marks is not None:
                 column = []
                 for part, (q, m), (springs, masses) in zip(case.parts, forms, marks):
