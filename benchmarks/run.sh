@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Set up the benchmark's optional tools, then run it: bash benchmarks/run.sh [--repeats N] [--full-calibration]
+# Set up the benchmark's optional tools, then run it: bash benchmarks/run.sh [--repeats N] [--only 1,2b,...] [--skip-full-calibration]
 # OpenSeesPy (PyPI) links the system's libblas.so.3 and liblapack.so.3, which a bare Debian lacks;
 # they are installed only when missing. pyinstrument is for benchmarks/profile_sweep.py.
 source "$(dirname "$0")/../scripts/venv.sh"
