@@ -2,7 +2,9 @@
 
 A link's local K and M do not depend on the pose, so each link is reduced once, in its own
 frame, to the 6 DOFs of its two end nodes (boundary) plus its lowest fixed-interface modes
-(interior modes with both ends clamped). With u_I the interior DOFs,
+(interior modes with both ends clamped); that reduction is itself one per mesh size, since
+every link of that many elements is the same unit chain scaled (``_link_scales``). With u_I
+the interior DOFs,
     u_I = Psi u_B + Phi q,   Psi = -K_II^-1 K_IB (static constraint modes),
 and the reduced link matrices are T^T K T, T^T M T with T = [[I, 0], [Psi, Phi]]. Keeping every
 interior mode gives the full model back exactly; the truncation is the only approximation.
@@ -64,7 +66,8 @@ SERIES = 6  # terms of the truncated modes' series in lambda / lambda_k (``Reduc
 
 @dataclasses.dataclass(frozen=True)
 class _Family:
-    """One DOF family (axial or bending) of a link, reduced with every interior mode kept.
+    """One DOF family (axial or bending) of a link, reduced with every interior mode kept; in
+    ``_families`` the unit chain's (element length 1, EA = EI = rhoA = 1, units to match).
 
     boundary: local DOF indices of the family's end-node DOFs; slots: their places among the
     link's 6 boundary DOFs; K, M: reduced matrices over (boundary, all interior modes in
@@ -84,10 +87,16 @@ class _Family:
     tail: np.ndarray
 
 
-@functools.lru_cache(maxsize=64)
-def _families(length: float, elements: int, EA: float, EI: float, rhoA: float):
-    """(axial, bending) _Family of a link of ``length`` [m] (cached: a sweep repeats its links)."""
-    K, M = (A.toarray() for A in link_matrices(length, elements, EA, EI, rhoA))
+@functools.lru_cache(maxsize=16)
+def _families(elements: int) -> tuple[_Family, _Family]:
+    """(axial, bending) _Family of a chain of ``elements`` unit-length elements with
+    EA = EI = rhoA = 1 (cached). Every link of that many elements is this chain with its
+    matrices scaled (``_link_scales``), so one eigen solve per mesh serves all its links.
+
+    The reduced matrices come from their block formulas, O(n) products with the static modes
+    Psi, rather than T^T K T on dense n x n: K_BB + K_BI Psi, M_BB + M_BI Psi + Psi^T C and
+    C^T Phi with C = M_IB + M_II Psi; the interior blocks are diag(eigenvalues) and I."""
+    K, M = (A.toarray() for A in link_matrices(float(elements), elements, 1.0, 1.0, 1.0))
     n = K.shape[0]
     local = np.arange(n)
     end = np.isin(local // 3, (0, elements))
@@ -95,32 +104,41 @@ def _families(length: float, elements: int, EA: float, EI: float, rhoA: float):
     for members in (local % 3 == 0, local % 3 != 0):
         dofs = local[members]
         b, i = dofs[end[dofs]], dofs[~end[dofs]]
-        Kff, Mff = K[np.ix_(dofs, dofs)], M[np.ix_(dofs, dofs)]
-        nb = len(b)
-        where_b = np.flatnonzero(end[dofs])
-        where_i = np.flatnonzero(~end[dofs])
-        T = np.zeros((len(dofs), nb + len(i)))
-        T[where_b, np.arange(nb)] = 1.0
-        if len(i):
-            Kii, Kib, Mii = K[np.ix_(i, i)], K[np.ix_(i, b)], M[np.ix_(i, i)]
-            T[where_i, :nb] = -la.solve(Kii, Kib, assume_a="pos")
+        nb, ni = len(b), len(i)
+        Kbb, Mbb = K[np.ix_(b, b)], M[np.ix_(b, b)]
+        T = np.zeros((len(dofs), nb + ni))
+        T[np.flatnonzero(end[dofs]), np.arange(nb)] = 1.0
+        Kr, Mr = np.zeros((2, nb + ni, nb + ni))
+        if ni:
+            Kii, Mii, Kib, Mib = K[np.ix_(i, i)], M[np.ix_(i, i)], K[np.ix_(i, b)], M[np.ix_(i, b)]
+            psi = -la.solve(Kii, Kib, assume_a="pos")
             lam, phi = la.eigh(Kii, Mii)
-            T[where_i, nb:] = phi
+            T[np.flatnonzero(~end[dofs]), :nb] = psi
+            T[np.flatnonzero(~end[dofs]), nb:] = phi
+            C = Mib + Mii @ psi
+            Kbb = Kbb + Kib.T @ psi
+            Mbb = Mbb + Mib.T @ psi + psi.T @ C
+            Mr[:nb, nb:] = C.T @ phi
+            Mr[nb:, :nb] = Mr[:nb, nb:].T
         else:
             lam = np.zeros(0)
-        Kr, Mr = T.T @ Kff @ T, T.T @ Mff @ T
-        Kr, Mr = (Kr + Kr.T) / 2, (Mr + Mr.T) / 2
-        # exact in exact arithmetic (the static modes are K-orthogonal to the fixed-interface
-        # modes, which are M-orthonormal): set so, for ``CraigBamptonPlan.mass_factor``
-        Kr[:nb, nb:] = Kr[nb:, :nb] = 0.0
-        Kr[nb:, nb:], Mr[nb:, nb:] = np.diag(lam), np.eye(len(lam))
-        c = Mr[:nb, nb:]
-        terms = np.einsum("ak,bk,jk->kjab", c, c, lam ** -(np.arange(SERIES)[:, None] + 1.0))
-        tail = np.zeros((len(lam) + 1, SERIES, nb, nb))
-        tail[:-1] = np.cumsum(terms[::-1], axis=0)[::-1]  # smallest terms first
+        # the boundary blocks are symmetric in exact arithmetic; the coupling of K is exactly 0
+        # (static modes K-orthogonal to the M-orthonormal fixed-interface modes), as
+        # ``CraigBamptonPlan.mass_factor`` assumes
+        Kr[:nb, :nb], Mr[:nb, :nb] = (Kbb + Kbb.T) / 2, (Mbb + Mbb.T) / 2
+        Kr[nb:, nb:], Mr[nb:, nb:] = np.diag(lam), np.eye(ni)
         out.append(_Family(dofs=dofs, boundary=b, slots=np.searchsorted(np.flatnonzero(end), b),
-                           K=Kr, M=Mr, eigenvalues=lam, basis=T, tail=tail))
+                           K=Kr, M=Mr, eigenvalues=lam, basis=T, tail=_tail(Mr[:nb, nb:], lam)))
     return tuple(out)
+
+
+def _tail(c: np.ndarray, lam: np.ndarray) -> np.ndarray:
+    """``_Family.tail`` from the mass couplings ``c`` (boundary, modes) of M-normalised modes
+    and their eigenvalues ``lam`` [rad^2/s^2]."""
+    terms = np.einsum("ak,bk,jk->kjab", c, c, lam ** -(np.arange(SERIES)[:, None] + 1.0))
+    tail = np.zeros((len(lam) + 1, SERIES, len(c), len(c)))
+    tail[:-1] = np.cumsum(terms[::-1], axis=0)[::-1]  # smallest terms first
+    return tail
 
 
 @dataclasses.dataclass(frozen=True)
@@ -166,12 +184,35 @@ class ReducedLink:
         return a[:, None] * self.K * a, b[:, None] * self.M * b
 
 
+def _link_scales(length: float, elements: int, EA: float, EI: float,
+                 rhoA: float) -> tuple[tuple[float, float, float], ...]:
+    """Per family (axial, bending) of a link of ``length`` [m], EA [N], EI [N m^2], rhoA
+    [kg/m]: (k, m, h) such that its K is k S K_1 S and its M is m S M_1 S, with K_1, M_1 the
+    unit chain's (``_families``), h the element length [m] and S = h on rotation DOFs, 1
+    elsewhere (``link.chain_entries``): k = EA / h or EI / h^3, m = rhoA h. Then Psi =
+    S_I^-1 Psi_1 S_B, Phi = S_I^-1 Phi_1 / sqrt(m), the eigenvalues are k / m times the unit
+    chain's, and the reduced matrices, basis and truncated-mode series follow by diagonal
+    scalings (E = diag(S_B, 1 / sqrt(m)) on the reduced DOFs)."""
+    h = length / elements
+    return (EA / h, rhoA * h, h), (EI / h**3, rhoA * h, h)
+
+
+def _fixed_interface_eigenvalues(length: float, elements: int, EA: float, EI: float,
+                                 rhoA: float) -> list[np.ndarray]:
+    """Fixed-interface eigenvalues [rad^2/s^2] of a link (axial, bending), ascending."""
+    return [fam.eigenvalues * (k / m) for fam, (k, m, _) in
+            zip(_families(elements), _link_scales(length, elements, EA, EI, rhoA))]
+
+
 def reduce_link(length: float, elements: int, EA: float, EI: float, rhoA: float,
                 lambda_cut: float) -> ReducedLink:
-    """Craig-Bampton reduction keeping the fixed-interface modes with eigenvalue <= lambda_cut
-    [rad^2/s^2] (both families)."""
-    families = _families(float(length), int(elements), EA, EI, rhoA)
-    kept = [int(np.searchsorted(f.eigenvalues, lambda_cut, side="right")) for f in families]
+    """Craig-Bampton reduction of a link of ``length`` [m], EA [N], EI [N m^2], rhoA [kg/m]
+    keeping the fixed-interface modes with eigenvalue <= lambda_cut [rad^2/s^2] (both
+    families): the unit chain's, scaled (``_link_scales``)."""
+    scales = _link_scales(float(length), int(elements), EA, EI, rhoA)
+    families = _families(int(elements))
+    lams = _fixed_interface_eigenvalues(float(length), int(elements), EA, EI, rhoA)
+    kept = [int(np.searchsorted(lam, lambda_cut, side="right")) for lam in lams]
     # reduced DOF order: the 6 boundary DOFs in local node order, then axial, then bending modes
     n = 6 + sum(kept)
     K, M = np.zeros((n, n)), np.zeros((n, n))
@@ -179,15 +220,22 @@ def reduce_link(length: float, elements: int, EA: float, EI: float, rhoA: float,
     axial_mask = np.zeros(n, dtype=bool)
     flexibility = np.zeros((SERIES, 6, 6))
     next_mode = 6
-    for index, (fam, m) in enumerate(zip(families, kept)):
-        slots = np.concatenate([fam.slots, next_mode + np.arange(m)])
-        size = len(slots)
-        K[np.ix_(slots, slots)] = fam.K[:size, :size]
-        M[np.ix_(slots, slots)] = fam.M[:size, :size]
-        basis[np.ix_(fam.dofs, slots)] = fam.basis[:, :size]
+    for index, (fam, (k, m, h), lam, kept_f) in enumerate(zip(families, scales, lams, kept)):
+        slots = np.concatenate([fam.slots, next_mode + np.arange(kept_f)])
+        nb, size = len(fam.slots), len(slots)
+        s_b = np.where(fam.boundary % 3 == 2, h, 1.0)
+        e = np.concatenate([s_b, np.full(kept_f, m**-0.5)])
+        Kf, Mf = k * e[:, None] * fam.K[:size, :size] * e, m * e[:, None] * fam.M[:size, :size] * e
+        # the modal blocks exactly, as in ``_families``
+        Kf[nb:, nb:], Mf[nb:, nb:] = np.diag(lam[:kept_f]), np.eye(kept_f)
+        K[np.ix_(slots, slots)], M[np.ix_(slots, slots)] = Kf, Mf
+        s = np.where(fam.dofs % 3 == 2, h, 1.0)
+        basis[np.ix_(fam.dofs, slots)] = fam.basis[:, :size] * e / s[:, None]
         axial_mask[slots] = index == 0
-        flexibility[:, fam.slots[:, None], fam.slots] = fam.tail[m]
-        next_mode += m
+        series = m * (m / k) ** (np.arange(SERIES) + 1.0)
+        flexibility[:, fam.slots[:, None], fam.slots] = (series[:, None, None] * s_b[:, None]
+                                                         * fam.tail[kept_f] * s_b)
+        next_mode += kept_f
     rotation = np.zeros(n, dtype=bool)
     rotation[[2, 5]] = True
     for A in (K, M, basis, axial_mask, rotation, flexibility):
@@ -201,7 +249,7 @@ def fixed_interface_bound(links, k: int) -> float:
     together (inf when they have fewer). Clamping every link end leaves exactly these modes, and
     constraining DOFs raises each eigenvalue (interlacing), so the linkage's k-th eigenvalue is
     at most this, and so is any Craig-Bampton reduction's keeping the lowest k of them."""
-    lams = np.sort(np.concatenate([f.eigenvalues for l in links for f in _families(
+    lams = np.sort(np.concatenate([lam for l in links for lam in _fixed_interface_eigenvalues(
         float(l.length), int(l.elements), l.section.EA, l.section.EI,
         l.section.mass_per_length)]))
     return float(lams[k - 1]) if len(lams) >= k else math.inf
@@ -252,11 +300,11 @@ class CraigBamptonPlan:
             s = link.section
             self.links.append(reduce_link(link.length, link.elements, s.EA, s.EI,
                                           s.mass_per_length, lambda_cut))
-            for fam in _families(float(link.length), int(link.elements), s.EA, s.EI,
-                                 s.mass_per_length):
-                m = int(np.searchsorted(fam.eigenvalues, lambda_cut, side="right"))
-                kept += list(fam.eigenvalues[:m][-1:])
-                truncated += list(fam.eigenvalues[m:m + 1])
+            for lam in _fixed_interface_eigenvalues(float(link.length), int(link.elements),
+                                                    s.EA, s.EI, s.mass_per_length):
+                m = int(np.searchsorted(lam, lambda_cut, side="right"))
+                kept += list(lam[:m][-1:])
+                truncated += list(lam[m:m + 1])
         # the same basis for any cut-off in [highest kept, reach) [rad^2/s^2], at these lengths
         self.highest_kept, self.reach = max(kept), min(truncated)
         bmodel = boundary_model(lay, model)
