@@ -1,4 +1,5 @@
-"""What every command shares: the JSON style and the ``--json`` and ``--out`` options."""
+"""What every command shares: the JSON style, the ``--json`` and ``--out`` options, the mesh
+options and ``--scheduler``."""
 
 from __future__ import annotations
 
@@ -45,3 +46,28 @@ def mesh_options(method: bool = True):
             command = option(command)
         return command
     return decorate
+
+
+def scheduler_option(runs: str):
+    """--scheduler ADDRESS (None: stay on this machine), for a command whose ``runs`` (e.g. "the
+    fits and the Monte Carlo") go to dask.distributed inside ``parallel.use_scheduler``."""
+    return click.option(
+        "--scheduler", default=None, metavar="ADDRESS",
+        help=f"Run {runs} on dask.distributed: 'local' starts a LocalCluster on this machine, "
+             "else a scheduler address such as tcp://host:8786 (needs the 'dask' extra; see "
+             "docs/performance.md).")
+
+
+def map_parallel_options(command):
+    """-j/--jobs and --scheduler of the commands that compute a tracked cycle map (``cycle``,
+    ``campbell``): its poses go out in chunks (``tracking.tracked_map``); same result."""
+    for option in reversed((
+            click.option("-j", "--jobs", default=1, show_default=True, type=int,
+                         help="Worker processes for the tracked map's poses (joblib; 1: this "
+                              "process, -1: one per core). Starting the workers costs about a "
+                              "second: worth it for fine meshes or many poses."),
+            scheduler_option("the tracked map's poses, in chunks (--sorted: the whole "
+                             "Craig-Bampton map as one task); worth it for fine meshes or many "
+                             "poses"))):
+        command = option(command)
+    return command
