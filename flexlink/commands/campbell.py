@@ -42,7 +42,7 @@ def parse_speeds(text: str) -> tuple[float, float]:
               help="Relative distance from a band that counts as critical.")
 @click.option("--harmonics", default=10, show_default=True, type=click.IntRange(1, 10000),
               help="Crank harmonics n = 1 ... this number.")
-@map_parallel_options
+@map_parallel_options(sorted_map=False)
 @json_option
 @out_option
 @names_scene("scene_path")

@@ -32,7 +32,7 @@ from flexlink.commands._options import dumps, json_option, map_parallel_options,
 @click.option("--track/--sorted", default=True, show_default=True,
               help="Follow each mode's shape from pose to pose by MAC (crossings and veerings "
                    "marked), or list the n-th lowest frequency at each pose (faster).")
-@map_parallel_options
+@map_parallel_options(sorted_map=True)
 @json_option
 @out_option
 @names_scene("scene_path")
