@@ -60,6 +60,11 @@ def use_scheduler(address: str | None) -> Iterator[object]:
             cluster.close()
 
 
+def on_cluster() -> bool:
+    """Whether ``run_tasks`` goes to dask.distributed here (inside ``use_scheduler``)."""
+    return _client is not None
+
+
 def workers(n_jobs: int = -1) -> int:
     """How many tasks run at once: the cluster's worker threads inside ``use_scheduler``, else
     joblib's count for ``n_jobs`` (-1 = all cores)."""

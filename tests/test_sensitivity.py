@@ -82,3 +82,17 @@ def test_monte_carlo_is_reproducible_and_brackets_the_nominal():
     nominal = end_points(CASE2, 2, ELEMENTS).nominal
     assert iv.failed == 0
     assert np.all(iv.low < nominal) and np.all(nominal < iv.high)
+
+
+@pytest.mark.parametrize("command", ["modes", "report"])
+def test_scheduler_without_sensitivity_is_refused(tmp_path, command):
+    """--scheduler only runs the --sensitivity evaluations: without them it is an error, not
+    silently ignored (and no cluster is started for nothing)."""
+    from click.testing import CliRunner
+
+    from flexlink.cli import main
+
+    result = CliRunner().invoke(main, [command, str(CASE2), "--scheduler", "local",
+                                       "--out", str(tmp_path)])
+    assert result.exit_code == 2
+    assert "--scheduler runs the --sensitivity evaluations" in result.output

@@ -83,9 +83,13 @@ def _sparse(K, M, k, shift):
     # Shift-invert about a negative shift: K - shift M is positive definite even when K is
     # singular (mechanism or rigid-body modes), so the factorisation cannot break down, and the
     # modes nearest the shift from above are the lowest ones.
+    # ARPACK's own start vector is random anew at every call (scipy >= 1.16), which moves the
+    # eigenvalues in their last bits from run to run; a fixed one makes every run, serial or on
+    # any worker, give the same bits. Uniform in (-1, 1), as ARPACK draws its own.
+    start = np.random.default_rng(0).uniform(-1.0, 1.0, K.shape[0])
     try:
         vals, vecs = spla.eigsh(sp.csc_matrix(K), k=k, M=sp.csc_matrix(M), sigma=shift,
-                                which="LM")
+                                which="LM", v0=start)
     except (RuntimeError, spla.ArpackError) as exc:
         raise NumericalError(f"sparse eigen solve failed: {exc}") from exc
     order = np.argsort(vals)

@@ -1,4 +1,5 @@
-"""What every command shares: the JSON style and the ``--json`` and ``--out`` options."""
+"""What every command shares: the JSON style, the ``--json`` and ``--out`` options, the mesh
+options and ``--scheduler``."""
 
 from __future__ import annotations
 
@@ -39,6 +40,37 @@ def mesh_options(method: bool = True):
     if method:
         options.append(click.option("--method", type=click.Choice(["auto", "dense", "sparse"]),
                                     default="auto", show_default=True, help="Eigen solver."))
+
+    def decorate(command):
+        for option in reversed(options):
+            command = option(command)
+        return command
+    return decorate
+
+
+def scheduler_option(runs: str, note: str = ""):
+    """--scheduler ADDRESS (None: stay on this machine), for a command whose ``runs`` (e.g. "the
+    fits and the Monte Carlo") go to dask.distributed inside ``parallel.use_scheduler``;
+    ``note`` ends the help."""
+    return click.option(
+        "--scheduler", default=None, metavar="ADDRESS",
+        help=f"Run {runs} on dask.distributed: 'local' starts a LocalCluster on this machine, "
+             "else a scheduler address such as tcp://host:8786 (needs the 'dask' extra; see "
+             f"docs/performance.md).{note}")
+
+
+def map_parallel_options(sorted_map: bool):
+    """-j/--jobs and --scheduler of the commands that compute a tracked cycle map (``cycle``,
+    ``campbell``): its poses go out in chunks (``tracking.tracked_map``), same result; with
+    ``sorted_map`` the help also says where a --sorted map goes."""
+    runs = "the tracked map's poses in chunks" + (
+        " (a --sorted map: its Craig-Bampton sweep as one task)" if sorted_map else "")
+    worth = " Worth it for fine meshes or many poses: starting the workers takes seconds."
+    options = (
+        click.option("-j", "--jobs", default=1, show_default=True, type=int,
+                     help="Worker processes (joblib) for the tracked map's poses; 1: in this "
+                          "process, -1: one per core." + worth),
+        scheduler_option(runs, worth))
 
     def decorate(command):
         for option in reversed(options):

@@ -5,9 +5,11 @@ from __future__ import annotations
 
 import click
 
+from flexlink.commands._options import scheduler_option
+
 
 def sensitivity_options(command):
-    """Decorate a command with --sensitivity, --samples, --seed and -j/--jobs."""
+    """Decorate a command with --sensitivity, --samples, --seed, -j/--jobs and --scheduler."""
     for option in reversed((
             click.option("--sensitivity", is_flag=True,
                          help="Also evaluate every assumed input at both ends of its range and "
@@ -18,9 +20,21 @@ def sensitivity_options(command):
             click.option("--seed", default=1, show_default=True, type=int,
                          help="Monte Carlo seed."),
             click.option("-j", "--jobs", default=-1, show_default=True, type=int,
-                         help="Worker processes for --sensitivity (-1: one per core)."))):
+                         help="Worker processes for --sensitivity (-1: one per core)."),
+            scheduler_option("the --sensitivity end points and Monte Carlo"))):
         command = option(command)
     return command
+
+
+def sensitivity_scheduler(sensitivity: bool, scheduler: str | None):
+    """The ``parallel.use_scheduler`` block of a command's scenes: --scheduler runs the
+    --sensitivity evaluations, so it is refused without --sensitivity rather than ignored."""
+    from flexlink.parallel import use_scheduler
+
+    if scheduler is not None and not sensitivity:
+        raise click.UsageError("--scheduler runs the --sensitivity evaluations: give "
+                               "--sensitivity too, or leave --scheduler out")
+    return use_scheduler(scheduler)
 
 
 def scene_sensitivity(scene, n_modes: int, samples: int, seed: int, jobs: int,

@@ -9,7 +9,7 @@ import sys
 import click
 
 from flexlink.commands._failures import names_scene
-from flexlink.commands._options import dumps, json_option, out_option
+from flexlink.commands._options import dumps, json_option, out_option, scheduler_option
 
 
 @click.command("calibrate")
@@ -36,10 +36,7 @@ from flexlink.commands._options import dumps, json_option, out_option
               help="Elements per link in every evaluation.")
 @click.option("--jobs", default=-1, show_default=True, type=int,
               help="Parallel workers (joblib; -1 = all cores).")
-@click.option("--scheduler", default=None, metavar="ADDRESS",
-              help="Run the fits and the Monte Carlo on dask.distributed: 'local' starts a "
-                   "LocalCluster on this machine, else a scheduler address such as "
-                   "tcp://host:8786 (needs the 'dask' extra; see docs/performance.md).")
+@scheduler_option("the fits and the Monte Carlo")
 @json_option
 @out_option
 @names_scene("scenes")

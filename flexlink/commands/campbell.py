@@ -5,7 +5,7 @@ from __future__ import annotations
 import click
 
 from flexlink.commands._failures import names_scene
-from flexlink.commands._options import dumps, json_option, out_option
+from flexlink.commands._options import dumps, json_option, map_parallel_options, out_option
 
 
 def parse_speeds(text: str) -> tuple[float, float]:
@@ -42,17 +42,19 @@ def parse_speeds(text: str) -> tuple[float, float]:
               help="Relative distance from a band that counts as critical.")
 @click.option("--harmonics", default=10, show_default=True, type=click.IntRange(1, 10000),
               help="Crank harmonics n = 1 ... this number.")
+@map_parallel_options(sorted_map=False)
 @json_option
 @out_option
 @names_scene("scene_path")
-def command(scene_path, speeds, n_modes, poses, elements, tol, margin, harmonics, as_json,
-            out_dir):
+def command(scene_path, speeds, n_modes, poses, elements, tol, margin, harmonics, jobs, scheduler,
+            as_json, out_dir):
     """Campbell diagram of SCENE: each tracked mode's frequency band over the crank cycle
     against crank speed, the harmonics n x speed and the margin band; the critical speed
     ranges where a harmonic enters a band (with the margin), or the nearest margin when none
     does. Writes campbell.png, campbell.csv and campbell.json to OUT/<scene>/."""
     from flexlink.analysis.mesh import DEFAULT_TOL, choose_mesh
     from flexlink.fileio import prepare_out_dir, write_atomic
+    from flexlink.parallel import use_scheduler
     from flexlink.scene import load_scene
     from flexlink.studies.campbell import (RPM, bands, campbell_json, critical_csv,
                                            critical_speeds, nearest_margin, plot_campbell)
@@ -64,8 +66,9 @@ def command(scene_path, speeds, n_modes, poses, elements, tol, margin, harmonics
     [folder] = scene_folders(prepare_out_dir(out_dir), [scene_path])
     scene = load_scene(scene_path)
     mesh = choose_mesh(scene, n_modes, elements, DEFAULT_TOL if tol is None else tol)
-    result = tracked_map(scene, poses, n_modes, mesh.elements,
-                         progress=progress_bar("tracked modes", as_json))
+    with use_scheduler(scheduler):
+        result = tracked_map(scene, poses, n_modes, mesh.elements,
+                             progress=progress_bar("tracked modes", as_json), n_jobs=jobs)
     found = bands(result.frequencies)
     critical = critical_speeds(found, window, margin, harmonics)
     nearest = nearest_margin(found, window, harmonics)

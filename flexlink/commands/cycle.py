@@ -6,7 +6,7 @@ import math
 import click
 
 from flexlink.commands._failures import names_scene
-from flexlink.commands._options import dumps, json_option, out_option
+from flexlink.commands._options import dumps, json_option, map_parallel_options, out_option
 
 
 @click.command("cycle")
@@ -32,11 +32,12 @@ from flexlink.commands._options import dumps, json_option, out_option
 @click.option("--track/--sorted", default=True, show_default=True,
               help="Follow each mode's shape from pose to pose by MAC (crossings and veerings "
                    "marked), or list the n-th lowest frequency at each pose (faster).")
+@map_parallel_options(sorted_map=True)
 @json_option
 @out_option
 @names_scene("scene_path")
-def command(scene_path, n_modes, poses, elements, tol, speed, margin, harmonics, track, as_json,
-            out_dir):
+def command(scene_path, n_modes, poses, elements, tol, speed, margin, harmonics, track, jobs,
+            scheduler, as_json, out_dir):
     """Natural frequencies of the first modes at every crank angle of SCENE (CSV and PNG in
     --out), the poses where the transmission angle is 90 deg, and the crank harmonics that
     come within --margin of a natural frequency anywhere in the cycle. Writes cycle.csv,
@@ -47,6 +48,7 @@ def command(scene_path, n_modes, poses, elements, tol, speed, margin, harmonics,
     from flexlink.studies.tracking import events_json, plot_tracked, tracked_csv, tracked_map
     from flexlink.analysis.mesh import DEFAULT_TOL, choose_mesh
     from flexlink.fileio import prepare_out_dir, write_atomic
+    from flexlink.parallel import use_scheduler
     from flexlink.scene import load_scene
     from flexlink.units import parse_quantity
     from ._progress import progress_bar
@@ -58,12 +60,13 @@ def command(scene_path, n_modes, poses, elements, tol, speed, margin, harmonics,
              parse_quantity(speed, "angular speed", source="command line", field="--speed"))
     check_speed, check_note = resonance_speed(omega)
     mesh = choose_mesh(scene, n_modes, elements, DEFAULT_TOL if tol is None else tol)
-    if track:
-        result = tracked_map(scene, poses, n_modes, mesh.elements,
-                             progress=progress_bar("tracked modes", as_json))
-    else:
-        result = modal_map(scene, poses, n_modes, mesh.elements,
-                           progress=progress_bar("modal map", as_json))
+    with use_scheduler(scheduler):
+        if track:
+            result = tracked_map(scene, poses, n_modes, mesh.elements,
+                                 progress=progress_bar("tracked modes", as_json), n_jobs=jobs)
+        else:
+            result = modal_map(scene, poses, n_modes, mesh.elements,
+                               progress=progress_bar("modal map", as_json))
     hits = resonances(result, check_speed, margin, harmonics) if check_speed else []
     paths = [folder / "cycle.csv", folder / "cycle.png", folder / "cycle.json"]
     write_atomic(paths[0], tracked_csv(result) if track else modal_map_csv(result))

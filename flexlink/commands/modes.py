@@ -7,7 +7,8 @@ import logging
 import click
 
 from flexlink.commands._options import dumps, json_option, mesh_options, out_option
-from flexlink.commands._sensitivity import scene_sensitivity, sensitivity_options
+from flexlink.commands._sensitivity import (scene_sensitivity, sensitivity_options,
+                                           sensitivity_scheduler)
 
 
 @click.command("modes")
@@ -18,8 +19,8 @@ from flexlink.commands._sensitivity import scene_sensitivity, sensitivity_option
 @sensitivity_options
 @json_option
 @out_option
-def command(scenes, n_modes, elements, method, tol, sensitivity, samples, seed, jobs, as_json,
-            out_dir):
+def command(scenes, n_modes, elements, method, tol, sensitivity, samples, seed, jobs, scheduler,
+            as_json, out_dir):
     """Natural frequencies of each SCENE (a scene file or a folder of them) at its pose,
     compared with the scene's reference columns (measured Ex, published FE). Writes
     OUT/<scene>/modes.json and modes.csv per scene, and OUT/modes.json and modes.csv with
@@ -41,26 +42,27 @@ def command(scenes, n_modes, elements, method, tol, sensitivity, samples, seed, 
     files = scene_files(scenes)
     all_folders = dict(zip(files, scene_folders(out, files)))
     summaries, meshes, folders, failures = [], [], [], []
-    for path in files:
-        try:
-            scene = load_scene(path)
-            mesh = choose_mesh(scene, n_modes, elements, DEFAULT_TOL if tol is None else tol)
-            result = analyze(scene, n_modes, mesh.elements, method)
-            family = scene_family(scene)
-            other = {} if family == "planar" else dict(
-                zip(("computed", "kinds"), elastic_modes(scene, n_modes, mesh.elements, method)))
-            summary = {**case_summary(result, n_modes, family, **other),
-                       "mesh": mesh.as_dict(), "warnings": list(result.warnings)}
-            summary.update(_alternatives(scene, n_modes, mesh.elements, result.warnings))
-            if sensitivity:
-                summary["sensitivity"] = scene_sensitivity(scene, n_modes, samples, seed, jobs,
-                                                           as_json)
-        except FlexlinkError as exc:  # the other scenes still get their results
-            failures.append(scene_failure(path, exc))
-            continue
-        summaries.append(summary)
-        meshes.append(mesh)
-        folders.append(all_folders[path])
+    with sensitivity_scheduler(sensitivity, scheduler):  # one cluster for every scene
+        for path in files:
+            try:
+                scene = load_scene(path)
+                mesh = choose_mesh(scene, n_modes, elements, DEFAULT_TOL if tol is None else tol)
+                result = analyze(scene, n_modes, mesh.elements, method)
+                family = scene_family(scene)
+                other = {} if family == "planar" else dict(zip(
+                    ("computed", "kinds"), elastic_modes(scene, n_modes, mesh.elements, method)))
+                summary = {**case_summary(result, n_modes, family, **other),
+                           "mesh": mesh.as_dict(), "warnings": list(result.warnings)}
+                summary.update(_alternatives(scene, n_modes, mesh.elements, result.warnings))
+                if sensitivity:
+                    summary["sensitivity"] = scene_sensitivity(scene, n_modes, samples, seed,
+                                                               jobs, as_json)
+            except FlexlinkError as exc:  # the other scenes still get their results
+                failures.append(scene_failure(path, exc))
+                continue
+            summaries.append(summary)
+            meshes.append(mesh)
+            folders.append(all_folders[path])
     parts = [(folder / "modes.json", folder / "modes.csv", [s])
              for folder, s in zip(folders, summaries)]
     if len(files) > 1 and summaries:  # the combined table of a multi-scene run

@@ -9,7 +9,8 @@ import click
 
 from flexlink.commands._failures import names_scene
 from flexlink.commands._options import dumps, json_option, mesh_options, out_option
-from flexlink.commands._sensitivity import scene_sensitivity, sensitivity_options
+from flexlink.commands._sensitivity import (scene_sensitivity, sensitivity_options,
+                                           sensitivity_scheduler)
 
 
 @click.command("report")
@@ -24,7 +25,7 @@ from flexlink.commands._sensitivity import scene_sensitivity, sensitivity_option
 @out_option
 @names_scene("scenes")
 def command(scenes, n_modes, elements, tol, method, cycle_poses, sensitivity, samples, seed, jobs,
-            as_json, out_dir):
+            scheduler, as_json, out_dir):
     """Write OUT/report.html: for each SCENE (a scene file or a folder of them) its pose and
     drawing, frequencies against the reference columns, assumptions (with --sensitivity their
     end points and the Monte Carlo 95 % interval), mesh, animated mode shapes, cycle map, and
@@ -60,29 +61,32 @@ def command(scenes, n_modes, elements, tol, method, cycle_poses, sensitivity, sa
     bar = tqdm(files, desc="report", unit="scene", file=sys.stderr,
                disable=as_json or not sys.stderr.isatty())
     failures = []
-    for path in bar:
-        try:
-            scene = load_scene(path)
-            mesh = choose_mesh(scene, n_modes, elements, DEFAULT_TOL if tol is None else tol)
-            result = analyze(scene, n_modes, mesh.elements, method)
-            summary = {**case_summary(result, n_modes), "warnings": list(result.warnings)}
-            if sensitivity:
-                summary["sensitivity"] = scene_sensitivity(scene, n_modes, samples, seed, jobs,
-                                                           as_json)
-        except FlexlinkError as exc:  # the other scenes still get their report
-            failures.append(scene_failure(path, exc))
-            continue
-        exported = export_case(result, summary, out, settings)
-        written += exported["vtu"] + exported["pvd"]
-        cycle, reason = None, None
-        if cycle_poses:
+    with sensitivity_scheduler(sensitivity, scheduler):  # one cluster for every scene
+        for path in bar:
             try:
-                cycle = modal_map(scene, cycle_poses, n_modes, mesh.elements)
-            except FlexlinkError as exc:  # e.g. a linkage that cannot turn a full cycle
-                reason = str(exc)
-        mesh_info = {**mesh.as_dict(), "describe": mesh.describe(), "history": list(mesh.history)}
-        pages.append(scene_page(result, summary, mesh_info, mode_set(result, n_modes),
-                                cycle_data(cycle, result.pose.crank_angle, reason), exported, out))
+                scene = load_scene(path)
+                mesh = choose_mesh(scene, n_modes, elements, DEFAULT_TOL if tol is None else tol)
+                result = analyze(scene, n_modes, mesh.elements, method)
+                summary = {**case_summary(result, n_modes), "warnings": list(result.warnings)}
+                if sensitivity:
+                    summary["sensitivity"] = scene_sensitivity(scene, n_modes, samples, seed,
+                                                               jobs, as_json)
+            except FlexlinkError as exc:  # the other scenes still get their report
+                failures.append(scene_failure(path, exc))
+                continue
+            exported = export_case(result, summary, out, settings)
+            written += exported["vtu"] + exported["pvd"]
+            cycle, reason = None, None
+            if cycle_poses:
+                try:
+                    cycle = modal_map(scene, cycle_poses, n_modes, mesh.elements)
+                except FlexlinkError as exc:  # e.g. a linkage that cannot turn a full cycle
+                    reason = str(exc)
+            mesh_info = {**mesh.as_dict(), "describe": mesh.describe(),
+                         "history": list(mesh.history)}
+            pages.append(scene_page(result, summary, mesh_info, mode_set(result, n_modes),
+                                    cycle_data(cycle, result.pose.crank_angle, reason),
+                                    exported, out))
     if not pages:  # nothing to show: no page, only the reasons
         finish(failures, len(files))
     stamp = datetime.datetime.now().astimezone().strftime("%Y-%m-%d %H:%M %Z")

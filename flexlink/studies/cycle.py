@@ -18,6 +18,7 @@ from flexlink.kinematics.linkage import Cycle, crank_angles, crossings
 from flexlink.scene import Scene
 from flexlink.scene.contract import pose_transmission_angles
 from flexlink.analysis.sweep import modal_sweep
+from flexlink.parallel import on_cluster, run_tasks
 
 
 def kinematic_cycle(scene: Scene, n_poses: int = 360, progress=None) -> Cycle:
@@ -54,10 +55,16 @@ def modal_map(scene: Scene, n_poses: int = 360, n_modes: int = 3,
     """The first ``n_modes`` elastic frequencies at ``n_poses`` input angles over the cycle.
 
     ``reduction``: as in ``sweep.modal_sweep``; by default the Craig-Bampton links
-    (tests/test_craig_bampton.py: within 1e-6 of the full model), None for the full model."""
+    (tests/test_craig_bampton.py: within 1e-6 of the full model), None for the full model.
+    Inside ``parallel.use_scheduler`` the sweep runs as one task on the cluster (the same
+    computation: a Craig-Bampton basis fits the whole sweep, so it is not split)."""
     cycle = kinematic_cycle(scene, n_poses)
-    sweep = modal_sweep(scene.topology(elements_per_link), [s.points for s in cycle.states],
-                        n_modes, progress=progress, reduction=reduction)
+    sweep_task = (scene.topology(elements_per_link), [s.points for s in cycle.states], n_modes)
+    if on_cluster():  # the whole sweep as one task: its basis fits all its poses together
+        [sweep] = run_tasks(modal_sweep, [(*sweep_task, "auto", None, reduction)],
+                            label="modal maps")
+    else:
+        sweep = modal_sweep(*sweep_task, progress=progress, reduction=reduction)
     missing = ~np.isfinite(sweep.frequencies).all(axis=1)
     if missing.any():  # never a silent gap in the map: the model has fewer modes than asked
         found = int(np.isfinite(sweep.frequencies[missing][0]).sum())

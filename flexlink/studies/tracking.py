@@ -28,6 +28,7 @@ from flexlink.analysis.mac import link_frame, link_frame_mass, mac_matrix, pair_
 from flexlink.analysis.modal import pose_modes
 from flexlink.fe.model import layout
 from flexlink.kinematics.linkage import crossings
+from flexlink.parallel import on_cluster, run_tasks, workers
 from flexlink.scene import Scene
 from flexlink.studies.cycle import cycle_axes, kinematic_cycle, transmission_angles
 
@@ -128,9 +129,15 @@ class TrackedMap:
 
 
 def tracked_map(scene: Scene, n_poses: int = 360, n_modes: int = 3,
-                elements_per_link: int | None = None, progress=None) -> TrackedMap:
+                elements_per_link: int | None = None, progress=None,
+                n_jobs: int = 1) -> TrackedMap:
     """The first ``n_modes`` elastic modes over the cycle, each line tracked by its shape; the
-    full model of ``analysis.modal.pose_modes`` at every pose (the same as `flexlink modes`)."""
+    full model of ``analysis.modal.pose_modes`` at every pose (the same as `flexlink modes`).
+
+    ``n_jobs`` = 1 solves the poses in this process (``progress`` wraps them); otherwise, or
+    on the cluster of ``parallel.use_scheduler``, the poses go out in contiguous chunks through
+    ``parallel.run_tasks`` (``progress`` then only switches its bar on). Every pose is solved
+    on its own, so the result is the same whatever the chunks; the tracking runs here."""
     cycle = kinematic_cycle(scene, n_poses)
     topology = scene.topology(elements_per_link)
     k = n_modes + SPARE
@@ -138,28 +145,50 @@ def tracked_map(scene: Scene, n_poses: int = 360, n_modes: int = 3,
         pose_modes(topology, cycle.states[0].points, k)
     except InputError:
         k = n_modes  # and if even these are too many, the first pose below says so
-    freqs = np.full((len(cycle.states), k), np.nan)
-    shapes, W = [], None
-    mechanism = np.zeros(len(cycle.states), dtype=int)
-    states = progress(cycle.states) if progress else cycle.states
-    layout(topology)  # warm the cache once
-    for i, state in enumerate(states):
-        model, modes, _ = pose_modes(topology, state.points, k)
-        elastic = modes.elastic[:k]
-        mechanism[i] = len(modes.kinds) - len(modes.elastic)
-        freqs[i, :len(elastic)] = modes.frequencies[elastic]
-        U = np.zeros((model.n_dofs, k))
-        U[:, :len(elastic)] = link_frame(model, modes.shapes[:, elastic])
-        shapes.append(U)
-        if W is None:
-            W = link_frame_mass(model)
-            labels = tuple(d["label"] for d in mode_identity(model, modes.shapes[:, elastic[:n_modes]]))
+    points = [state.points for state in cycle.states]
+    if n_jobs == 1 and not on_cluster():
+        parts = [_pose_lines(topology, points, k, n_modes, progress)]
+    else:
+        chunks = np.array_split(np.arange(len(points)),
+                                min(len(points), CHUNKS_PER_WORKER * workers(n_jobs)))
+        parts = run_tasks(_pose_lines, [(topology, [points[i] for i in chunk], k, n_modes)
+                                        for chunk in chunks],
+                          n_jobs=n_jobs, progress=progress is not None, label="pose chunks")
+    freqs = np.concatenate([p[0] for p in parts])
+    shapes = [U for p in parts for U in p[1]]
+    mechanism = np.concatenate([p[2] for p in parts])
+    W, labels = parts[0][3]
     tracks = track(freqs, shapes, n_modes, W)
     mu90 = {key: crossings(cycle.q, mu, math.pi / 2)
             for key, mu in transmission_angles(scene, cycle).items()}
     return TrackedMap(scene=scene.name, q=cycle.q, frequencies=tracks.frequencies,
                       tracks=tracks, mu90=mu90, labels=labels,
                       mechanism_counts=mechanism)
+
+
+CHUNKS_PER_WORKER = 4  # chunks of poses per worker: a slow chunk holds up less of the map
+
+
+def _pose_lines(topology, points, k: int, n_modes: int, progress=None):
+    """(frequencies [Hz] (poses, k), NaN where fewer; link-frame shapes per pose; mechanism
+    modes per pose; (link-frame mass matrix, the first ``n_modes`` lines' labels) at the first
+    pose) of the poses ``points`` (joint name -> (x, y) [m])."""
+    freqs = np.full((len(points), k), np.nan)
+    shapes, first = [], None
+    mechanism = np.zeros(len(points), dtype=int)
+    layout(topology)  # warm the cache once
+    for i, pose in enumerate(progress(points) if progress else points):
+        model, modes, _ = pose_modes(topology, pose, k)
+        elastic = modes.elastic[:k]
+        mechanism[i] = len(modes.kinds) - len(modes.elastic)
+        freqs[i, :len(elastic)] = modes.frequencies[elastic]
+        U = np.zeros((model.n_dofs, k))
+        U[:, :len(elastic)] = link_frame(model, modes.shapes[:, elastic])
+        shapes.append(U)
+        if first is None:
+            first = (link_frame_mass(model), tuple(
+                d["label"] for d in mode_identity(model, modes.shapes[:, elastic[:n_modes]])))
+    return freqs, shapes, mechanism, first
 
 
 def events_json(result: TrackedMap) -> list[dict]:
