@@ -59,14 +59,15 @@ class MeshRule:
 
 
 def choose_mesh(scene, n_modes: int, elements: int | None = None,
-                tol: float = DEFAULT_TOL) -> MeshRule:
+                tol: float | None = None) -> MeshRule:
     """The mesh for ``scene``: ``elements`` if given, else the scene's pinned mesh, else
-    ``mesh_for_tolerance``; the MeshRule says which."""
+    ``mesh_for_tolerance`` at relative tolerance ``tol`` (None: DEFAULT_TOL); the MeshRule says
+    which."""
     if elements is not None:
         return MeshRule(elements, COMMAND_LINE)
     if scene.elements_per_link is not None:  # pinned by [mesh] elements_per_link
         return MeshRule(scene.elements_per_link, SCENE)
-    return mesh_for_tolerance(scene, n_modes, tol)
+    return mesh_for_tolerance(scene, n_modes, DEFAULT_TOL if tol is None else tol)
 
 
 def mesh_for_tolerance(scene, n_modes: int, tol: float = DEFAULT_TOL, method: str = "sparse",

@@ -52,7 +52,7 @@ def command(scene_path, speeds, n_modes, poses, elements, tol, margin, harmonics
     against crank speed, the harmonics n x speed and the margin band; the critical speed
     ranges where a harmonic enters a band (with the margin), or the nearest margin when none
     does. Writes campbell.png, campbell.csv and campbell.json to OUT/<scene>/."""
-    from flexlink.analysis.mesh import DEFAULT_TOL, choose_mesh
+    from flexlink.analysis.mesh import choose_mesh
     from flexlink.fileio import prepare_out_dir, write_atomic
     from flexlink.parallel import use_scheduler
     from flexlink.scene import load_scene
@@ -65,7 +65,7 @@ def command(scene_path, speeds, n_modes, poses, elements, tol, margin, harmonics
     window = parse_speeds(speeds)
     [folder] = scene_folders(prepare_out_dir(out_dir), [scene_path])
     scene = load_scene(scene_path)
-    mesh = choose_mesh(scene, n_modes, elements, DEFAULT_TOL if tol is None else tol)
+    mesh = choose_mesh(scene, n_modes, elements, tol)
     with use_scheduler(scheduler):
         result = tracked_map(scene, poses, n_modes, mesh.elements,
                              progress=progress_bar("tracked modes", as_json), n_jobs=jobs)

@@ -46,7 +46,7 @@ def command(scene_path, n_modes, poses, elements, tol, speed, margin, harmonics,
                                         resonances, runs)
     from flexlink.studies.campbell import nearest_harmonic
     from flexlink.studies.tracking import events_json, plot_tracked, tracked_csv, tracked_map
-    from flexlink.analysis.mesh import DEFAULT_TOL, choose_mesh
+    from flexlink.analysis.mesh import choose_mesh
     from flexlink.fileio import prepare_out_dir, write_atomic
     from flexlink.parallel import use_scheduler
     from flexlink.scene import load_scene
@@ -59,7 +59,7 @@ def command(scene_path, n_modes, poses, elements, tol, speed, margin, harmonics,
     omega = (scene.options.crank_speed if speed is None else
              parse_quantity(speed, "angular speed", source="command line", field="--speed"))
     check_speed, check_note = resonance_speed(omega)
-    mesh = choose_mesh(scene, n_modes, elements, DEFAULT_TOL if tol is None else tol)
+    mesh = choose_mesh(scene, n_modes, elements, tol)
     with use_scheduler(scheduler):
         if track:
             result = tracked_map(scene, poses, n_modes, mesh.elements,

@@ -40,7 +40,7 @@ def command(scenes, n_modes, elements, tol, method, subdivide, phases, amplitude
     OUT/export.json."""
     from tqdm import tqdm
 
-    from flexlink.analysis.mesh import DEFAULT_TOL, choose_mesh
+    from flexlink.analysis.mesh import choose_mesh
     from flexlink.analysis.modal import analyze
     from flexlink.errors import FlexlinkError, InputError
     from ._failures import finish, scene_failure
@@ -67,7 +67,7 @@ def command(scenes, n_modes, elements, tol, method, subdivide, phases, amplitude
     for path in bar:
         try:
             scene = load_scene(path)
-            mesh = choose_mesh(scene, n_modes, elements, DEFAULT_TOL if tol is None else tol)
+            mesh = choose_mesh(scene, n_modes, elements, tol)
             result = analyze(scene, n_modes, mesh.elements, method)
             summary = case_summary(result, n_modes)
             written = export_case(result, summary, out, settings)

@@ -25,13 +25,12 @@ def command(scenes, n_modes, elements, method, tol, sensitivity, samples, seed, 
     compared with the scene's reference columns (measured Ex, published FE). Writes
     OUT/<scene>/modes.json and modes.csv per scene, and OUT/modes.json and modes.csv with
     every scene when there are several."""
-    from flexlink.analysis.mesh import DEFAULT_TOL, choose_mesh
-    from flexlink.analysis.modal import analyze
     from flexlink.analysis.families import elastic_modes, scene_family
     from flexlink.fileio import prepare_out_dir, write_atomic
     from flexlink.output.report import case_summary, comparison_csv, format_case
-    from flexlink.scene import load_scene, scene_files
+    from flexlink.scene import scene_files
     from flexlink.errors import FlexlinkError
+    from ._analysed import analysed_scene
     from ._failures import finish, scene_failure
     from ._written import announce, scene_folders
 
@@ -45,9 +44,7 @@ def command(scenes, n_modes, elements, method, tol, sensitivity, samples, seed, 
     with sensitivity_scheduler(sensitivity, scheduler):  # one cluster for every scene
         for path in files:
             try:
-                scene = load_scene(path)
-                mesh = choose_mesh(scene, n_modes, elements, DEFAULT_TOL if tol is None else tol)
-                result = analyze(scene, n_modes, mesh.elements, method)
+                scene, mesh, result = analysed_scene(path, n_modes, elements, tol, method)
                 family = scene_family(scene)
                 other = {} if family == "planar" else dict(zip(
                     ("computed", "kinds"), elastic_modes(scene, n_modes, mesh.elements, method)))

@@ -38,8 +38,6 @@ def command(scenes, n_modes, elements, tol, method, cycle_poses, sensitivity, sa
     import plotly.offline
     from tqdm import tqdm
 
-    from flexlink.analysis.mesh import DEFAULT_TOL, choose_mesh
-    from flexlink.analysis.modal import analyze
     from flexlink.errors import FlexlinkError
     from flexlink.fileio import prepare_out_dir, write_atomic
     from flexlink.output.export import ExportSettings, export_case
@@ -47,8 +45,9 @@ def command(scenes, n_modes, elements, tol, method, cycle_poses, sensitivity, sa
     from flexlink.output.html_report import render_page
     from flexlink.output.report import case_summary
     from flexlink.output.report_data import cycle_data, scene_page
-    from flexlink.scene import load_scene, scene_files
+    from flexlink.scene import scene_files
     from flexlink.studies.cycle import modal_map
+    from ._analysed import analysed_scene
     from ._failures import finish, scene_failure
     from ._written import announce, scene_folders
 
@@ -64,9 +63,7 @@ def command(scenes, n_modes, elements, tol, method, cycle_poses, sensitivity, sa
     with sensitivity_scheduler(sensitivity, scheduler):  # one cluster for every scene
         for path in bar:
             try:
-                scene = load_scene(path)
-                mesh = choose_mesh(scene, n_modes, elements, DEFAULT_TOL if tol is None else tol)
-                result = analyze(scene, n_modes, mesh.elements, method)
+                scene, mesh, result = analysed_scene(path, n_modes, elements, tol, method)
                 summary = {**case_summary(result, n_modes), "warnings": list(result.warnings)}
                 if sensitivity:
                     summary["sensitivity"] = scene_sensitivity(scene, n_modes, samples, seed,
