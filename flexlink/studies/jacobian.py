@@ -48,7 +48,7 @@ log = logging.getLogger(__name__)
 
 LINEAR = ("Kt", "Kr", "drive", "joint_mass", "Ktilt")
 SECTION = ("width", "thickness")
-STEP = 1e-5  # relative step in ln p of the differenced inputs (scipy's default 2-point size)
+STEP = 1e-5  # step in x = ln p, times max(1, |x|): scipy's 2-point rule at the diff_step the fits used
 PROBE = 1.001  # factor that tells which springs and masses an input sets
 
 
