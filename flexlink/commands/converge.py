@@ -32,9 +32,10 @@ def command(scene_path, n_modes, max_elements, repeats, tol, as_json, out_dir):
     from tqdm import tqdm
 
     from flexlink.fileio import prepare_out_dir, write_atomic
-    from flexlink.output.convergence_report import convergence_csv, convergence_text
+    from flexlink.output.convergence_report import (convergence_csv, convergence_text,
+                                                   plot_error_time)
     from flexlink.scene import load_scene
-    from flexlink.studies.convergence import DEFAULT_TOL, convergence_study, plot_error_time
+    from flexlink.studies.convergence import DEFAULT_TOL, convergence_study
     from ._written import announce, scene_folders
 
     [folder] = scene_folders(prepare_out_dir(out_dir), [scene_path])
