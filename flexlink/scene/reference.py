@@ -87,7 +87,7 @@ def _alternatives(tp, keep_annotated=False) -> list:
         if not keep_annotated or typing.get_origin(inner) in (typing.Union, typing.Annotated):
             return _alternatives(inner, keep_annotated)
         return [tp]
-    if typing.get_origin(tp) in (typing.Union, getattr(__import__("types"), "UnionType")):
+    if typing.get_origin(tp) in (typing.Union, __import__("types").UnionType):
         return [a for arg in typing.get_args(tp) if arg is not type(None)
                 for a in _alternatives(arg, keep_annotated)]
     return [tp]

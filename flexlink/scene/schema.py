@@ -16,7 +16,7 @@ from __future__ import annotations
 import dataclasses
 import math
 import typing
-from typing import Annotated, Literal, Union
+from typing import Annotated, Literal
 
 from pydantic import (AfterValidator, BaseModel, BeforeValidator, ConfigDict, Field,
                       WithJsonSchema, model_validator)
@@ -311,7 +311,7 @@ class ExtendedRocker(Table):
                                                default=1.0)
 
 
-Synthesis = Annotated[Union[BrodellSoni, Minimax, ExtendedRocker], Field(discriminator="method")]
+Synthesis = Annotated[BrodellSoni | Minimax | ExtendedRocker, Field(discriminator="method")]
 
 
 class BodyTable(Table):
@@ -379,7 +379,7 @@ class GeneralLinkage(Table):
         return self
 
 
-LinkageTable = Annotated[Union[FourBarLinkage, GeneralLinkage], Field(discriminator="type")]
+LinkageTable = Annotated[FourBarLinkage | GeneralLinkage, Field(discriminator="type")]
 
 
 class PoseTable(Table):
