@@ -15,10 +15,11 @@ import numpy as np
 
 from flexlink.errors import InputError
 from flexlink.fe.model import DriveSpec, JointSpec, LinkSpec, Section, Topology
-from flexlink.kinematics import FourBar, Linkage
+from flexlink.kinematics import FourBar, Linkage, State
 from flexlink.scene.source import Assumption
 
 FALLBACK_ELEMENTS = 16  # per link, for library calls that name no mesh; commands use the mesh rule
+CONTINUATION_STEP = math.radians(5.0)  # [rad] between poses continued along a general scene's input
 
 
 @dataclasses.dataclass(frozen=True)
@@ -156,6 +157,19 @@ class Scene:
             points = dict(self.linkage.solve(q, self.guess).points)
         return RigidPose(crank_angle=q, joints=points, branch=self.branch,
                          transmission=pose_transmission_angles(self.linkage, self.transmission, points))
+
+
+    def rigid_state(self, crank_angle: float | None = None) -> State:
+        """The rigid pose at ``crank_angle`` [rad] (default: the analysed pose) with its
+        velocity and acceleration coefficients, on the scene's assembly: a four-bar's from its
+        closed form, a general scene's continued from its start pose in steps of at most
+        ``CONTINUATION_STEP``."""
+        q = self.start if crank_angle is None else float(crank_angle)
+        if self.four_bar is not None and set(self.guess) <= {"A", "B"}:
+            joints = self.four_bar.pose(q, self.branch).joints
+            return self.linkage.solve(q, {k: joints[k] for k in self.guess})
+        steps = max(1, math.ceil(abs(q - self.start) / CONTINUATION_STEP))
+        return self.linkage.cycle(np.linspace(self.start, q, steps + 1), self.guess).states[-1]
 
 
 def pose_transmission_angles(linkage: Linkage, pairs, points) -> dict[str, float]:
