@@ -27,22 +27,20 @@ def command(scene_path, speed, acceleration, poses, as_json, out_dir):
     from flexlink.fileio import prepare_out_dir, write_atomic
     from flexlink.output.torque import torque_csv, torque_document, torque_plot, torque_text
     from flexlink.scene import load_scene
-    from flexlink.studies.torque import torque_study
+    from flexlink.studies.torque import operating_point, torque_study
     from flexlink.units import parse_quantity
     from ._progress import progress_bar
     from ._written import announce, scene_folders
 
-    def option(text, kind, name, default):
-        return default if text is None else parse_quantity(text, kind, source="command line",
-                                                            field=name)
+    def option(text, kind, name):
+        return None if text is None else parse_quantity(text, kind, source="command line",
+                                                         field=name)
 
-    omega = option(speed, "angular speed", "--speed", None)
-    qdd = option(acceleration, "angular acceleration", "--crank-acceleration", None)
+    omega = option(speed, "angular speed", "--speed")
+    qdd = option(acceleration, "angular acceleration", "--crank-acceleration")
     [folder] = scene_folders(prepare_out_dir(out_dir), [scene_path])
     scene = load_scene(scene_path)
-    if omega is None:
-        omega = scene.options.crank_speed
-        qdd = scene.options.crank_acceleration if qdd is None else qdd
+    omega, qdd = operating_point(scene, omega, qdd)
     curve = torque_study(scene, omega, qdd, poses, progress_bar("torque", as_json))
     paths = [folder / "torque.csv", folder / "torque.json", folder / "torque.png"]
     document = torque_document(curve, [f"{a.field}: {a.note}" for a in scene.assumptions],

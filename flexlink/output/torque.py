@@ -46,14 +46,15 @@ def torque_document(curve, assumptions, files) -> dict:
 
 
 def torque_text(doc: dict) -> str:
-    lines = [f"{doc['scene']}: driving torque at {doc['crank_speed_rev_per_min']:.6g} rev/min "
-             f"({doc['crank_speed_rad_s']:.6g} rad/s), crank acceleration "
-             f"{doc['crank_acceleration_rad_s2']:.6g} rad/s^2, {doc['poses']} poses",
-             f"  torque  peak {doc['peak_torque_N_m']:.6g} N m at {doc['peak_torque_at_deg']:.1f} "
-             f"deg; max {doc['max_torque_N_m']:.6g}, min {doc['min_torque_N_m']:.6g}, "
-             f"mean {doc['mean_torque_N_m']:.6g}, rms {doc['rms_torque_N_m']:.6g} N m",
-             f"  power   mean {doc['mean_power_W']:.6g} W, peak {doc['peak_power_W']:.6g} W at "
-             f"{doc['peak_power_at_deg']:.1f} deg",
+    lines = [(f"{doc['scene']}: driving torque at {doc['crank_speed_rev_per_min']:.6g} rev/min "
+              f"({doc['crank_speed_rad_s']:.6g} rad/s), crank acceleration "
+              f"{doc['crank_acceleration_rad_s2']:.6g} rad/s^2, {doc['poses']} poses"),
+             (f"  torque  peak {doc['peak_torque_N_m']:.6g} N m at "
+              f"{doc['peak_torque_at_deg']:.1f} deg; max {doc['max_torque_N_m']:.6g}, min "
+              f"{doc['min_torque_N_m']:.6g}, mean {doc['mean_torque_N_m']:.6g}, rms "
+              f"{doc['rms_torque_N_m']:.6g} N m"),
+             (f"  power   mean {doc['mean_power_W']:.6g} W, peak {doc['peak_power_W']:.6g} W at "
+              f"{doc['peak_power_at_deg']:.1f} deg"),
              "  joint forces (peak |F| on the body at the joint):"]
     lines += [f"    {k:<16} {v['peak_N']:.6g} N at {v['at_deg']:.1f} deg"
               for k, v in doc["joint_forces"].items()]

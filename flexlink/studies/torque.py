@@ -11,20 +11,26 @@ import math
 import numpy as np
 
 from flexlink.errors import InputError
-from flexlink.kinematics.dynamics import rigid_motion
-from flexlink.kinematics.inverse import Bar, BodyMass, Wrench, body_masses, inverse_dynamics
+from flexlink.kinematics.dynamics import check_speed, rigid_motion
+from flexlink.kinematics.inverse import (
+    Bar,
+    BodyMass,
+    Wrench,
+    body_masses,
+    inverse_dynamics,
+)
 from flexlink.kinematics.linkage import Linkage, State
 from flexlink.scene import Scene
 from flexlink.scene.contract import LoadSpec
 from flexlink.studies.cycle import kinematic_cycle
 
 MODEL = (
-    "rigid-body motion prescribed by the crank: the crank speed (and angular acceleration, if "
-    "given) applies at every crank angle",
+    ("rigid-body motion prescribed by the crank: the crank speed (and angular acceleration, if "
+     "given) applies at every crank angle"),
     "elastic deflections are small and are not fed back into the motion or the loads",
-    "each beam is a uniform straight bar between its joints (mass from its section and "
-    "material; I = m l^2/12 + rho I_section l); joint masses are point masses on the first body "
-    "carrying the joint",
+    ("each beam is a uniform straight bar between its joints (mass from its section and "
+     "material; I = m l^2/12 + rho I_section l); joint masses are point masses on the first "
+     "body carrying the joint"),
     "no friction; no gravity; external loads only as declared in [[loads]]",
 )
 
@@ -71,22 +77,31 @@ class TorqueCurve:
                 "peak_power_W": float(self.power[j]), "peak_power_at_deg": float(deg[j])}
 
 
-def check_operation(speed: float | None, crank_acceleration: float | None,
-                    source: str = "command line") -> tuple[float, float]:
-    """(speed [rad/s], crank acceleration [rad/s^2]), refusing a missing, negative or
-    non-finite speed and an acceleration without a speed."""
+def operating_point(scene: Scene, speed: float | None = None,
+                    crank_acceleration: float | None = None) -> tuple[float, float]:
+    """(speed [rad/s], crank acceleration [rad/s^2]) from the command line's values (None: not
+    given), else the scene's [operation]. Refuses a negative or non-finite speed, a missing one,
+    and an acceleration without a speed, naming the option."""
+    where = "command line"
     if speed is None:
-        field = "--crank-acceleration" if crank_acceleration is not None else "--speed"
-        raise InputError("needs a crank speed: give --speed or [operation] crank_speed",
-                         source=source, field=field)
+        if crank_acceleration is not None and scene.options.crank_speed is None:
+            raise InputError("a crank acceleration needs a crank speed: give --speed too (or "
+                             "[operation] crank_speed in the scene)", source=where,
+                             field="--crank-acceleration")
+        if scene.options.crank_speed is None:
+            raise InputError("no crank speed: give --speed (e.g. '600 rev/min') or [operation] "
+                             "crank_speed in the scene", source=where, field="--speed")
+        speed = scene.options.crank_speed
+        if crank_acceleration is None:
+            crank_acceleration = scene.options.crank_acceleration
     if not (math.isfinite(speed) and speed >= 0):
-        raise InputError(f"got {speed!r} rad/s", source=source, field="--speed",
+        raise InputError(f"got {speed!r} rad/s", source=where, field="--speed",
                          expected="a finite speed >= 0 (the crank turns counter-clockwise)")
-    acc = 0.0 if crank_acceleration is None else crank_acceleration
+    acc = 0.0 if crank_acceleration is None else float(crank_acceleration)
     if not math.isfinite(acc):
-        raise InputError(f"got {acc!r} rad/s^2", source=source, field="--crank-acceleration",
+        raise InputError(f"got {acc!r} rad/s^2", source=where, field="--crank-acceleration",
                          expected="a finite angular acceleration")
-    return float(speed), float(acc)
+    return float(speed), acc
 
 
 def scene_masses(scene: Scene) -> tuple[BodyMass, ...]:
@@ -120,7 +135,7 @@ def torque_study(scene: Scene, speed: float, crank_acceleration: float = 0.0,
     turn, at crank speed ``speed`` [rad/s] and angular acceleration ``crank_acceleration``
     [rad/s^2]. Refuses a scene with neither masses nor loads, and one with a compliant link
     (a beam not on one rigid body)."""
-    speed, crank_acceleration = check_operation(speed, crank_acceleration, scene.path)
+    check_speed(speed, crank_acceleration)
     masses = scene_masses(scene)
     if not scene.loads and not any(m.mass > 0 for m in masses):
         raise InputError("no masses and no loads: the scene has no [links] beams or joint "
