@@ -41,8 +41,12 @@ def four_bar_velocities(q, w2):
     t3, t4 = pose.theta3, pose.theta4
     w3 = L2 * w2 / L3 * math.sin(t4 - q) / math.sin(t3 - t4)
     w4 = L2 * w2 / L4 * math.sin(q - t3) / math.sin(t4 - t3)
-    e = lambda t: np.array([math.cos(t), math.sin(t)])
-    k = lambda t: np.array([-math.sin(t), math.cos(t)])
+    def e(t):  # unit vector at angle t
+        return np.array([math.cos(t), math.sin(t)])
+
+    def k(t):  # e(t) turned by +90 deg
+        return np.array([-math.sin(t), math.cos(t)])
+
     A, vA = L2 * e(q), L2 * w2 * k(q)
     vB = L4 * w4 * k(t4)
     return {"t3": t3, "t4": t4, "w3": w3, "w4": w4, "A": A, "vA": vA, "vB": vB, "e": e, "k": k}
