@@ -20,7 +20,7 @@ import math
 import tempfile
 from pathlib import Path
 
-from hypothesis import assume
+from hypothesis import assume, settings
 from hypothesis import strategies as st
 
 from flexlink.kinematics import FourBar
@@ -30,6 +30,10 @@ JOINTS = ("O2", "A", "B", "O4")
 GROUND = ("O2", "O4")
 LINKS = (("crank", "O2", "A"), ("coupler", "A", "B"), ("rocker", "O4", "B"))
 RIGID = math.inf
+
+# For properties whose every example solves fine meshes or runs a command: a quarter of the
+# profile's examples (5 in ``ci``, 100 in ``thorough``).
+fewer = settings(max_examples=max(3, settings().max_examples // 4))
 
 _folder = Path(tempfile.mkdtemp(prefix="flexlink-props-"))
 _count = itertools.count()
@@ -177,12 +181,29 @@ def scene_toml(spec: LinkageSpec) -> str:
     return "\n".join(lines) + "\n"
 
 
-def write_scene(spec: LinkageSpec) -> Path:
-    """``spec`` written to a new scene file (a new name each time: the scene reader caches a
-    parsed file by path, modification time and size)."""
+def write_scene(spec: LinkageSpec | str) -> Path:
+    """``spec`` (or scene text) written to a new scene file (a new name each time: the scene
+    reader caches a parsed file by path, modification time and size)."""
     path = _folder / f"drawn-{next(_count)}.toml"
-    path.write_text(scene_toml(spec))
+    path.write_text(spec if isinstance(spec, str) else scene_toml(spec))
     return path
+
+
+def cantilever_toml(length: float, angle: float, E: float, G: float, density: float,
+                    depth: float, across: float, beam: str) -> str:
+    """A general scene of one link clamped at ground joint O (Kt and Kr rigid) and free at P:
+    a cantilever of ``length`` [m] at ``angle`` [rad], a flat bar of in-plane ``depth`` and
+    out-of-plane ``across`` [m]."""
+    tip = (length * math.cos(angle), length * math.sin(angle))
+    return "\n".join([
+        'name = "cantilever"', "[linkage]", 'type = "general"', 'driver = "arm"',
+        f'start = "{angle!r} rad"', "[linkage.ground]", 'O = ["0 m", "0 m"]',
+        "[linkage.bodies.arm]", 'joints = ["O", "P"]', f'length = "{length!r} m"',
+        "[linkage.guess]", f'P = ["{tip[0]!r} m", "{tip[1]!r} m"]',
+        "[material]", f'E = "{E!r} Pa"', f'G = "{G!r} Pa"', f'density = "{density!r} kg/m^3"',
+        "[links.arm]", 'start = "O"', 'end = "P"',
+        f'section = {{ width = "{depth!r} m", thickness = "{across!r} m", bending = "edgewise" }}',
+        "[joints]", 'Kt = "rigid"', 'Kr = "rigid"', "[model]", f'beam = "{beam}"']) + "\n"
 
 
 def load(spec: LinkageSpec):
