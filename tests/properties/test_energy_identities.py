@@ -30,13 +30,13 @@ import numpy as np
 import scipy.linalg as la
 from hypothesis import assume, given
 from hypothesis import strategies as st
+from strategies import JointValues, linkages, load, scaled
 
 from flexlink.analysis.identity import effective_masses, energy_parts
 from flexlink.analysis.modal import MASSES, analyze
 from flexlink.fe.assembly import assemble, reduction
 from flexlink.fe.energy import lumped_mass
 from flexlink.output.report import comparison_rows
-from strategies import JointValues, linkages, load, scaled
 
 N_MODES = 3
 # Fractions are ratios of energies that each carry round-off of about eps times the largest
@@ -84,7 +84,7 @@ def test_printed_energy_fractions_are_non_negative_and_sum_to_one(spec):
     result = analyze(load(spec), N_MODES)
     rows = comparison_rows(result, N_MODES)
     K, M, _ = reduced_pair(result.model)
-    lam, U = elastic_shapes(result)
+    _, U = elastic_shapes(result)
     parts = energy_parts(result.model, U[:, :N_MODES])
     np.testing.assert_allclose(parts.strain.sum(axis=0),
                                np.einsum("ij,ij->j", U, K @ U)[:N_MODES], rtol=RQ_RTOL)
@@ -115,7 +115,7 @@ def test_a_rigid_motion_strains_no_link(spec, cx, cy):
 def _fractions(result, n):
     """Per elastic mode (first n): link strain e_ax, e_b, joint Kt strain e_t, link and joint
     kinetic fractions."""
-    lam, U = elastic_shapes(result)
+    _, U = elastic_shapes(result)
     parts = energy_parts(result.model, U[:, :n])
     links = np.array(parts.is_link)
     strain, kinetic = parts.strain.sum(axis=0), parts.kinetic.sum(axis=0)
@@ -205,7 +205,7 @@ def test_effective_masses_of_all_modes_sum_to_the_participating_mass(spec, float
 def test_printed_effective_masses_match_a_recomputation_from_m_and_the_shape(spec):
     result = analyze(load(spec), N_MODES)
     rows = comparison_rows(result, N_MODES)
-    K, M, T = reduced_pair(result.model)
+    _, M, T = reduced_pair(result.model)
     _, U = elastic_shapes(result)
     r = _translation(result.model, T)
     gamma = U[:, :N_MODES].T @ (M @ r)

@@ -21,10 +21,19 @@ import dataclasses
 import numpy as np
 from hypothesis import given
 from hypothesis import strategies as st
+from strategies import (
+    GROUND,
+    JOINTS,
+    LINKS,
+    RIGID,
+    JointValues,
+    linkages,
+    load,
+    log_uniform,
+)
 
 from flexlink.analysis.modal import analyze
 from flexlink.analysis.solve import MECHANISM
-from strategies import GROUND, JOINTS, LINKS, RIGID, JointValues, linkages, load, log_uniform
 
 
 def rigid_freedoms(spec) -> int:
@@ -52,7 +61,7 @@ def rigid_freedoms(spec) -> int:
     rows = [np.zeros((0, 9))]
     for j, joint in spec.joints.items():
         if joint.Kt > 0:
-            rows.append(relative(lambda link: velocity(link, points[j]), j))
+            rows.append(relative(lambda link, p=points[j]: velocity(link, p), j))
         if joint.Kr > 0:
             rows.append(relative(rotation, j))
     if spec.drive is not None and spec.drive > 0:

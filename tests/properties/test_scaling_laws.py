@@ -25,9 +25,9 @@ import math
 import numpy as np
 from hypothesis import given
 from hypothesis import strategies as st
+from strategies import RIGID, JointValues, linkages, load, scaled
 
 from flexlink.analysis.modal import analyze
-from strategies import RIGID, JointValues, linkages, load, scaled
 
 N_MODES = 3
 # Each law is exact; the two models differ only by round-off in their inputs (the scene file

@@ -22,11 +22,10 @@ import math
 import numpy as np
 from hypothesis import given
 from hypothesis import strategies as st
+from strategies import log_uniform, write_scene
 
 from flexlink.analysis.modal import analyze
 from flexlink.scene import load_scene
-from strategies import log_uniform, write_scene
-
 
 
 def single_link(length, angle, E, density, depth, across, beam, Kt, Kr, drive, tip_mass):
@@ -57,10 +56,10 @@ def single_link(length, angle, E, density, depth, across, beam, Kt, Kr, drive, t
 def links(draw):
     length = draw(log_uniform(0.05, 2.0))
     depth = length * draw(st.floats(0.01, 0.05))
-    return dict(length=length, angle=draw(st.floats(-math.pi, math.pi)),
-                E=draw(log_uniform(1e9, 4e11)), density=draw(st.floats(1000.0, 20000.0)),
-                depth=depth, across=depth * draw(st.floats(0.2, 5.0)),
-                beam=draw(st.sampled_from(("euler-bernoulli", "timoshenko"))))
+    return {"length": length, "angle": draw(st.floats(-math.pi, math.pi)),
+            "E": draw(log_uniform(1e9, 4e11)), "density": draw(st.floats(1000.0, 20000.0)),
+            "depth": depth, "across": depth * draw(st.floats(0.2, 5.0)),
+            "beam": draw(st.sampled_from(("euler-bernoulli", "timoshenko")))}
 
 
 @given(links(), log_uniform(1e-5, 1e-4), st.floats(0.0, 2.0))
