@@ -28,6 +28,7 @@ import math
 
 import numpy as np
 import scipy.linalg as la
+import scipy.sparse as sp
 from hypothesis import assume, given
 from hypothesis import strategies as st
 from strategies import JointValues, linkages, load, scaled
@@ -54,11 +55,13 @@ GAP = 1e-2  # modes closer than this (relative) may swap under the steps: left o
 
 
 def reduced_pair(model, mass="consistent"):
-    """(K, M, T) assembled from the model, M in the mass model ``mass``."""
+    """(K, M, T) assembled from the model, M in the mass model ``mass``; T the identity when
+    nothing is rigid."""
     K, M = assemble(model)
     if mass == "lumped":
         M = lumped_mass(model)
-    return K, M, reduction(model)
+    T = reduction(model)
+    return K, M, sp.identity(model.n_dofs, format="csr") if T is None else T
 
 
 def elastic_shapes(result):
