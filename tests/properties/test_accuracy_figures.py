@@ -101,7 +101,9 @@ def test_reported_residuals_and_backward_errors_match_a_recomputation(spec):
     K, M, Q = _reduced(result)
     lam = modes.eigenvalues
     R = np.linalg.norm(K @ Q - (M @ Q) * lam, axis=0)
-    norm1 = lambda A: np.abs(A).sum(axis=0).max()
+    def norm1(A):  # the matrix 1-norm: largest column sum
+        return np.abs(A).sum(axis=0).max()
+
     backward = R / ((norm1(K) + np.abs(lam) * norm1(M)) * np.linalg.norm(Q, axis=0))
     residual = R / np.linalg.norm(K @ Q, axis=0)
     # The figures are round-off (backward errors 1e-20 to 1e-16): recomputed in another
