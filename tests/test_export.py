@@ -137,16 +137,19 @@ def test_pvd_animation_references_its_frames(case3, modes, tmp_path):
     frames = [meshio.read(pvd.parent / e.get("file")) for e in entries]
     assert [pvd.parent / e.get("file") for e in entries] == written[:-1]
     # frame 0 is the largest deflection, FRACTION of the mechanism size; half a period later
-    # the shape is reversed; the points are the deformed positions themselves
-    pivots = [j.position for j in modes.joints if j.ground]
-    rest = np.vstack([modes.sampled.points, pivots])
-    base = np.column_stack([rest, np.zeros(len(rest))])
-    peak = np.linalg.norm(frames[0].point_data["displacement"], axis=1).max()
-    assert peak == pytest.approx(FRACTION * modes.size, rel=1e-12)
-    np.testing.assert_allclose(frames[0].points, base + frames[0].point_data["displacement"],
-                               atol=1e-15)
-    np.testing.assert_allclose(frames[3].point_data["displacement"],
-                               -frames[0].point_data["displacement"], atol=1e-15)
+    # the shape is reversed; the points are the deformed positions themselves: the .vtu's
+    # undeformed points warped by its mode2_displacement times warp_scale, ParaView's Warp By
+    # Vector, exactly
+    grid = modes_mesh(case3, modes, FRACTION)
+    warped = grid.points + grid.field_data["warp_scale"][1] * grid.point_data["mode2_displacement"]
+    np.testing.assert_allclose(frames[0].points, warped, rtol=0, atol=1e-15)  # [m], round-off
+    moved = frames[0].points - grid.points
+    assert np.linalg.norm(moved, axis=1).max() == pytest.approx(FRACTION * modes.size, rel=1e-12)
+    np.testing.assert_allclose(frames[3].points - grid.points, -moved, rtol=0, atol=1e-15)
+    np.testing.assert_allclose(frames[0].point_data["applied_displacement_magnitude"],
+                               np.linalg.norm(moved, axis=1), rtol=0, atol=1e-15)
+    # no vector a second Warp By Vector could apply on top of the applied deformation
+    assert all(np.ndim(a) == 1 for a in frames[0].point_data.values())
 
 
 def test_common_phase_puts_every_mode_on_one_normalised_period(modes, tmp_path):
