@@ -109,14 +109,17 @@ def _percent(fraction: float) -> str:
         return "0 %"
     if pct < 1:
         return f"{pct:.2g} %"
-    return f"{pct:.1f} %" if round(pct) == 100 and pct < 100 else f"{pct:.0f} %"
+    if round(pct) == 100 and pct < 100:  # not all of it: 99.9 %, never 100 %
+        return f"{math.floor(10 * pct) / 10:.1f} %"
+    return f"{pct:.0f} %"
 
 
 def _shares(parts: dict) -> str:
     """An energy distribution ({part: fraction}) as its two largest parts, e.g. "crank 85 %,
     coupler 9 %", with every part in the tooltip."""
     ranked = sorted(parts.items(), key=lambda kv: -kv[1])
-    shown = ", ".join(f"{_e(k)} {_percent(v)}" for k, v in ranked[:SHOWN_PARTS])
+    shown = ", ".join(f'<span class="share">{_e(k)} {_percent(v)}</span>'
+                      for k, v in ranked[:SHOWN_PARTS])
     everything = ", ".join(f"{k} {100 * v:.3g} %" for k, v in ranked)
     return f'<span class="shares" title="{_e(everything)}">{shown}</span>'
 
