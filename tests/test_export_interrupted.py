@@ -176,3 +176,27 @@ def test_a_signal_at_any_moment_stops_with_one_line_and_whole_outputs(tmp_path):
             assert now in (before, after), sorted(set(now) ^ set(before))
             outcomes.append(name)
     assert outcomes.count("SIGTERM") + outcomes.count("SIGINT") >= DELAYS // 2, outcomes
+
+
+def test_ctrl_c_stops_any_command_with_one_line(tmp_path):
+    """Not export only: a long ``cycle`` stopped by SIGINT once it has made its folder ends with
+    exit status 130 and one line (not click's "Aborted!" and status 1), nothing written."""
+    out = tmp_path / "out"
+    child = subprocess.Popen(
+        [sys.executable, "-c", INTERACTIVE, "cycle", str(ROOT / "cases" / "case1.toml"), "-e", "1",
+         "-n", "1", "--poses", "100000", "--sorted", "--out", str(out)],
+        env={**os.environ, "PYTHONPATH": str(ROOT)}, stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE, text=True)
+    try:
+        end = time.monotonic() + 120
+        while not (out / "case1").is_dir() and time.monotonic() < end:
+            assert child.poll() is None, child.communicate()
+            time.sleep(0.02)
+        child.send_signal(signal.SIGINT)
+        _, err = child.communicate(timeout=120)
+    finally:
+        child.kill()
+    assert child.returncode == 130, err
+    assert err.splitlines()[-1] == "flexlink: stopped by signal SIGINT", err
+    assert "Traceback" not in err and "Aborted" not in err
+    assert list(out.rglob("*")) == [out / "case1"]  # no cycle file, no temporary file
