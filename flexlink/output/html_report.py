@@ -21,6 +21,7 @@ import json
 import math
 import re
 
+from flexlink.output.counts import counted
 from flexlink.output.html_assets import SCRIPT, STYLE
 
 LINK_COLOURS = ("#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#17becf")
@@ -283,9 +284,10 @@ def cycle_section(page: dict, figures: list) -> str:
               "yaxis": {"title": {"text": "natural frequency [Hz]"}},
               "legend": {"orientation": "h", "y": -0.25}, "shapes": shapes, "height": 380}
     return ("<h3>Cycle map</h3>" + _figure(page, figures, "cycle", data, layout)
-            + f'<p class="note">The first {len(data)} elastic frequencies over one crank '
-              f"revolution ({len(cycle['crank_deg'])} poses); dashed: the analysed pose, dotted: "
-              "transmission angle 90 deg.</p>")
+            + f'<p class="note">The first '
+              f"{counted(len(data), 'elastic frequency', 'elastic frequencies')} over one crank "
+              f"revolution ({counted(len(cycle['crank_deg']), 'pose')}); dashed: the analysed "
+              "pose, dotted: transmission angle 90 deg.</p>")
 
 
 def files_section(page: dict, figures: list) -> str:
