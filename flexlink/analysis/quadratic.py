@@ -155,7 +155,9 @@ def _one_per_pair(s, X):
         raise NumericalError("quadratic eigen solve returned NaN or infinite eigenvalues")
     flip = s.imag < 0
     s, X = np.where(flip, s.conj(), s), np.where(flip, X.conj(), X)
-    order = np.argsort(np.abs(s), kind="stable")
+    # by |s|; within a tie (a divergence's +-sigma) the growing root first
+    size = np.round(np.log(np.maximum(np.abs(s), np.finfo(float).tiny)) * 1e8)
+    order = np.lexsort((-s.real, size))
     s, X = s[order], X[:, order]
     unit = X / np.linalg.norm(X, axis=0)
     keep = []
