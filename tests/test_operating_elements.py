@@ -3,6 +3,7 @@ consistent mass (Mt), rigid-body resultants of the d'Alembert loads, the rotatin
 stiffness as the derivative of those loads, and the Coriolis torque of a stretching bar
 (angular momentum: a spinning bar that lengthens slows down)."""
 
+import dataclasses
 import math
 
 import numpy as np
@@ -25,11 +26,18 @@ STEEL = Section.rectangle(200e9, 80e9, 7800.0, 0.02, 0.01)
 J = np.array([[0.0, -1.0], [1.0, 0.0]])
 
 
-def rotor_model(angle_deg=30.0, elements=8):
-    """The rotor bar (scenes/rotor.toml) meshed at a crank angle: one link from the origin."""
+def rotor_model(angle_deg=30.0, elements=8, tip_mass=0.0, beam="euler-bernoulli"):
+    """The rotor bar (scenes/rotor.toml) meshed at a crank angle: one link from the origin,
+    optionally with a joint mass [kg] at its tip T, in beam theory ``beam``."""
     scene = load_scene(SCENES_DIR / "rotor.toml")
     state = scene.rigid_state(math.radians(angle_deg))
-    return pose_model(scene.topology(elements), state.points), scene.links[0].section
+    topology = scene.topology(elements)
+    joints = tuple(dataclasses.replace(j, mass=tip_mass) if j.name == "T" else j
+                   for j in topology.joints)
+    section = dataclasses.replace(topology.links[0].section, beam=beam)
+    links = (dataclasses.replace(topology.links[0], section=section),)
+    topology = dataclasses.replace(topology, joints=joints, links=links)
+    return pose_model(topology, state.points), section
 
 
 def full(model, rows, cols, values):
@@ -94,10 +102,12 @@ def rigid_acceleration(points, origin, a0, omega, alpha):
     return a0 + alpha * r @ J.T - omega**2 * r
 
 
-def test_inertia_loads_have_the_rigid_body_resultants():
+@pytest.mark.parametrize("beam", ["euler-bernoulli", "timoshenko"])
+def test_inertia_loads_have_the_rigid_body_resultants(beam):
     """Sum of the consistent d'Alembert loads = -m a_G, their moment about G = -I_G alpha
-    (a slender rod: I_G = m L^2 / 12); the shape functions reproduce rigid motions exactly."""
-    model, s = rotor_model(angle_deg=37.0)
+    (I_G = m L^2 / 12 of the bar's line of mass, plus rhoI L of a Timoshenko section's rotary
+    inertia); the shape functions reproduce rigid motions exactly."""
+    model, s = rotor_model(angle_deg=37.0, beam=beam)
     a0, omega, alpha = np.array([3.0, -2.0]), 11.0, -250.0
     origin = model.nodes[0]
     acc = rigid_acceleration(model.nodes, origin, a0, omega, alpha)
@@ -109,7 +119,8 @@ def test_inertia_loads_have_the_rigid_body_resultants():
     np.testing.assert_allclose([fx.sum(), fy.sum()], -m * a_G, rtol=1e-12)
     r = model.nodes - G
     moment = (r[:, 0] * fy - r[:, 1] * fx).sum() + mz.sum()
-    assert moment == pytest.approx(-m * L * L / 12 * alpha, rel=1e-12)
+    rotary = s.rotary_inertia * L if beam == "timoshenko" else 0.0
+    assert moment == pytest.approx(-(m * L * L / 12 + rotary) * alpha, rel=1e-12)
 
 
 def test_rotating_stiffness_is_the_derivative_of_the_inertia_loads():
@@ -138,9 +149,12 @@ def test_rotating_stiffness_is_the_derivative_of_the_inertia_loads():
 def test_coriolis_torque_of_a_stretching_bar():
     """A bar spinning at Omega whose points move outward at u' = cdot x (x from the pivot)
     feels the Coriolis force -2 Omega k x u' per unit mass; its torque about the pivot is
-    -2 Omega cdot int rhoA x^2 dx = -2 Omega cdot rhoA L^3 / 3 (the angular momentum of a
-    lengthening bar): the virtual work of -G qdot on a rigid rotation about the pivot."""
-    model, s = rotor_model(angle_deg=60.0)
+    -2 Omega cdot (int rhoA x^2 dx + m L^2) = -2 Omega cdot (rhoA L^3 / 3 + m L^2) with a tip
+    mass m (the angular momentum of a lengthening bar): the virtual work of -G qdot on a rigid
+    rotation about the pivot."""
+    tip = 0.4
+    model, s = rotor_model(angle_deg=60.0, tip_mass=tip)
+    assert model.point_masses
     Omega, cdot = 40.0, 0.3
     origin = model.nodes[0]
     r = model.nodes - origin
@@ -152,5 +166,33 @@ def test_coriolis_torque_of_a_stretching_bar():
     G = full(model, rows, cols, values[1])
     L = model.links[0].length
     torque = turn @ (-G @ qdot)
-    assert torque == pytest.approx(-2 * Omega * cdot * s.mass_per_length * L**3 / 3, rel=1e-12)
+    inertia = s.mass_per_length * L**3 / 3 + tip * L**2
+    assert torque == pytest.approx(-2 * Omega * cdot * inertia, rel=1e-12)
     np.testing.assert_allclose(G, -G.T, atol=1e-14 * np.abs(G).max())
+
+
+def test_joint_masses_turn_with_the_link_that_carries_them():
+    """The derivative check on a three-link frame with joint masses (the aluminium four-bar):
+    every link its own turning rate, acceleration and body-fixed linear field; a joint mass
+    sits on a node of one link and turns with that link's frame."""
+    scene = load_scene(SCENES_DIR / "kineto_aluminium.toml")
+    model = pose_model(scene.topology(4), scene.rigid_state().points)
+    assert model.point_masses  # the test needs them
+    rng = np.random.default_rng(1)
+    omega, alpha = rng.uniform(-30, 30, 3), rng.uniform(-2000, 2000, 3)
+    before, after = np.zeros((len(model.nodes), 2)), np.zeros((len(model.nodes), 2))
+    q = np.zeros(model.n_dofs)
+    for link, w_, a_ in zip(model.links, omega, alpha):
+        nodes = model.nodes[link.nodes]
+        origin, a0 = nodes[0], rng.uniform(-5, 5, 2)
+        B, c = rng.uniform(-3e-3, 3e-3, (2, 2)), rng.uniform(-1e-3, 1e-3, 2)
+        w = (nodes - origin) @ B.T + c
+        e = np.array([math.cos(link.angle), math.sin(link.angle)])
+        n = np.array([-e[1], e[0]])
+        q[3 * link.nodes], q[3 * link.nodes + 1], q[3 * link.nodes + 2] = w[:, 0], w[:, 1], n @ B @ e
+        before[link.nodes] = rigid_acceleration(nodes, origin, a0, w_, a_)
+        after[link.nodes] = rigid_acceleration(nodes + w, origin, a0, w_, a_)
+    change = inertia_loads(model, after, alpha) - inertia_loads(model, before, alpha)
+    rows, cols, values = rotating_entries(model, omega, alpha)
+    K_rot = full(model, rows, cols, values[0] + values[2])
+    np.testing.assert_allclose(change, -K_rot @ q, rtol=1e-10, atol=1e-12 * np.abs(change).max())
