@@ -83,6 +83,7 @@ class OperatingPoint:
     axial_forces: dict[str, np.ndarray]  # link -> per element N [N]
     largest_axial: AxialForce
     elements_per_link: int
+    loads: np.ndarray  # the d'Alembert nodal loads of the preload (n_dofs,) [N, N m]
     warnings: tuple[str, ...] = ()  # model outside its range (``scene.plausibility``)
 
     def __post_init__(self):
@@ -108,7 +109,8 @@ def link_bodies(scene: Scene, links) -> tuple[str, ...]:
                      if link.start in b.joints and link.end in b.joints), None)
         if body is None:
             raise InputError(f"link {link.name!r} joins {link.start} and {link.end}, which no "
-                             "single body of the linkage holds", source=scene.path,
+                             "single body of the linkage holds: its rigid motion at speed is "
+                             "not one body's (a compliant link)", source=scene.path,
                              field=f"links.{link.name}")
         out.append(body)
     return tuple(out)
@@ -159,7 +161,8 @@ def operating_modes(scene: Scene, speed: float, n_modes: int = 4,
     column, n = reduced_columns(T, model.n_dofs)
     reduce = _reducer(column, n, dense=n <= AUTO_DENSE_MAX)
     Kr, Mr = _reduced_pair(model, T, reduce)
-    forces = axial_forces(model, static_displacement(Kr, T, inertia_loads(model, acc, alpha)))
+    loads = inertia_loads(model, acc, alpha)
+    forces = axial_forces(model, static_displacement(Kr, T, loads))
     rows, cols, rot = rotating_entries(model, omega, alpha)
     on = np.array([terms.centrifugal, terms.coriolis, terms.acceleration], dtype=float)
     extra = [(rows, cols, rot[0] * on[0] + rot[2] * on[2])]
@@ -177,7 +180,7 @@ def operating_modes(scene: Scene, speed: float, n_modes: int = 4,
         static_index=pair, mac=mac[pair, np.arange(len(pair))], link_omega=omega,
         link_alpha=alpha, axial_forces={l.name: f for l, f in zip(model.links, forces)},
         largest_axial=_largest(model, forces), elements_per_link=topology.links[0].elements,
-        warnings=warnings)
+        loads=loads, warnings=warnings)
 
 
 def _link_motion(scene: Scene, model: FrameModel, topology, motion: RigidMotion):
