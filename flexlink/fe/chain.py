@@ -17,7 +17,7 @@ _LOCAL_ROWS = np.repeat(np.arange(6), 6)
 _LOCAL_COLS = np.tile(np.arange(6), 6)
 
 
-def chain_entries(first_node: int, matrices: np.ndarray):
+def placed_elements(first_node: int, matrices: np.ndarray):
     """(rows, cols, values (..., 36 e)) of element ``matrices`` (..., e, 6, 6) placed on a chain
     starting at node ``first_node``; repeated (row, col) pairs are to be summed."""
     matrices = np.asarray(matrices, dtype=float)
@@ -36,7 +36,7 @@ def rotated_chain(links, matrices):
     for link, mats in zip(links, matrices):
         T = np.kron(np.eye(2), node_rotation(link.angle))
         turned = T.T @ np.asarray(mats, dtype=float) @ T
-        r, c, v = chain_entries(link.first_node, turned)
+        r, c, v = placed_elements(link.first_node, turned)
         rows.append(r)
         cols.append(c)
         values.append(v)
