@@ -39,7 +39,7 @@ def inertia_loads(model, node_accelerations: np.ndarray, alpha) -> np.ndarray:
     the rigid accelerations ``node_accelerations`` (N, 2) [m/s^2, global] and whose links turn
     with angular accelerations ``alpha`` (per link) [rad/s^2]."""
     acc = np.asarray(node_accelerations, dtype=float)
-    f = np.zeros(model.n_dofs)
+    parts = []
     for link, a_link in zip(model.links, np.asarray(alpha, dtype=float)):
         s, h = link.section, link.length / link.elements
         phi = shear_parameter(s, h)
@@ -54,14 +54,13 @@ def inertia_loads(model, node_accelerations: np.ndarray, alpha) -> np.ndarray:
         if s.beam == "timoshenko":
             _, _, Npsi, _ = shape_functions(XI, h, phi)
             fe[:, [1, 2, 4, 5]] += -s.rotary_inertia * a_link * h * (Npsi @ WEIGHTS)
-        # local (u, v, rz) -> global (ux, uy, rz): R^T per node
-        gx = c * fe[:, [0, 3]] - sn * fe[:, [1, 4]]
-        gy = sn * fe[:, [0, 3]] + c * fe[:, [1, 4]]
-        first, last = link.nodes[:-1], link.nodes[1:]
-        for k, nodes in ((0, first), (1, last)):
-            np.add.at(f, 3 * nodes, gx[:, k])
-            np.add.at(f, 3 * nodes + 1, gy[:, k])
-            np.add.at(f, 3 * nodes + 2, fe[:, 2 + 3 * k])
+        # local (u, v, rz) -> global (ux, uy, rz): R^T per node; ends k = 0, 1 of each element
+        for k, nodes in ((0, link.nodes[:-1]), (1, link.nodes[1:])):
+            parts.append((3 * nodes, c * fe[:, 3 * k] - sn * fe[:, 3 * k + 1]))
+            parts.append((3 * nodes + 1, sn * fe[:, 3 * k] + c * fe[:, 3 * k + 1]))
+            parts.append((3 * nodes + 2, fe[:, 3 * k + 2]))
+    index, values = (np.concatenate(p) for p in zip(*parts))
+    f = np.bincount(index, weights=values, minlength=model.n_dofs)
     for node, m in model.point_masses:
         f[3 * node:3 * node + 2] -= m * acc[node]
     return f
@@ -78,8 +77,8 @@ def static_displacement(Kr, T, f: np.ndarray) -> np.ndarray:
         try:
             if sp.issparse(Kr):
                 q = spla.splu(sp.csc_matrix(Kr)).solve(fr)
-            else:
-                q = la.solve(Kr, fr, assume_a="sym")
+            else:  # a frame held at rest: K is definite
+                q = la.cho_solve(la.cho_factor(Kr, check_finite=False), fr, check_finite=False)
         except (RuntimeError, la.LinAlgError):
             q = np.full_like(fr, np.nan)
     # normwise backward error: a stable solve keeps it near eps however ill-conditioned Kr is

@@ -169,10 +169,10 @@ def operating_modes(scene: Scene, speed: float, n_modes: int = 4,
     if terms.preload:
         extra.append(geometric_entries(model, forces, terms.geometric))
     K_eff = Kr + reduce(*(np.concatenate(part) for part in zip(*extra)))
-    modes = quadratic_modes(Mr, reduce(rows, cols, rot[1] * on[1]), K_eff, n_modes)
-
     static_shapes = np.zeros((n, len(static.elastic)))
     static_shapes[column[column >= 0]] = static.shapes[np.ix_(column >= 0, static.elastic)]
+    guess = (static_shapes[:, :n_modes], 2 * np.pi * static.elastic_frequencies[:n_modes])
+    modes = quadratic_modes(Mr, reduce(rows, cols, rot[1] * on[1]), K_eff, n_modes, guess)
     mac = complex_mac(static_shapes, modes.shapes, Mr)
     pair = mac.argmax(axis=0)
     return OperatingPoint(
