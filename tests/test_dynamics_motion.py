@@ -5,9 +5,10 @@ import math
 
 import numpy as np
 import pytest
-
 from conftest import CASES_DIR, SCENES_DIR
+
 from flexlink.errors import InputError
+from flexlink.kinematics import FourBar
 from flexlink.kinematics.dynamics import rigid_motion
 from flexlink.kinematics.linkage import four_bar_linkage
 from flexlink.scene import load_scene
@@ -75,7 +76,6 @@ def closed_form(L1, L2, L3, L4, t2, w2, a2, t3, t4):
 def test_four_bar_closed_form(q):
     L1, L2, L3, L4 = 0.1524, 0.0508, 0.1778, 0.1016  # a Grashof crank-rocker
     linkage = four_bar_linkage(L1, L2, L3, L4)
-    from flexlink.kinematics import FourBar
     pose = FourBar(L1, L2, L3, L4).pose(q, "open")
     state = linkage.solve(q, {k: pose.joints[k] for k in ("A", "B")})
     w2, a2 = 25.0, 40.0

@@ -65,10 +65,40 @@ class Options:
 
     family: str = "planar"  # model family
     crank_speed: float | None = None  # [rad/s]
+    crank_acceleration: float | None = None  # [rad/s^2], only with crank_speed
     plausibility: str = "error"
     prb: PrbOptions | None = None
     variants: tuple[Variant, ...] = ()
     tilt: dict[str, float] = dataclasses.field(default_factory=dict)  # joint -> Ktilt [N m/rad]
+
+
+@dataclasses.dataclass(frozen=True)
+class LoadSpec:
+    """An external load on body ``body`` (see schema ``LoadTable``): ``kind`` "torque" [N m,
+    counter-clockwise positive] or "force" [N] acting at ``at`` [m] in the body's frame with
+    components along ``frame`` ("global" or "body"). ``angles`` [rad] (increasing, one turn,
+    evenly spaced) and ``values`` (one row per angle: (T,) or (Fx, Fy)) sample it over the
+    crank angle; a constant load has a single row and no angles. ``field`` names where it was
+    declared, e.g. "loads[0]"."""
+
+    kind: str
+    body: str
+    values: np.ndarray
+    angles: np.ndarray | None = None
+    at: tuple[float, float] = (0.0, 0.0)
+    frame: str = "global"
+    field: str = "loads"
+
+    def value_at(self, q: float) -> np.ndarray:
+        """The load's components at crank angle ``q`` [rad], linear between samples and
+        periodic over the turn."""
+        if self.angles is None:
+            return self.values[0]
+        period = 2 * math.pi
+        x = self.angles[0] + np.remainder(q - self.angles[0], period)
+        xs = np.append(self.angles, self.angles[0] + period)
+        ys = np.vstack([self.values, self.values[:1]])
+        return np.array([np.interp(x, xs, ys[:, k]) for k in range(ys.shape[1])])
 
 
 @dataclasses.dataclass(frozen=True)
@@ -112,6 +142,7 @@ class Scene:
     options: Options
     synthesis: dict | None = None  # method, inputs and the synthesised lengths [m]
     composite: Composite | None = None  # the shared material, where it is a composite
+    loads: tuple[LoadSpec, ...] = ()  # external loads for the driving torque
     origin: dict[str, str] = dataclasses.field(default_factory=dict, repr=False, compare=False)
 
     @property
