@@ -109,3 +109,19 @@ def test_four_bar_at_speed_is_paired_and_reports_its_preload():
     assert (abs(op.largest_axial.value), op.largest_axial.link) == largest
     # with the crank at constant speed the coupler and rocker still accelerate angularly
     assert op.link_alpha[0] == 0.0 and np.all(op.link_alpha[1:] != 0.0)
+
+
+def test_an_external_load_joins_the_preload(tmp_path):
+    """A tension F pulling the rotor's tip along the bar puts N = F in every element at rest,
+    and the bending frequencies rise with it (a tensioned cantilever), where the static modes
+    see nothing."""
+    path = tmp_path / "pulled.toml"
+    path.write_text(f'base = "{ROTOR.as_posix()}"\n[[loads]]\nkind = "force"\nlink = "rotor"\n'
+                    'force = ["50 N", "0 N"]\nat = ["1 m", "0 m"]\nframe = "body"\n')
+    scene = load_scene(path)
+    op = operating_modes(scene, 0.0, 2, 8)
+    for N in op.axial_forces.values():
+        np.testing.assert_allclose(N, 50.0, rtol=1e-12)  # statically determinate: exact
+    assert np.all(op.frequencies > op.static_frequencies)
+    off = operating_modes(scene, 0.0, 2, 8, terms=Terms(preload=False))
+    np.testing.assert_allclose(off.frequencies, off.static_frequencies, rtol=1e-10)

@@ -13,6 +13,9 @@ operating_options = (
                       "preload, centrifugal and Coriolis terms), beside the static ones."),
     click.option("--crank-angle", default=None, metavar="ANGLE",
                  help="With --speed: the crank angle, e.g. '30 deg' [default: the scene's pose]."),
+    click.option("--crank-acceleration", default=None, metavar="ACCELERATION",
+                 help="With --speed: the crank's angular acceleration, e.g. '50 rad/s^2' "
+                      "[default: 0, constant speed]."),
     click.option("--no-preload", is_flag=True, help="With --speed: leave out K_g(N)."),
     click.option("--no-centrifugal", is_flag=True,
                  help="With --speed: leave out the centrifugal softening."),
@@ -25,22 +28,22 @@ operating_options = (
 )
 
 
-def operating_given(speed, crank_angle, no_preload, no_centrifugal, no_coriolis,
-                    geometric) -> bool:
+def operating_given(speed, crank_angle, crank_acceleration, no_preload, no_centrifugal,
+                    no_coriolis, geometric) -> bool:
     """Is this an operating-point run? The at-speed options without --speed are an error."""
     if speed is not None:
         return True
-    if crank_angle is not None or no_preload or no_centrifugal or no_coriolis or \
-            geometric != "consistent":
+    if crank_angle is not None or crank_acceleration is not None or no_preload or \
+            no_centrifugal or no_coriolis or geometric != "consistent":
         from flexlink.errors import InputError
-        raise InputError("--crank-angle, --no-preload, --no-centrifugal, --no-coriolis and "
-                         "--geometric need --speed", source="command line", field="--speed",
-                         expected="a crank speed such as '2000 rev/min'")
+        raise InputError("--crank-angle, --crank-acceleration, --no-preload, --no-centrifugal, "
+                         "--no-coriolis and --geometric need --speed", source="command line",
+                         field="--speed", expected="a crank speed such as '2000 rev/min'")
     return False
 
 
-def run_operating(files, n_modes, elements, tol, speed, crank_angle, no_preload, no_centrifugal,
-                  no_coriolis, geometric, as_json, out) -> None:
+def run_operating(files, n_modes, elements, tol, speed, crank_angle, crank_acceleration,
+                  no_preload, no_centrifugal, no_coriolis, geometric, as_json, out) -> None:
     """Modes at speed of each scene file; writes OUT/<scene>/modes_at_speed.json and .csv."""
     from flexlink.analysis.mesh import choose_mesh
     from flexlink.errors import FlexlinkError
@@ -50,6 +53,7 @@ def run_operating(files, n_modes, elements, tol, speed, crank_angle, no_preload,
                                                   operating_summary)
     from flexlink.scene import load_scene
     from flexlink.studies.operating_point import Terms, operating_modes
+    from flexlink.studies.torque import operating_point
     from flexlink.units import parse_quantity
 
     from ._failures import finish, scene_failure
@@ -58,6 +62,9 @@ def run_operating(files, n_modes, elements, tol, speed, crank_angle, no_preload,
     omega = parse_quantity(speed, "angular speed", source="command line", field="--speed")
     angle = None if crank_angle is None else parse_quantity(
         crank_angle, "angle", source="command line", field="--crank-angle")
+    qdd = None if crank_acceleration is None else parse_quantity(
+        crank_acceleration, "angular acceleration", source="command line",
+        field="--crank-acceleration")
     terms = Terms(preload=not no_preload, centrifugal=not no_centrifugal,
                   coriolis=not no_coriolis, geometric=GeometricForm(geometric))
     folders = dict(zip(files, scene_folders(out, files)))
@@ -65,8 +72,9 @@ def run_operating(files, n_modes, elements, tol, speed, crank_angle, no_preload,
     for path in files:
         try:
             scene = load_scene(path)
+            speed_, qdd_ = operating_point(scene, omega, qdd)  # checked as `torque` does
             mesh = choose_mesh(scene, n_modes, elements, tol)  # the static `modes` mesh
-            op = operating_modes(scene, omega, n_modes, mesh.elements, angle, terms=terms)
+            op = operating_modes(scene, speed_, n_modes, mesh.elements, angle, qdd_, terms)
             summary = operating_summary(op)
         except FlexlinkError as exc:
             failures.append(scene_failure(path, exc))

@@ -5,9 +5,10 @@ Model (kineto-elastodynamic, frozen configuration): the rigid motion is prescrib
 (speed Omega, optional crank acceleration); elastic deflections are small and do not feed back
 into it. At the pose, each link turns with its rigid angular velocity omega and acceleration
 alpha (``kinematics.dynamics``), and the linearised equations are
-    M x'' + G x' + (K + K_g(N) - Omega_c + alpha S) x = 0,
-with K_g the geometric stiffness of the axial forces N of the inertia preload (``fe.preload``,
-``fe.geometric``), and the centrifugal -omega^2 Mt, gyroscopic G = 2 omega S and circulatory
+    M x'' + G x' + (K + K_g(N) - omega^2 Mt + alpha S) x = 0   (per link),
+with K_g the geometric stiffness of the axial forces N of the preload (``fe.preload``,
+``fe.geometric``: the d'Alembert inertia loads and the scene's [[loads]], the crank held by its
+drive), and the centrifugal -omega^2 Mt, gyroscopic G = 2 omega S and circulatory
 alpha S terms of each link's turning frame (``fe.rotating``). The quadratic eigenproblem is
 solved by ``analysis.quadratic``; each mode is paired by MAC with a static mode of the same
 model (``analysis.modal.pose_modes``).
@@ -34,6 +35,7 @@ from flexlink.fe.rotating import rotating_entries
 from flexlink.kinematics.dynamics import RigidMotion, check_speed, rigid_motion
 from flexlink.scene import Scene
 from flexlink.scene.plausibility import model_warnings, pose_warnings
+from flexlink.studies.torque import wrench
 
 ASSUMPTIONS = (
     ("rigid-body motion prescribed by the crank (constant speed, or the given crank "
@@ -83,7 +85,7 @@ class OperatingPoint:
     axial_forces: dict[str, np.ndarray]  # link -> per element N [N]
     largest_axial: AxialForce
     elements_per_link: int
-    loads: np.ndarray  # the d'Alembert nodal loads of the preload (n_dofs,) [N, N m]
+    loads: np.ndarray  # the preload's nodal loads, d'Alembert and external (n_dofs,) [N, N m]
     warnings: tuple[str, ...] = ()  # model outside its range (``scene.plausibility``)
 
     def __post_init__(self):
@@ -161,7 +163,7 @@ def operating_modes(scene: Scene, speed: float, n_modes: int = 4,
     column, n = reduced_columns(T, model.n_dofs)
     reduce = _reducer(column, n, dense=n <= AUTO_DENSE_MAX)
     Kr, Mr = _reduced_pair(model, T, reduce)
-    loads = inertia_loads(model, acc, alpha)
+    loads = inertia_loads(model, acc, alpha) + external_loads(scene, model, topology, state)
     forces = axial_forces(model, static_displacement(Kr, T, loads))
     rows, cols, rot = rotating_entries(model, omega, alpha)
     on = np.array([terms.centrifugal, terms.coriolis, terms.acceleration], dtype=float)
@@ -194,6 +196,29 @@ def _link_motion(scene: Scene, model: FrameModel, topology, motion: RigidMotion)
     for link, body in zip(model.links, bodies):
         acc[link.nodes] = motion.point_acceleration(body, model.nodes[link.nodes])
     return omega, alpha, acc
+
+
+def external_loads(scene: Scene, model: FrameModel, topology, state) -> np.ndarray:
+    """The scene's [[loads]] at the pose ``state`` as nodal loads (n_dofs,) [N, N m], each put
+    on the node of its body's beams nearest its point (a torque: nearest the body's first
+    joint, its pivot or shaft), a force with the moment of its offset from that node: statically
+    the same load on the body, spread over an element length on the flexible frame."""
+    f = np.zeros(model.n_dofs)
+    bodies = link_bodies(scene, topology.links)
+    for load in scene.loads:
+        own = [link for link, body in zip(model.links, bodies) if body == load.body]
+        if not own:
+            raise InputError(f"the load acts on body {load.body!r}, which has no beam link to "
+                             "carry it", source=scene.path, field=load.field)
+        nodes = np.concatenate([link.nodes for link in own])
+        w = wrench(scene.linkage, state, load)
+        pivot = state.points[scene.linkage.body(load.body).joints[0]]
+        point = np.asarray(pivot if load.kind == "torque" else w.point, dtype=float)
+        node = nodes[np.argmin(np.linalg.norm(model.nodes[nodes] - point, axis=1))]
+        r = point - model.nodes[node]
+        f[3 * node:3 * node + 2] += w.force
+        f[3 * node + 2] += w.torque + r[0] * w.force[1] - r[1] * w.force[0]
+    return f
 
 
 def _reduced_pair(model: FrameModel, T, reduce):
