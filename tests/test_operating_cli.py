@@ -61,3 +61,10 @@ def test_a_scene_without_a_body_per_link_is_refused(tmp_path):
     assert result.exit_code == 2
     assert "compliant_wiper.toml" in result.output and "links.strip" in result.output
     assert "Traceback" not in result.output
+
+
+@pytest.mark.parametrize("extra", [["--sensitivity"], ["--method", "dense"]])
+def test_static_only_options_are_refused_at_speed(tmp_path, extra):
+    result = run(CASES_DIR / "case1.toml", "--speed", "100 rev/min", *extra, "-e", "4", "--out",
+                 tmp_path)
+    assert result.exit_code == 2 and extra[0] in result.output

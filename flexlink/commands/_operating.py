@@ -6,7 +6,7 @@ import click
 
 from flexlink.commands._options import dumps
 
-operating_options = (
+_OPTIONS = (
     click.option("--speed", default=None, metavar="SPEED",
                  help="Crank speed with its unit, e.g. '2000 rev/min' or '209 rad/s': the modes "
                       "of the small vibrations about the rigid motion at that speed (inertia "
@@ -28,14 +28,26 @@ operating_options = (
 )
 
 
+def operating_options(command):
+    """Decorator: the at-speed options of ``modes`` (passed on as keyword arguments)."""
+    for option in reversed(_OPTIONS):
+        command = option(command)
+    return command
+
+
 def operating_given(speed, crank_angle, crank_acceleration, no_preload, no_centrifugal,
-                    no_coriolis, geometric) -> bool:
-    """Is this an operating-point run? The at-speed options without --speed are an error."""
+                    no_coriolis, geometric, static_only: bool = False) -> bool:
+    """Is this an operating-point run? The at-speed options without --speed are an error, and
+    so are options of the static run (``static_only``: --sensitivity or --method given) with it."""
+    from flexlink.errors import InputError
     if speed is not None:
+        if static_only:
+            raise InputError("--sensitivity and --method are for the static modes",
+                             source="command line", field="--speed",
+                             expected="--speed without --sensitivity and --method")
         return True
     if crank_angle is not None or crank_acceleration is not None or no_preload or \
             no_centrifugal or no_coriolis or geometric != "consistent":
-        from flexlink.errors import InputError
         raise InputError("--crank-angle, --crank-acceleration, --no-preload, --no-centrifugal, "
                          "--no-coriolis and --geometric need --speed", source="command line",
                          field="--speed", expected="a crank speed such as '2000 rev/min'")

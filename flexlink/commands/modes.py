@@ -12,12 +12,6 @@ from flexlink.commands._sensitivity import (scene_sensitivity, sensitivity_optio
                                            sensitivity_scheduler)
 
 
-def _at_speed(command):
-    for option in reversed(operating_options):
-        command = option(command)
-    return command
-
-
 @click.command("modes")
 @click.argument("scenes", nargs=-1, required=True, type=click.Path())
 @click.option("-n", "--modes", "n_modes", default=4, show_default=True,
@@ -26,7 +20,7 @@ def _at_speed(command):
 @sensitivity_options
 @json_option
 @out_option
-@_at_speed
+@operating_options
 def command(scenes, n_modes, elements, method, tol, sensitivity, samples, seed, jobs, scheduler,
             as_json, out_dir, **at_speed):
     """Natural frequencies of each SCENE (a scene file or a folder of them) at its pose,
@@ -48,7 +42,7 @@ def command(scenes, n_modes, elements, method, tol, sensitivity, samples, seed, 
     logging.getLogger("flexlink.analysis.modal").setLevel(logging.ERROR)
     out = prepare_out_dir(out_dir)
     files = scene_files(scenes)
-    if operating_given(**at_speed):
+    if operating_given(static_only=sensitivity or method != "auto", **at_speed):
         return run_operating(files, n_modes, elements, tol, **at_speed, as_json=as_json, out=out)
     all_folders = dict(zip(files, scene_folders(out, files)))
     summaries, meshes, folders, failures = [], [], [], []
