@@ -168,11 +168,25 @@ def _one_per_pair(s, X):
     return s[keep], X[:, keep]
 
 
-def quadratic_modes(M, G, K, n_modes: int, guess=None) -> QuadraticModes:
+def _refined(M, G, s, X, stiffness):
+    """Each s as the root nearest it of a s^2 + b s + c = 0, a = x^H M x, b = x^H G x and
+    c = ``stiffness(X)`` = x^H K x (per column) computed without K's round-off."""
+    a, b = (np.einsum("ij,ij->j", X.conj(), A @ X) for A in (M, G))
+    c = np.asarray(stiffness(X))
+    root = np.sqrt(b * b - 4 * a * c)
+    roots = np.stack([(-b + root) / (2 * a), (-b - root) / (2 * a)])
+    return roots[np.argmin(np.abs(roots - s), axis=0), np.arange(len(s))]
+
+
+def quadratic_modes(M, G, K, n_modes: int, guess=None, stiffness=None) -> QuadraticModes:
     """The lowest ``n_modes`` modes (by |s|) of (s^2 M + s G + K) x = 0, each conjugate pair
     once. M, G, K dense or sparse, reduced (no constrained DOFs), K non-singular. ``guess``:
     optional (shapes (n, j), angular frequencies (j,)) near the wanted modes, such as the static
-    ones; the Krylov search starts from their sum (fewer iterations, same answer). Raises
+    ones; the Krylov search starts from their sum (fewer iterations, same answer).
+    ``stiffness``: optional X (n, k) -> x^H K x per column, free of the round-off of K's large
+    entries (the strain energy from element deformations, ``fe.energy``); each s is then the
+    root nearest it of its quadratic Rayleigh quotient with that stiffness, accurate to the
+    square of the vector's error, as the symmetric solver's energy refinement. Raises
     NumericalError when K is singular or a mode fails its backward-error check."""
     n = K.shape[0]
     if n == 0:
@@ -192,6 +206,8 @@ def quadratic_modes(M, G, K, n_modes: int, guess=None) -> QuadraticModes:
     # phase: largest component real and positive, so shapes compare across runs
     big = np.abs(X).argmax(axis=0)
     X = X * np.exp(-1j * np.angle(X[big, np.arange(X.shape[1])]))
+    if stiffness is not None:
+        s = _refined(M, G, s, X, stiffness)
     R = M @ X * s**2 + G @ X * s + K @ X
     scale = (np.abs(s) ** 2 * _norm1(M) + np.abs(s) * _norm1(G) + _norm1(K))
     backward = np.linalg.norm(R, axis=0) / (scale * np.linalg.norm(X, axis=0))

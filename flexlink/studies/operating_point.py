@@ -28,6 +28,7 @@ from flexlink.errors import InputError, NumericalError
 from flexlink.fe.assembly import (assemble_reduced_dense, dense_slots, dense_sum,
                                   placed_link_entries, point_mass_entries, reduced_columns,
                                   reduction, rotated_entries, spring_entries)
+from flexlink.fe.energy import twice_strain_energy
 from flexlink.fe.geometric import GeometricForm, geometric_entries
 from flexlink.fe.model import FrameModel
 from flexlink.fe.preload import axial_forces, inertia_loads, static_displacement
@@ -170,11 +171,17 @@ def operating_modes(scene: Scene, speed: float, n_modes: int = 4,
     extra = [(rows, cols, rot[0] * on[0] + rot[2] * on[2])]
     if terms.preload:
         extra.append(geometric_entries(model, forces, terms.geometric))
-    K_eff = Kr + reduce(*(np.concatenate(part) for part in zip(*extra)))
+    K_extra = reduce(*(np.concatenate(part) for part in zip(*extra)))
     static_shapes = np.zeros((n, len(static.elastic)))
     static_shapes[column[column >= 0]] = static.shapes[np.ix_(column >= 0, static.elastic)]
     guess = (static_shapes[:, :n_modes], 2 * np.pi * static.elastic_frequencies[:n_modes])
-    modes = quadratic_modes(Mr, reduce(rows, cols, rot[1] * on[1]), K_eff, n_modes, guess)
+
+    def stiffness(X):  # x^H K_eff x with K's part from the element deformations, as `modes`
+        full = X if T is None else T @ X
+        return (twice_strain_energy(model, full.real) + twice_strain_energy(model, full.imag)
+                + np.einsum("ij,ij->j", X.conj(), K_extra @ X))
+    modes = quadratic_modes(Mr, reduce(rows, cols, rot[1] * on[1]), Kr + K_extra, n_modes,
+                            guess, stiffness)
     mac = complex_mac(static_shapes, modes.shapes, Mr)
     pair = mac.argmax(axis=0)
     return OperatingPoint(
