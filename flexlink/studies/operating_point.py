@@ -44,7 +44,6 @@ ASSUMPTIONS = (
     ("frozen configuration: each link's turning rate and the preload are those of this "
      "instant, and the pins tie the links' turning frames at this instant"),
 )
-EXTRA_STATIC = 2  # static modes solved beyond those asked for, so a swapped mode finds its pair
 
 
 @dataclasses.dataclass(frozen=True)
@@ -151,7 +150,8 @@ def operating_modes(scene: Scene, speed: float, n_modes: int = 4,
     state = scene.rigid_state(crank_angle)
     motion = rigid_motion(scene.linkage, state, speed, crank_acceleration)
     topology = scene.topology(elements_per_link)
-    model, static, _ = pose_modes(topology, state.points, n_modes + EXTRA_STATIC)
+    # as `modes` solves them; with its spare modes, a mode that swaps order finds its pair
+    model, static, _ = pose_modes(topology, state.points, n_modes)
     if MECHANISM in static.kinds:
         raise NumericalError(
             f"{scene.path}: the frame has {static.kinds.count(MECHANISM)} rigid-body/mechanism "
@@ -178,7 +178,8 @@ def operating_modes(scene: Scene, speed: float, n_modes: int = 4,
 
     def stiffness(X):  # x^H K_eff x with K's part from the element deformations, as `modes`
         full = X if T is None else T @ X
-        return (twice_strain_energy(model, full.real) + twice_strain_energy(model, full.imag)
+        parts = twice_strain_energy(model, np.hstack([full.real, full.imag]))
+        return (parts[:X.shape[1]] + parts[X.shape[1]:]
                 + np.einsum("ij,ij->j", X.conj(), K_extra @ X))
     modes = quadratic_modes(Mr, reduce(rows, cols, rot[1] * on[1]), Kr + K_extra, n_modes,
                             guess, stiffness)
