@@ -58,9 +58,15 @@ def main() -> None:
         scene = load_scene(ROOT / path)
         speed = rpm * 2 * math.pi / 60
         static, at_speed = [], []
+        def plain(scene=scene, elements=elements):
+            analyze(scene, 4, elements)
+
+        def moving(scene=scene, elements=elements, speed=speed):
+            operating_modes(scene, speed, 4, elements)
+
         for _ in range(args.repeats + 1):  # the first pair warms the caches, then is dropped
-            static.append(cpu(lambda: analyze(scene, 4, elements)))
-            at_speed.append(cpu(lambda: operating_modes(scene, speed, 4, elements)))
+            static.append(cpu(plain))
+            at_speed.append(cpu(moving))
         s, o = statistics.median(static[1:]), statistics.median(at_speed[1:])
         worst = max(worst, o / s)
         print(f"  {path} ({elements} elements/link, {rpm:g} rev/min): static {1e3 * s:.1f} ms, "
