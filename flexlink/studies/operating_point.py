@@ -163,7 +163,7 @@ def operating_modes(scene: Scene, speed: float, n_modes: int = 4,
     T = reduction(model)
     column, n = reduced_columns(T, model.n_dofs)
     reduce = _reducer(column, n, dense=n <= AUTO_DENSE_MAX)
-    Kr, Mr = _reduced_pair(model, T, reduce)
+    Kr, Mr = _reduced_pair(model, T, n, reduce)
     loads = inertia_loads(model, acc, alpha) + external_loads(scene, model, topology, state)
     forces = axial_forces(model, static_displacement(Kr, T, loads))
     rows, cols, rot = rotating_entries(model, omega, alpha)
@@ -229,9 +229,10 @@ def external_loads(scene: Scene, model: FrameModel, topology, state) -> np.ndarr
     return f
 
 
-def _reduced_pair(model: FrameModel, T, reduce):
-    """Reduced (K, M), dense through ``assembly.assemble_reduced_dense`` for small models."""
-    if reduced_columns(T, model.n_dofs)[1] <= AUTO_DENSE_MAX:
+def _reduced_pair(model: FrameModel, T, n: int, reduce):
+    """Reduced (K, M) of size ``n``, dense through ``assembly.assemble_reduced_dense`` for
+    small models."""
+    if n <= AUTO_DENSE_MAX:
         return assemble_reduced_dense(model, T)
     rows, cols, values = rotated_entries(*placed_link_entries(model))
     springs, masses = spring_entries(model), point_mass_entries(model)
