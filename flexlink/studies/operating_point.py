@@ -35,6 +35,7 @@ from flexlink.fe.preload import axial_forces, inertia_loads, static_displacement
 from flexlink.fe.rotating import rotating_entries
 from flexlink.kinematics.dynamics import RigidMotion, check_speed, rigid_motion
 from flexlink.scene import Scene
+from flexlink.scene.contract import RigidPose, pose_transmission_angles
 from flexlink.scene.plausibility import model_warnings, pose_warnings
 from flexlink.studies.torque import wrench
 
@@ -157,8 +158,10 @@ def operating_modes(scene: Scene, speed: float, n_modes: int = 4,
             f"{scene.path}: the frame has {static.kinds.count(MECHANISM)} rigid-body/mechanism "
             "mode(s) at this pose: modes at speed need the crank held by its drive and every "
             "link by its bearings (the preload has nothing to react against)")
-    warnings = tuple(pose_warnings(scene.four_bar, scene.rigid_pose(state.q))
-                     + model_warnings(model))
+    pose = RigidPose(crank_angle=state.q, joints=state.points, branch=scene.branch,
+                     transmission=pose_transmission_angles(scene.linkage, scene.transmission,
+                                                           state.points))
+    warnings = tuple(pose_warnings(scene.four_bar, pose) + model_warnings(model))
     omega, alpha, acc = _link_motion(scene, model, topology, motion)
     T = reduction(model)
     column, n = reduced_columns(T, model.n_dofs)
