@@ -58,7 +58,8 @@ def command(scene_path, speeds, n_modes, poses, elements, tol, margin, harmonics
     from flexlink.scene import load_scene
     from flexlink.studies.campbell import (RPM, bands, campbell_json, critical_csv,
                                            critical_speeds, nearest_margin, plot_campbell)
-    from flexlink.studies.tracking import events_json, tracked_map
+    from flexlink.studies.tracking import (events_json, periodicity_json, reseeds_json,
+                                           tracked_map)
     from ._progress import progress_bar
     from ._written import announce, scene_folders
 
@@ -81,6 +82,8 @@ def command(scene_path, speeds, n_modes, poses, elements, tol, margin, harmonics
                 "harmonics": harmonics, "poses": poses, "mesh": mesh.as_dict(),
                 **campbell_json(found, critical, nearest, labels),
                 "tracking_events": events_json(result),
+                "tracking_reseeds": reseeds_json(result),
+                "periodicity": periodicity_json(result),
                 "files": [str(p) for p in paths]}
     write_atomic(paths[2], dumps(document))
     if as_json:
@@ -93,6 +96,10 @@ def command(scene_path, speeds, n_modes, poses, elements, tol, margin, harmonics
     click.echo(f"{'mode':>4} {'band [Hz]':>19}  label")
     for b in document["bands"]:
         click.echo(f"{b['mode']:>4} {b['min_Hz']:>9.2f}-{b['max_Hz']:<9.2f}  {b['label'] or ''}")
+    for r in document["tracking_reseeds"]:
+        click.echo(f"re-seeded lines {', '.join(map(str, r['lines']))} at crank "
+                   f"{r['crank_deg']:.1f} deg: {r['reason']}")
+    click.echo(f"periodicity: {document['periodicity']['note']}")
     if critical:
         click.echo(f"critical speeds:\n{'mode':>4} {'harmonic':>8} {'from [rev/min]':>15} "
                    f"{'to [rev/min]':>13}")
