@@ -133,3 +133,21 @@ def test_cycle_command_reports_reseeds_and_periodicity(tmp_path):
     assert [r["crank_deg"] for r in doc["tracking"]["reseeds"]] == [180.0]
     rows = (tmp_path / "change_point" / "cycle.csv").read_text().splitlines()
     assert "re-seeded 1 2 3: singular pose" in rows[1 + 36]
+
+
+def test_the_mode_that_turns_into_a_mechanism_reaches_zero_hz_in_the_bands(maps):
+    tracked, _ = maps
+    from flexlink.analysis.modal import pose_modes
+    from flexlink.studies.tracking import vanishing_lines
+
+    scene = load_scene(CHANGE_POINT)
+    # the claim checked by a solve between the samples: 0.01 deg before the flat pose the
+    # lowest elastic frequency is far below every sampled value (it falls linearly to 0)
+    joints = scene.rigid_pose(np.radians(179.99)).joints
+    _, modes, _ = pose_modes(scene.topology(ELEMENTS), joints, 1)
+    lowest = modes.frequencies[modes.elastic[0]]
+    assert lowest < 0.05 * tracked.frequencies.min()
+    flat_sampled = np.isclose(np.degrees(tracked.q), 180.0).any()
+    assert vanishing_lines(tracked) == ((1,) if flat_sampled else ())
+    found = bands(tracked.frequencies, vanishing_lines(tracked))
+    assert (found[0].low == 0.0) == flat_sampled

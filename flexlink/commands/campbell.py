@@ -59,7 +59,7 @@ def command(scene_path, speeds, n_modes, poses, elements, tol, margin, harmonics
     from flexlink.studies.campbell import (RPM, bands, campbell_json, critical_csv,
                                            critical_speeds, nearest_margin, plot_campbell)
     from flexlink.studies.tracking import (events_json, periodicity_json, reseeds_json,
-                                           tracked_map)
+                                           tracked_map, vanishing_lines)
     from ._progress import progress_bar
     from ._written import announce, scene_folders
 
@@ -70,7 +70,7 @@ def command(scene_path, speeds, n_modes, poses, elements, tol, margin, harmonics
     with use_scheduler(scheduler):
         result = tracked_map(scene, poses, n_modes, mesh.elements,
                              progress=progress_bar("tracked modes", as_json), n_jobs=jobs)
-    found = bands(result.frequencies)
+    found = bands(result.frequencies, vanishing_lines(result))
     critical = critical_speeds(found, window, margin, harmonics)
     nearest = nearest_margin(found, window, harmonics)
     labels = dict(enumerate(result.labels, start=1))

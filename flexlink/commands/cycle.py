@@ -68,7 +68,8 @@ def command(scene_path, n_modes, poses, elements, tol, speed, margin, harmonics,
         else:
             result = modal_map(scene, poses, n_modes, mesh.elements,
                                progress=progress_bar("modal map", as_json))
-    hits = resonances(result, check_speed, margin, harmonics) if check_speed else []
+    to_zero = [(j, r.pose) for r in result.tracks.reseeds for j in r.vanishing] if track else []
+    hits = resonances(result, check_speed, margin, harmonics, to_zero) if check_speed else []
     paths = [folder / "cycle.csv", folder / "cycle.png", folder / "cycle.json"]
     write_atomic(paths[0], tracked_csv(result) if track else modal_map_csv(result))
     (plot_tracked if track else plot_map)(result, paths[1], check_speed, hits)

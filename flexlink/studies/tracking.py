@@ -68,11 +68,13 @@ class Event:
 @dataclasses.dataclass(frozen=True)
 class Reseed:
     """Tracked lines ``lines`` (1-based) re-seeded at pose ``pose``: ``reason`` says why (a
-    singular pose, or a shape leaving the lowest modes)."""
+    singular pose, or a shape leaving the lowest modes); ``vanishing``: the lines whose mode
+    turns into a mechanism mode there, so that their frequency falls to 0 Hz near the pose."""
 
     pose: int
     lines: tuple[int, ...]
     reason: str
+    vanishing: tuple[int, ...] = ()  # lines whose mode becomes a mechanism (0 Hz) here
 
 
 @dataclasses.dataclass(frozen=True)
@@ -147,8 +149,13 @@ def track(frequencies: np.ndarray, shapes, n_lines: int, W=None, mechanism=None)
             index[i, order] = found[:n_lines]
             mac[i] = np.diag(np.nan_to_num(mac_matrix(shapes[r][:, index[r]],
                                                       shapes[i][:, index[i]], W)))
+            new = max(0, int(mechanism[i]) - int(mechanism[r]))
+            vanishing = tuple(sorted(int(j) + 1 for j in order[:new]))
+            if vanishing:  # the near-mechanism modes are the lowest before the pose
+                why += (f" (line {', '.join(map(str, vanishing))} turns into it: its frequency "
+                        "falls to 0 Hz approaching this pose, below every sampled value)")
             reseeds.append(Reseed(i, tuple(range(1, n_lines + 1)),
-                                  why + "; lines re-seeded by frequency order"))
+                                  why + "; lines re-seeded by frequency order", vanishing))
             if i - clear >= THROUGH:  # the singular stretch is long: start afresh from here
                 clear = i
     rows = np.arange(P)[:, None]
@@ -372,7 +379,14 @@ def events_json(result: TrackedMap) -> list[dict]:
 def reseeds_json(result: TrackedMap) -> list[dict]:
     """JSON-ready re-seeded poses: crank angle [deg], lines (1-based), reason."""
     return [{"crank_deg": round(math.degrees(result.q[r.pose]) % 360.0, 3),
-             "lines": list(r.lines), "reason": r.reason} for r in result.tracks.reseeds]
+             "lines": list(r.lines), "to_zero_Hz": list(r.vanishing), "reason": r.reason}
+            for r in result.tracks.reseeds]
+
+
+def vanishing_lines(result: TrackedMap) -> tuple[int, ...]:
+    """Lines (1-based) whose mode turns into a mechanism mode at some singular pose: their
+    frequency reaches 0 Hz in the cycle, whatever the sampled poses show."""
+    return tuple(sorted({j for r in result.tracks.reseeds for j in r.vanishing}))
 
 
 def periodicity_json(result: TrackedMap) -> dict | None:
