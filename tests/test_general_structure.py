@@ -5,8 +5,8 @@ translational stiffness, are warned about, and the model shows what the warning 
 import logging
 
 import pytest
-
 from conftest import SCENES_DIR
+
 from flexlink.analysis.modal import pose_modes
 from flexlink.errors import InputError
 from flexlink.scene import load_scene

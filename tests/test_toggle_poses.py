@@ -4,10 +4,10 @@ pose of a change-point linkage): oracles from the geometry of the diagonal O4-A.
 import math
 
 import pytest
+from conftest import SCENES_DIR
 from hypothesis import given
 from hypothesis import strategies as st
 
-from conftest import SCENES_DIR
 from flexlink.errors import KinematicsError
 from flexlink.kinematics.fourbar import FourBar
 from flexlink.scene import RigidPose, load_scene
@@ -74,7 +74,7 @@ def _folded_limit(fb: FourBar) -> float:
                          ids=["folded dead centre", "change-point flat pose"])
 def test_exact_toggle_is_a_pose(fb, theta, mu):
     pose = fb.pose(theta)
-    L1, L2, L3, L4 = fb.lengths
+    L1, _, L3, L4 = fb.lengths
     A, B = pose.joints["A"], pose.joints["B"]
     # the loop closes: link lengths to round-off of metre-sized coordinates
     assert math.dist(A, B) == pytest.approx(L3, abs=1e-12)

@@ -9,8 +9,8 @@ import json
 import numpy as np
 import pytest
 from click.testing import CliRunner
-
 from conftest import CASES_DIR, SCENES_DIR
+
 from flexlink.cli import main
 from flexlink.scene import load_scene
 from flexlink.studies.campbell import bands
