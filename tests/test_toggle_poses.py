@@ -95,3 +95,19 @@ def test_beyond_an_extended_toggle_the_error_names_the_bound_that_fails():
     triple = FourBar.from_ratios(0.6, 0.7, 0.8, 0.3)
     with pytest.raises(KinematicsError, match=r"longer than coupler \+ rocker"):
         triple.pose(math.pi)
+
+
+@pytest.mark.parametrize("fb,count", [(CHANGE_POINT, 1), (FOLDED, 4),
+                                      (FourBar(0.3, 0.08, 0.24, 0.2), 0)],
+                         ids=["change-point", "double-rocker", "crank-rocker"])
+def test_dead_centres_are_where_coupler_and_rocker_line_up(fb, count):
+    found = fb.dead_centres()
+    assert len(found) == count
+    for theta in found:
+        pose = fb.pose(theta)
+        # coupler and rocker collinear: B, A and O4 on one line. The cross product is
+        # L3 L4 sin(mu); acos near +-1 loses half the digits, so theta and mu are good to a
+        # few sqrt(eps) ~ 1e-8 rad: sin(mu) < 1e-7
+        (ax, ay), (bx, by), (ox, oy) = pose.joints["A"], pose.joints["B"], pose.joints["O4"]
+        cross = abs((ax - bx) * (oy - by) - (ay - by) * (ox - bx))
+        assert cross < 1e-7 * fb.coupler * fb.rocker

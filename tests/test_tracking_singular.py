@@ -151,3 +151,12 @@ def test_the_mode_that_turns_into_a_mechanism_reaches_zero_hz_in_the_bands(maps)
     assert vanishing_lines(tracked) == ((1,) if flat_sampled else ())
     found = bands(tracked.frequencies, vanishing_lines(tracked))
     assert (found[0].low == 0.0) == flat_sampled
+
+
+def test_a_dead_centre_between_the_sampled_poses_is_named(maps):
+    tracked, _ = maps
+    flat_sampled = np.isclose(np.degrees(tracked.q), 180.0).any()
+    # the flat pose is the change point's only dead centre (cos mu = -1 at crank 180 deg)
+    assert tracked.unsampled == (() if flat_sampled else (np.pi,))
+    # and the periodicity note names it either way
+    assert "crank 180 deg" in tracked.periodicity.note

@@ -46,7 +46,8 @@ def command(scene_path, n_modes, poses, elements, tol, speed, margin, harmonics,
                                         resonances, runs)
     from flexlink.studies.campbell import nearest_harmonic
     from flexlink.studies.tracking import (events_json, periodicity_json, plot_tracked,
-                                           reseeds_json, tracked_csv, tracked_map)
+                                           reseeds_json, tracked_csv, tracked_map,
+                                           unsampled_json, unsampled_note)
     from flexlink.analysis.mesh import choose_mesh
     from flexlink.fileio import prepare_out_dir, write_atomic
     from flexlink.parallel import use_scheduler
@@ -97,7 +98,9 @@ def command(scene_path, n_modes, poses, elements, tol, speed, margin, harmonics,
                        for h in hits],
         "tracking": {"by": "MAC", "labels": list(result.labels),
                      "events": events_json(result), "reseeds": reseeds_json(result),
-                     "periodicity": periodicity_json(result)} if track
+                     "periodicity": periodicity_json(result),
+                     "unsampled_dead_centres_deg": unsampled_json(result),
+                     "unsampled_note": unsampled_note(result)} if track
         else {"by": "frequency order"},
         "nearest_harmonic": None if not check_speed else dict(zip(
             ("relative_gap", "mode", "harmonic"),
@@ -135,8 +138,11 @@ def command(scene_path, n_modes, poses, elements, tol, speed, margin, harmonics,
         click.echo(f"{e['kind']} of modes {e['lines'][0]} and {e['lines'][1]} at crank "
                    f"{e['crank_deg']:.1f} deg (gap {100 * e['gap']:.1f} %)")
     for r in document.get("tracking", {}).get("reseeds", []):
-        click.echo(f"re-seeded lines {', '.join(map(str, r['lines']))} at crank "
+        click.echo(f"re-seeded line{'s' if len(r['lines']) > 1 else ''} "
+                   f"{', '.join(map(str, r['lines']))} at crank "
                    f"{r['crank_deg']:.1f} deg: {r['reason']}")
+    if document.get("tracking", {}).get("unsampled_note"):
+        click.echo(f"warning: {document['tracking']['unsampled_note']}")
     if document.get("tracking", {}).get("periodicity"):
         click.echo(f"periodicity: {document['tracking']['periodicity']['note']}")
     for h in document["resonances"]:

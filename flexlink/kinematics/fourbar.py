@@ -104,6 +104,19 @@ class FourBar:
             return ()
         return tuple(t for t in (0.0, math.pi) if self._closes_flat(t))
 
+    def dead_centres(self) -> tuple[float, ...]:
+        """Crank angles [rad] in [0, 2 pi) where coupler and rocker are collinear (mu = 0 or
+        180 deg): from cos mu = +-1 in the closed form of ``cos_mu``. None for a crank-rocker
+        or a double-crank, whose transmission angle stays clear of both."""
+        L1, L2, L3, L4 = self.lengths
+        out = set()
+        for c in (1.0, -1.0):
+            cos_t = (2 * L3 * L4 * c - L4**2 - L3**2 + L2**2 + L1**2) / (2 * L1 * L2)
+            if abs(cos_t) <= 1.0 + CLOSE_TOL:
+                t = math.acos(min(1.0, max(-1.0, cos_t)))
+                out |= {t, (2 * math.pi - t) % (2 * math.pi)}
+        return tuple(sorted(out))
+
     def _closes_flat(self, theta2: float) -> bool:
         L1, L2, L3, L4 = self.lengths
         diag = abs(L1 - L2) if theta2 == 0.0 else L1 + L2

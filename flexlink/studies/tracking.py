@@ -261,6 +261,7 @@ class TrackedMap:
     labels: tuple[str, ...] = ()  # each line's identity label at the first pose
     mechanism_counts: np.ndarray | None = None  # rigid-body/mechanism modes found per pose
     periodicity: Periodicity | None = None
+    unsampled: tuple[float, ...] = ()  # dead centres [rad] between the sampled poses
 
 
 def tracked_map(scene: Scene, n_poses: int = 360, n_modes: int = 3,
@@ -304,7 +305,30 @@ def tracked_map(scene: Scene, n_poses: int = 360, n_modes: int = 3,
     return TrackedMap(scene=scene.name, q=cycle.q, frequencies=tracks.frequencies,
                       tracks=tracks, mu90=mu90, labels=labels,
                       mechanism_counts=mechanism,
-                      periodicity=periodicity(tracks, W, back, why))
+                      periodicity=periodicity(tracks, W, back, why),
+                      unsampled=_unsampled_dead_centres(scene, cycle.q))
+
+
+def _unsampled_dead_centres(scene: Scene, q: np.ndarray) -> tuple[float, ...]:
+    """A four-bar's dead centres (``FourBar.dead_centres``) that no sampled pose lands on: a
+    mode may fall towards 0 Hz there without any pose showing it."""
+    if scene.four_bar is None:
+        return ()
+    sampled = np.remainder(q, 2 * math.pi)
+    step = 2 * math.pi / len(q)
+    return tuple(a for a in scene.four_bar.dead_centres()
+                 if np.min(np.abs(np.remainder(sampled - a + math.pi, 2 * math.pi) - math.pi))
+                 > 1e-9 * step)
+
+
+def unsampled_note(result: TrackedMap) -> str | None:
+    """A sentence on the dead centres between sampled poses, or None."""
+    if not result.unsampled:
+        return None
+    where = ", ".join(f"{math.degrees(a):.3f}" for a in result.unsampled)
+    return (f"dead centre at crank {where} deg lies between the sampled poses: a mode may fall "
+            "towards 0 Hz there (a mechanism mode at the pose itself) without any pose showing "
+            "it; choose --poses so that a pose lands on it")
 
 
 DEAD_CENTRE_DEG = 1.0  # a transmission angle this close to 0 or 180 deg is named at a reseed
@@ -335,8 +359,11 @@ def _back_at_start(scene: Scene, cycle, tracks: Tracks) -> tuple[bool, str]:
     worst = max(gaps, key=gaps.get)
     if gaps[worst] <= CLOSED_POSE * scene.linkage.size:
         return True, ""
-    singular = sorted({round(math.degrees(cycle.q[r.pose]) % 360.0, 1) for r in tracks.reseeds
-                       if r.reason.startswith("singular")})
+    singular = {round(math.degrees(cycle.q[r.pose]) % 360.0, 1) for r in tracks.reseeds
+                if r.reason.startswith("singular")}
+    if scene.four_bar is not None:  # sampled or not
+        singular |= {round(math.degrees(a), 1) for a in scene.four_bar.dead_centres()}
+    singular = sorted(singular)
     where = (f"; it passed {'a singular pose' if len(singular) == 1 else 'singular poses'} "
              f"at crank {', '.join(f'{a:g}' for a in singular)} deg, where the assembly branch "
              "can change") if singular else ""
@@ -387,6 +414,11 @@ def vanishing_lines(result: TrackedMap) -> tuple[int, ...]:
     """Lines (1-based) whose mode turns into a mechanism mode at some singular pose: their
     frequency reaches 0 Hz in the cycle, whatever the sampled poses show."""
     return tuple(sorted({j for r in result.tracks.reseeds for j in r.vanishing}))
+
+
+def unsampled_json(result: TrackedMap) -> list[float]:
+    """Dead centres between the sampled poses, crank angles [deg]."""
+    return [round(math.degrees(a), 3) for a in result.unsampled]
 
 
 def periodicity_json(result: TrackedMap) -> dict | None:
