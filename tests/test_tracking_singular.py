@@ -24,10 +24,11 @@ ELEMENTS = 4  # the properties are about tracking, not the mesh: a coarse one is
 SAME = 1e-8
 
 
-@pytest.fixture(scope="module", params=[360, 71], ids=["360 poses", "71 poses"])
+@pytest.fixture(scope="module", params=[90, 71], ids=["90 poses", "71 poses"])
 def maps(request):
-    """The tracked and sorted maps of the change-point scene: 360 poses land on the flat pose
-    at 180 deg; 71 poses step over it."""
+    """The tracked and sorted maps of the change-point scene: 90 poses (4 deg steps) land on
+    the flat pose at 180 deg, where the unchecked tracking lost the lowest mode for the rest of
+    the turn; 71 poses step over it."""
     scene = load_scene(CHANGE_POINT)
     return (tracked_map(scene, request.param, 3, ELEMENTS),
             modal_map(scene, request.param, 3, ELEMENTS, reduction=None))
@@ -63,11 +64,15 @@ def test_the_flat_pose_is_flagged_where_it_is_sampled(maps):
     tracked, _ = maps
     flat = np.flatnonzero(np.isclose(np.degrees(tracked.q), 180.0))
     singular = [r for r in tracked.tracks.reseeds if r.reason.startswith("singular")]
-    # 360 poses: pose 180 only; 71 poses step from one side to its mirror image, where the
-    # shapes pair again (lines may still be handed over as a shape climbs out of the lowest 3)
-    assert [r.pose for r in singular] == list(flat)
+    # the flat pose, where sampled, with its mechanism mode; 71 poses step from one side to its
+    # mirror image, where the shapes pair again (lines may still be handed over as a shape
+    # climbs out of the lowest 3). Next to the flat pose the shapes change fast enough that a
+    # 4 deg step may not pair either; nowhere else is singular.
+    assert set(flat) <= {r.pose for r in singular}
     for r in singular:
-        assert "mechanism" in r.reason and "dead centre" in r.reason
+        assert abs(np.degrees(tracked.q[r.pose]) - 180.0) < 10.0, r
+        if r.pose in flat:
+            assert "mechanism" in r.reason and "dead centre" in r.reason
 
 
 def test_the_change_point_map_says_why_it_does_not_close(maps):
@@ -122,7 +127,7 @@ def test_a_mechanism_mode_appearing_reseeds_by_frequency_order():
 
 
 def test_cycle_command_reports_reseeds_and_periodicity(tmp_path):
-    args = ["cycle", str(CHANGE_POINT), "-e", str(ELEMENTS), "--poses", "72", "--out",
+    args = ["cycle", str(CHANGE_POINT), "-e", str(ELEMENTS), "--poses", "36", "--out",
             str(tmp_path)]
     text = CliRunner().invoke(main, args)
     assert text.exit_code == 0, text.output
@@ -132,7 +137,7 @@ def test_cycle_command_reports_reseeds_and_periodicity(tmp_path):
     assert doc["tracking"]["periodicity"]["closes"] is False
     assert [r["crank_deg"] for r in doc["tracking"]["reseeds"]] == [180.0]
     rows = (tmp_path / "change_point" / "cycle.csv").read_text().splitlines()
-    assert "re-seeded 1 2 3: singular pose" in rows[1 + 36]
+    assert "re-seeded 1 2 3: singular pose" in rows[1 + 18]
 
 
 def test_the_mode_that_turns_into_a_mechanism_reaches_zero_hz_in_the_bands(maps):
@@ -159,4 +164,4 @@ def test_a_dead_centre_between_the_sampled_poses_is_named(maps):
     # the flat pose is the change point's only dead centre (cos mu = -1 at crank 180 deg)
     assert tracked.unsampled == (() if flat_sampled else (np.pi,))
     # and the periodicity note names it either way
-    assert "crank 180 deg" in tracked.periodicity.note
+    assert "at crank 180" in tracked.periodicity.note

@@ -174,7 +174,7 @@ def _ambiguous(paired: np.ndarray, mechanism_before: int, mechanism_now: int) ->
     if paired.min() < PAIR_MAC:
         j = int(np.argmin(paired))
         return (f"singular pose: the shapes change too fast to pair (line {j + 1}'s best MAC "
-                f"{paired[j]:.2f} < {PAIR_MAC})")
+                f"{paired[j]:.3f} < {PAIR_MAC})")
     return None
 
 
@@ -360,7 +360,7 @@ def _back_at_start(scene: Scene, cycle, tracks: Tracks) -> tuple[bool, str]:
     if gaps[worst] <= CLOSED_POSE * scene.linkage.size:
         return True, ""
     singular = {round(math.degrees(cycle.q[r.pose]) % 360.0, 1) for r in tracks.reseeds
-                if r.reason.startswith("singular")}
+                if "mechanism" in r.reason or "dead centre" in r.reason}
     if scene.four_bar is not None:  # sampled or not
         singular |= {round(math.degrees(a), 1) for a in scene.four_bar.dead_centres()}
     singular = sorted(singular)
