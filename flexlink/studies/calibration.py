@@ -24,6 +24,7 @@ import numpy as np
 
 from flexlink.errors import FlexlinkError, InputError
 from flexlink.analysis.families import elastic_modes
+from flexlink.studies.array_shapes import check_shape
 from flexlink.studies.jacobian import case_modes, log_frequency_sensitivities
 from flexlink.parallel import run_tasks
 from flexlink.scene import Scene, load_scene
@@ -258,15 +259,6 @@ def _solve_from(problem: Problem, reference: np.ndarray, x0: np.ndarray):
                            method="trf", ftol=1e-6, xtol=1e-6, gtol=1e-6,
                            max_nfev=40 * (len(x0) + 1))
     return result.x, float(result.cost), result.jac, int(result.nfev), bool(result.status > 0)
-
-
-def check_shape(owner: str, name: str, value, shape: tuple) -> None:
-    """Raise ValueError naming ``owner.name`` unless ``value`` has ``shape`` (None: any size)."""
-    actual = np.shape(value)
-    if len(actual) != len(shape) or any(e is not None and a != e for a, e in zip(actual, shape)):
-        dims = ", ".join("any" if e is None else str(e) for e in shape)
-        expected = f"({dims},)" if len(shape) == 1 else f"({dims})"
-        raise ValueError(f"{owner}.{name} has shape {actual}, expected {expected}")
 
 
 class _PredictionErrors:

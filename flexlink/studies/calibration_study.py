@@ -13,10 +13,11 @@ import numpy as np
 
 from flexlink import logbook
 from flexlink.analysis.families import scene_family
+from flexlink.errors import InputError
 from flexlink.scene import load_scene
+from flexlink.studies.array_shapes import check_shape
 from flexlink.studies.calibration import (DEFAULT_FREE, CrossValidation, FitResult, FreeParameter,
-                                          Problem, case_label, check_shape, cross_validation,
-                                          fit_many,
+                                          Problem, case_label, cross_validation, fit_many,
                                           leave_one_out_problems, mean_abs, measured, parse_free,
                                           predict_with_failures, ratios, single_case_problems)
 from flexlink.studies.uncertainty import (Inputs, MonteCarlo, Sensitivities, monte_carlo,
@@ -212,7 +213,12 @@ def _uncertainty(paths, overrides, s: StudySettings, reference) -> UncertaintySu
 def run_study(paths, family: str, free: tuple[FreeParameter, ...] | None,
               settings: StudySettings) -> CalibrationStudy:
     """Everything the report needs for one family (see the module docstring). The model's
-    warnings over the study's thousands of evaluations are summarised in one line at its end."""
+    warnings over the study's thousands of evaluations are summarised in one line at its end.
+    Needs two scenes or more: it cross-validates by leaving each one out."""
+    if len(paths) < 2:
+        raise InputError(f"the calibration study needs at least two scenes (it cross-validates "
+                         f"leaving one out), got {len(paths)}", field="SCENES",
+                         expected="two or more scene files, or a folder of them")
     with logbook.quiet(f"the {family} calibration study"):
         return _study(tuple(str(p) for p in paths), family, free, settings)
 

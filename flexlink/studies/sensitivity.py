@@ -28,6 +28,7 @@ from flexlink.analysis.families import elastic_modes
 from flexlink.errors import FlexlinkError, InputError
 from flexlink.parallel import run_tasks
 from flexlink.scene import load_scene
+from flexlink.studies.array_shapes import check_shape
 from flexlink.studies.uncertainty import draw_samples, material_overrides, scene_inputs
 
 log = logging.getLogger(__name__)
@@ -108,6 +109,15 @@ class EndPoints:
     spans: tuple[Span, ...]
     ends: tuple[np.ndarray, ...]
 
+    def __post_init__(self):
+        n = np.shape(self.nominal)
+        check_shape("EndPoints", "nominal", self.nominal, (None,))
+        if len(self.ends) != len(self.spans):
+            raise ValueError(f"EndPoints.ends has {len(self.ends)} entries, expected "
+                             f"{len(self.spans)} (one per span)")
+        for k, ends in enumerate(self.ends):
+            check_shape("EndPoints", f"ends[{k}]", ends, (2, *n))
+
 
 def end_points(path, n_modes: int = 4, elements: int | None = None, n_jobs: int = 1,
                progress: bool = False) -> EndPoints:
@@ -129,6 +139,9 @@ class Interval:
     path: str
     samples: np.ndarray
     seed: int
+
+    def __post_init__(self):
+        check_shape("Interval", "samples", self.samples, (None, None))
 
     @property
     def low(self) -> np.ndarray:

@@ -25,6 +25,7 @@ from flexlink.analysis.families import elastic_modes
 from flexlink.materials.mixtures import Constituent, load_constituent, woven_composite
 from flexlink.parallel import run_tasks
 from flexlink.scene import load_scene
+from flexlink.studies.array_shapes import check_shape
 from flexlink.studies.derivatives import central_log_slopes, central_points, first_order_sd
 
 PROPERTIES = ("E", "G", "density")
@@ -110,6 +111,9 @@ class MonteCarlo:
     samples: np.ndarray
     seed: int
 
+    def __post_init__(self):
+        check_shape("MonteCarlo", "samples", self.samples, (None, None, None))
+
     @property
     def mean(self):
         return np.nanmean(self.samples, axis=0)
@@ -142,6 +146,14 @@ class Sensitivities:
     names: tuple[str, ...]
     values: dict[str, np.ndarray]
     sd_ln_f: np.ndarray
+
+    def __post_init__(self):
+        if set(self.values) != set(self.names):
+            raise ValueError(f"Sensitivities.values has {sorted(self.values)}, expected "
+                             f"{sorted(self.names)}")
+        for name in self.names:
+            check_shape("Sensitivities", f"values[{name!r}]", self.values[name],
+                        np.shape(self.sd_ln_f))
 
     def ranked(self) -> list[tuple[str, float]]:
         """(name, max |S| over cases and modes), largest first."""
