@@ -150,10 +150,21 @@ def test_calibration_study_errors_are_against_ex(scenes):
     # each case's own fit lands on that case's best L1; the document says the same by name
     for fit, name in zip(study.per_case, ("s1", "s2")):
         assert fit.values[0] == pytest.approx(best_l1([name]), rel=1e-7)
+    # the JSON document names the same numbers: each field checked against the closed form
     document = study_document(study)
-    assert document["fit_Ex"]["parameters"][0]["value"] == study.fit_ex.values[0]
+    np.testing.assert_allclose(document["Ex_Hz"], ex_all, rtol=1e-12)
+    np.testing.assert_allclose(document["paper_FE_Hz"], fe_all, rtol=1e-12)
+    np.testing.assert_allclose(document["nominal_Hz"], nominal, rtol=1e-12)
+    assert document["fit_Ex"]["parameters"][0]["value"] == pytest.approx(best_l1(["s1", "s2"]), rel=1e-7)
+    assert document["fit_FE"]["parameters"][0]["value"] == pytest.approx(L_FE, rel=1e-7)
     assert document["errors_mean_abs_pct"] == pytest.approx(errors)
+    np.testing.assert_allclose(document["cross_validation"]["errors_pct"], cv, atol=1e-4)
     assert [c["case"] for c in document["per_case_fits"]] == ["s1", "s2"]
+    assert [c["values"][0] for c in document["per_case_fits"]] == pytest.approx(
+        [best_l1(["s1"]), best_l1(["s2"])], rel=1e-7)
+    # ratios of A / L1^2 do not depend on L1: the model's ratios are A's at any L1
+    np.testing.assert_allclose(document["ratios"]["best_model"],
+                               [A[n] / A[n][0] for n in ("s1", "s2")], rtol=1e-12)
 
 
 def test_the_result_type_refuses_arrays_of_the_wrong_shape(scenes):
