@@ -155,7 +155,8 @@ def test_calibration_study_errors_are_against_ex(scenes):
     np.testing.assert_allclose(document["Ex_Hz"], ex_all, rtol=1e-12)
     np.testing.assert_allclose(document["paper_FE_Hz"], fe_all, rtol=1e-12)
     np.testing.assert_allclose(document["nominal_Hz"], nominal, rtol=1e-12)
-    assert document["fit_Ex"]["parameters"][0]["value"] == pytest.approx(best_l1(["s1", "s2"]), rel=1e-7)
+    fitted = document["fit_Ex"]["parameters"][0]["value"]
+    assert fitted == pytest.approx(best_l1(["s1", "s2"]), rel=1e-7)
     assert document["fit_FE"]["parameters"][0]["value"] == pytest.approx(L_FE, rel=1e-7)
     assert document["errors_mean_abs_pct"] == pytest.approx(errors)
     np.testing.assert_allclose(document["cross_validation"]["errors_pct"], cv, atol=1e-4)
@@ -170,7 +171,8 @@ def test_calibration_study_errors_are_against_ex(scenes):
 def test_the_result_type_refuses_arrays_of_the_wrong_shape(scenes):
     settings = StudySettings(starts=1, seed=0, samples=2, elements=None, n_jobs=1)
     study = run_study(scenes, "planar", (L1_FREE,), settings)
-    with pytest.raises(ValueError, match=r"CalibrationStudy.ex has shape \(1, 4\), expected \(2, 4\)"):
+    shape = r"CalibrationStudy.ex has shape \(1, 4\), expected \(2, 4\)"
+    with pytest.raises(ValueError, match=shape):
         dataclasses.replace(study, ex=study.ex[:1])
     with pytest.raises(ValueError, match="per_case has 1 fits, expected 2"):
         dataclasses.replace(study, per_case=study.per_case[:1])

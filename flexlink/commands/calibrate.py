@@ -50,7 +50,8 @@ def command(scenes, free_specs, families, scheduler, as_json, out_dir, **setting
             written.append(write_atomic(out / f"study-{family}.json",
                                         dumps(study_document(studies[-1]))))
     line = "flexlink calibrate " + " ".join(shlex.quote(a) for a in sys.argv[2:])
-    written += [write_atomic(out / name, data) for name, data in report_files(studies, line).items()]
+    written += [write_atomic(out / name, data)
+                for name, data in report_files(studies, line).items()]
     document = calibrate_document(studies, [*written, out / "calibrate.json"])
     written.append(write_atomic(out / "calibrate.json", dumps(document)))
     click.echo(dumps(document) if as_json else summary_text(studies))

@@ -215,10 +215,6 @@ def run_study(paths, family: str, free: tuple[FreeParameter, ...] | None,
     """Everything the report needs for one family (see the module docstring). The model's
     warnings over the study's thousands of evaluations are summarised in one line at its end.
     Needs two scenes or more: it cross-validates by leaving each one out."""
-    if len(paths) < 2:
-        raise InputError(f"the calibration study needs at least two scenes (it cross-validates "
-                         f"leaving one out), got {len(paths)}", field="SCENES",
-                         expected="two or more scene files, or a folder of them")
     with logbook.quiet(f"the {family} calibration study"):
         return _study(tuple(str(p) for p in paths), family, free, settings)
 
@@ -228,6 +224,12 @@ def _study(paths: tuple[str, ...], family: str, free, s: StudySettings) -> Calib
     base = Problem(scenes=paths, parameters=free, reference="Ex", elements=s.elements,
                    fixed=(("model.family", family),))
     fe = dataclasses.replace(base, reference="FE")
+    # first, as they refuse a general scene or a missing reference column
+    ex, fe_ref = measured(base), measured(fe)
+    if len(paths) < 2:
+        raise InputError(f"the calibration study needs at least two scenes (it cross-validates "
+                         f"leaving one out), got {len(paths)}", field="SCENES",
+                         expected="two or more scene files, or a folder of them")
     groups = {"Ex": [base], "FE": [fe], "folds": leave_one_out_problems(base),
               "per_case": single_case_problems(base, "frequencies"),
               "ratios": single_case_problems(base, "ratios")}
@@ -237,7 +239,6 @@ def _study(paths: tuple[str, ...], family: str, free, s: StudySettings) -> Calib
     [ex_fit], [fe_fit], per_case = fits["Ex"], fits["FE"], fits["per_case"]
     cv = cross_validation(base, fits["folds"])
 
-    ex, fe_ref = measured(base), measured(fe)
     nominal, nominal_why = predict_with_failures(base)
     ratio_best = np.array([f.predicted[0] / f.predicted[0, 0] for f in fits["ratios"]])
     errors = {
