@@ -34,6 +34,17 @@ def scene_family(scene: Scene) -> str:
     return scene.options.family  # one of FAMILIES, checked by the scene schema
 
 
+def in_plane_only_note(scene: Scene, what: str) -> str | None:
+    """Why ``what`` (a result built on the in-plane model only: crank-cycle maps, exported
+    shapes, the report's shapes) holds other modes than the scene's family's; None when the
+    family is planar."""
+    family = scene_family(scene)
+    if family == "planar":
+        return None
+    return (f"model.family = {family!r}: {what} holds the in-plane modes only (built for the "
+            "in-plane model; `flexlink modes` gives the family's modes at the scene's pose)")
+
+
 @dataclasses.dataclass(frozen=True)
 class FamilyModes:
     """One part (IN_PLANE or OUT_OF_PLANE) of a scene's family at its pose: the model solved

@@ -58,6 +58,7 @@ def command(scene_path, speeds, n_modes, poses, elements, tol, margin, harmonics
     from flexlink.scene import load_scene
     from flexlink.studies.campbell import (RPM, bands, campbell_json, critical_csv,
                                            critical_speeds, nearest_margin, plot_campbell)
+    from flexlink.analysis.families import in_plane_only_note
     from flexlink.studies.tracking import events_json, tracked_map
     from ._progress import progress_bar
     from ._written import announce, scene_folders
@@ -82,6 +83,9 @@ def command(scene_path, speeds, n_modes, poses, elements, tol, margin, harmonics
                 **campbell_json(found, critical, nearest, labels),
                 "tracking_events": events_json(result),
                 "files": [str(p) for p in paths]}
+    note = in_plane_only_note(scene, "this diagram")
+    if note:  # the diagram holds the in-plane modes only
+        document["note"] = note
     write_atomic(paths[2], dumps(document))
     if as_json:
         click.echo(dumps(document))
@@ -90,6 +94,8 @@ def command(scene_path, speeds, n_modes, poses, elements, tol, margin, harmonics
                f"{window[0] / RPM:g}-{window[1] / RPM:g} rev/min, harmonics 1..{harmonics}, "
                f"margin {100 * margin:g} %")
     click.echo(mesh.describe())
+    if note:
+        click.echo(note)
     click.echo(f"{'mode':>4} {'band [Hz]':>19}  label")
     for b in document["bands"]:
         click.echo(f"{b['mode']:>4} {b['min_Hz']:>9.2f}-{b['max_Hz']:<9.2f}  {b['label'] or ''}")

@@ -42,6 +42,7 @@ def command(scene_path, n_modes, poses, elements, tol, speed, margin, harmonics,
     --out), the poses where the transmission angle is 90 deg, and the crank harmonics that
     come within --margin of a natural frequency anywhere in the cycle. Writes cycle.csv,
     cycle.png and cycle.json to OUT/<scene>/."""
+    from flexlink.analysis.families import in_plane_only_note
     from flexlink.studies.cycle import (modal_map, modal_map_csv, plot_map, resonance_speed,
                                         resonances, runs)
     from flexlink.studies.campbell import nearest_harmonic
@@ -101,12 +102,17 @@ def command(scene_path, n_modes, poses, elements, tol, speed, margin, harmonics,
         "files": [str(p) for p in paths],
         "assumptions": [f"{a.field}: {a.note}" for a in scene.assumptions],
     }
+    note = result.note if not track else in_plane_only_note(scene, "this map")
+    if note:  # the map is not quite what was asked for: say what it is
+        document["note"] = note
     write_atomic(paths[2], dumps(document))
     if as_json:
         click.echo(dumps(document))
         return
     click.echo(f"{scene.name}: first {n_modes} elastic modes over {poses} crank angles")
     click.echo(mesh.describe())
+    if note:
+        click.echo(note)
     if scene.synthesis:
         click.echo(f"synthesis {scene.synthesis['method']}: " + ", ".join(
             f"{k} {1e3 * v:.3f} mm" for k, v in scene.synthesis["lengths_m"].items()))

@@ -40,6 +40,7 @@ def command(scenes, n_modes, elements, tol, method, subdivide, phases, amplitude
     OUT/export.json."""
     from tqdm import tqdm
 
+    from flexlink.analysis.families import in_plane_only_note
     from flexlink.analysis.mesh import choose_mesh
     from flexlink.analysis.modal import analyze
     from flexlink.errors import FlexlinkError, InputError
@@ -77,6 +78,9 @@ def command(scenes, n_modes, elements, tol, method, subdivide, phases, amplitude
         cases.append({"scene": scene.name, "file": str(path), "mesh": mesh.as_dict(),
                       "frequencies_Hz": [row["computed_Hz"] for row in summary["modes"]],
                       "files": written})
+        note = in_plane_only_note(scene, "the export")
+        if note:
+            cases[-1]["note"] = note
         meshes.append(mesh)
         # rewritten after every scene folder is swapped in, so export.json lists exactly the
         # folders this run has completed, even when the run is stopped half-way
@@ -87,6 +91,8 @@ def command(scenes, n_modes, elements, tol, method, subdivide, phases, amplitude
         finish(failures, len(files))
         return
     for case, mesh in zip(cases, meshes):
+        if "note" in case:
+            click.echo(case["note"])
         f = case["files"]
         click.echo(f"{case['scene']}: {len(case['frequencies_Hz'])} modes -> {f['folder']}/  "
                    f"({len(f['vtu'])} .vtu, {len(f['pvd'])} .pvd with {len(f['frames'])} frames, "

@@ -10,6 +10,7 @@ import dataclasses
 import numpy as np
 
 from flexlink import logbook
+from flexlink.errors import InputError
 from flexlink.studies.calibration import (DEFAULT_FREE, FreeParameter, Problem, case_label,
                                           cross_validation, failures, fit_many, json_ready,
                                           leave_one_out_problems, mean_abs, measured, parse_free,
@@ -66,7 +67,12 @@ def _uncertainty(paths, overrides, s: StudySettings, reference):
 def run_study(paths, family: str, free: tuple[FreeParameter, ...] | None,
               settings: StudySettings) -> dict:
     """Everything the report needs for one family (see the module docstring). The model's
-    warnings over the study's thousands of evaluations are summarised in one line at its end."""
+    warnings over the study's thousands of evaluations are summarised in one line at its end.
+    Needs two scenes or more: it cross-validates by leaving each one out."""
+    if len(paths) < 2:
+        raise InputError(f"the calibration study needs at least two scenes (it cross-validates "
+                         f"leaving one out), got {len(paths)}", field="SCENES",
+                         expected="two or more scene files, or a folder of them")
     with logbook.quiet(f"the {family} calibration study"):
         return _study(tuple(str(p) for p in paths), family, free, settings)
 
