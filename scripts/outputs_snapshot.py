@@ -32,8 +32,9 @@ RUNS = (
     ("prb", ["prb"], True),
     ("report", ["report", "--cycle-poses", "4"], False),
 )
-# keys whose values are wall times or paths of this run
-VOLATILE = ("seconds", "time", "elapsed", "wall", "out", "path", "file", "written", "version")
+# keys whose values are wall times, sizes or paths of this run
+VOLATILE = {"seconds", "elapsed", "out", "files", "file", "folder", "path", "report", "written",
+            "version", "bytes", "vtu", "pvd", "frames", "pictures", "plot", "stderr_last"}
 
 
 def _command(args: list[str], scene: Path, out: Path) -> list[str]:
@@ -70,7 +71,7 @@ def _parsed(text: str):
 
 
 def _volatile(key: str) -> bool:
-    return any(word in key.lower() for word in VOLATILE)
+    return key in VOLATILE or key.endswith(("_seconds", "_s", "_time"))
 
 
 def differences(a, b, where: str = "") -> list[str]:

@@ -41,9 +41,10 @@ def scene_sensitivity(scene, n_modes: int, samples: int, seed: int, jobs: int,
                       quiet: bool) -> dict:
     """JSON-ready end points and interval of ``scene`` (``output.sensitivity_report``)."""
     from flexlink.output.sensitivity_report import sensitivity_dict
-    from flexlink.studies.sensitivity import STUDY_ELEMENTS, end_points, interval
+    from flexlink.meshes import DEFAULT_ELEMENTS
+    from flexlink.studies.sensitivity import end_points, interval
 
-    points = end_points(scene.path, n_modes, STUDY_ELEMENTS, jobs, not quiet)
-    spread = interval(scene.path, samples, seed, n_modes, STUDY_ELEMENTS, jobs, not quiet)
+    points = end_points(scene.path, n_modes, DEFAULT_ELEMENTS, jobs, not quiet)
+    spread = interval(scene.path, samples, seed, n_modes, DEFAULT_ELEMENTS, jobs, not quiet)
     reference = dict(scene.reference.columns) if scene.reference else {}
-    return sensitivity_dict(points, spread, reference, STUDY_ELEMENTS)
+    return sensitivity_dict(points, spread, reference, DEFAULT_ELEMENTS)

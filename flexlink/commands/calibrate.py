@@ -9,6 +9,7 @@ import sys
 import click
 
 from flexlink.commands._failures import names_scene
+from flexlink.meshes import FIT_ELEMENTS
 from flexlink.commands._options import dumps, json_option, out_option, scheduler_option
 
 
@@ -32,7 +33,8 @@ from flexlink.commands._options import dumps, json_option, out_option, scheduler
               help="Standard deviation of the fibre volume fraction.")
 @click.option("--thickness-sd", default="0.15 mm", show_default=True,
               help="Standard deviation of the laminate thickness, with unit.")
-@click.option("-e", "--elements", default=8, show_default=True, type=click.IntRange(1, 10000),
+@click.option("-e", "--elements", default=FIT_ELEMENTS, show_default=True,
+              type=click.IntRange(1, 10000),
               help="Elements per link in every evaluation.")
 @click.option("--jobs", default=-1, show_default=True, type=int,
               help="Parallel workers (joblib; -1 = all cores).")

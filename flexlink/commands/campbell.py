@@ -9,21 +9,10 @@ from flexlink.commands._options import dumps, json_option, map_parallel_options,
 
 
 def parse_speeds(text: str) -> tuple[float, float]:
-    """"LOW:HIGH UNIT" (or "LOW UNIT:HIGH UNIT") -> (low, high) [rad/s]."""
-    from flexlink.errors import InputError
-    from flexlink.units import parse_quantity
+    """"LOW:HIGH UNIT" (or "LOW UNIT:HIGH UNIT") -> (low, high) [rad/s] (``units.parse_range``)."""
+    from flexlink.units import parse_range
 
-    parts = text.split(":")
-    if len(parts) != 2:
-        raise InputError(f"cannot read {text!r} as a speed range", field="--speeds",
-                         expected="LOW:HIGH with a unit, e.g. '0:3000 rev/min'")
-    low, high = (p.strip() for p in parts)
-    unit = high.split(None, 1)[1] if len(high.split(None, 1)) == 2 else ""
-    if low and not any(c.isalpha() for c in low.lstrip("eE+-.0123456789")) and unit:
-        low = f"{low} {unit}"
-    read = [parse_quantity(v, "angular speed", source="command line", field="--speeds")
-            for v in (low, high)]
-    return read[0], read[1]
+    return parse_range(text, "angular speed", source="command line", field="--speeds")
 
 
 @click.command("campbell")

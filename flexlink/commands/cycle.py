@@ -51,7 +51,7 @@ def command(scene_path, n_modes, poses, elements, tol, speed, margin, harmonics,
     from flexlink.fileio import prepare_out_dir, write_atomic
     from flexlink.parallel import use_scheduler
     from flexlink.scene import load_scene
-    from flexlink.units import parse_quantity
+    from flexlink.units import parse_quantity, rev_per_min
     from ._progress import progress_bar
     from ._written import announce, scene_folders
 
@@ -84,9 +84,9 @@ def command(scene_path, n_modes, poses, elements, tol, speed, margin, harmonics,
         "mu90_crank_deg": {k: [math.degrees(a) for a in v] for k, v in result.mu90.items()},
         "mechanism_modes_max": int(result.mechanism_counts.max()),
         "mesh": mesh.as_dict(),
-        "crank_speed_rev_per_min": None if omega is None else omega * 60 / (2 * math.pi),
+        "crank_speed_rev_per_min": None if omega is None else rev_per_min(omega),
         "resonance_check": {"speed_rev_per_min": None if check_speed is None
-                                                 else check_speed * 60 / (2 * math.pi),
+                                                 else rev_per_min(check_speed),
                             "note": check_note},
         "margin": margin,
         "resonances": [{"harmonic": h.harmonic, "harmonic_Hz": h.frequency, "mode": h.mode,

@@ -21,7 +21,8 @@ from flexlink.fe.model import LinkSpec
 from flexlink.kinematics import Body, FourBar, Linkage
 from flexlink.kinematics.synthesis import brodell_soni, extended_rocker, minimax
 from flexlink.scene import parts, schema
-from flexlink.scene.contract import FALLBACK_ELEMENTS, Scene
+from flexlink.meshes import DEFAULT_ELEMENTS
+from flexlink.scene.contract import Scene
 from flexlink.scene.source import SceneSource
 
 FOUR_BAR_BODIES = (("crank", "O2", "A"), ("coupler", "A", "B"), ("rocker", "O4", "B"))
@@ -131,7 +132,7 @@ def build_general(src: SceneSource, sf: schema.SceneFile) -> Scene:
                                  field=f"links.{name}.{key}", expected=f"a joint, one of {known}")
             if joint not in known:
                 raise parts.unknown_name(src, f"links.{name}.{key}", "joint", joint, known)
-        n = table.elements or sf.mesh.elements_per_link or FALLBACK_ELEMENTS
+        n = table.elements or sf.mesh.elements_per_link or DEFAULT_ELEMENTS
         section = parts.section(src, sf, name, parts.material(src, sf, name, assumptions),
                                 _link_length(linkage, table.start, table.end))
         links.append(LinkSpec(name, table.start, table.end, section, n))

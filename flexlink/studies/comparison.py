@@ -11,11 +11,13 @@ import numpy as np
 
 from flexlink import logbook
 from flexlink.errors import InputError
+from flexlink.meshes import FIT_ELEMENTS
 from flexlink.studies.calibration import (DEFAULT_FREE, FreeParameter, Problem, case_label,
                                           cross_validation, failures, fit_many, json_ready,
                                           leave_one_out_problems, mean_abs, measured, parse_free,
                                           predict_with_failures, ratios, single_case_problems)
 from flexlink.studies.uncertainty import monte_carlo, scene_inputs, sensitivities
+from flexlink.units import percent_error
 
 # inputs with no effect on a family are left out of its default free set (they could not be
 # identified: zero Jacobian column)
@@ -35,13 +37,13 @@ class StudySettings:
     samples: int = 200
     vf_sd: float = 0.05
     thickness_sd: float = 0.15e-3  # [m]
-    elements: int | None = 8
+    elements: int | None = FIT_ELEMENTS
     n_jobs: int = -1
     progress: bool = False
 
 
 def _pct(predicted, reference):
-    return 100.0 * (np.asarray(predicted) / np.asarray(reference) - 1.0)
+    return percent_error(np.asarray(predicted), np.asarray(reference))
 
 
 def _uncertainty(paths, overrides, s: StudySettings, reference):

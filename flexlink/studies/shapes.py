@@ -22,6 +22,7 @@ from flexlink.errors import InputError
 from flexlink.fe.model import FrameModel
 from flexlink.fe.pose import pose_model
 from flexlink.scene import Scene
+from flexlink.units import percent_error
 
 FAMILY_OF_SCENE = {"planar": IN_PLANE, "out-of-plane": OUT_OF_PLANE}  # "3d" holds both
 
@@ -125,7 +126,7 @@ def comparison_json(c: ShapeComparison, n_modes: int) -> dict:
     fa, fb = c.a.frequencies, c.b.frequencies
     return {"family": c.family, **sides, "mac": c.mac.tolist(),
             "pairs": [{"a": i + 1, "b": j + 1, "mac": m,
-                       "difference_pct": 100.0 * (fb[j] - fa[i]) / fa[i]}
+                       "difference_pct": percent_error(fb[j], fa[i])}
                       for i, j, m in c.pairs]}
 
 

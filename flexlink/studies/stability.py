@@ -23,6 +23,7 @@ from flexlink.fe.assembly import assemble, reduction
 from flexlink.fe.energy import lumped_mass
 from flexlink.errors import FlexlinkError, InputError, KinematicsError, NumericalError
 from flexlink.kinematics.fourbar import FourBar
+from flexlink.meshes import DEFAULT_ELEMENTS
 from flexlink.fe.model import JointSpec, LinkSpec, Section, Topology, build_model
 from flexlink.scene.plausibility import SHEAR_WARN, SLENDER_LIMIT, model_warnings, pose_warnings, timoshenko_drop
 from flexlink.fe.rigid import RIGID_RATIO, element_stiffness_scale
@@ -31,7 +32,7 @@ from flexlink.analysis.solve import DENSE_REFUSE, MECHANISM, solve_modes
 
 log = logging.getLogger(__name__)
 
-ELEMENTS = 16  # per link: fast, and every check is about the solver, not the mesh
+ELEMENTS = DEFAULT_ELEMENTS  # every check is about the solver, not the mesh
 
 
 @dataclasses.dataclass(frozen=True)
