@@ -92,6 +92,16 @@ def springs_of_joints(topology, joint_nodes: Mapping[str, Sequence[int]],
     return Springs(*arrays, tuple(labels))
 
 
+def spring_energies(springs: Springs, shapes: np.ndarray) -> np.ndarray:
+    """k (s_a - s_b)^2, twice the energy [J per unit shape^2] of each spring in each shape:
+    (springs, k) for ``shapes`` (n_dofs, k), s_b = 0 for a spring to ground; 0 for a rigid
+    spring (an exact constraint, which the shapes obey)."""
+    padded = np.vstack([shapes, np.zeros((1, shapes.shape[1]))])  # GROUND (-1) -> 0
+    finite = np.isfinite(springs.stiffness)
+    k = np.where(finite, springs.stiffness, 0.0)
+    return k[:, None] * (padded[springs.dof_a] - padded[springs.dof_b]) ** 2
+
+
 def joint_mass_entries(point_masses, dofs: Sequence[int]):
     """(rows, cols, values [kg]) of lumped joint masses ((node, mass) pairs) on the node
     DOFs ``dofs``: a diagonal entry per mass and DOF."""

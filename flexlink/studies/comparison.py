@@ -71,10 +71,6 @@ def run_study(paths, family: str, free: tuple[FreeParameter, ...] | None,
     """Everything the report needs for one family (see the module docstring). The model's
     warnings over the study's thousands of evaluations are summarised in one line at its end.
     Needs two scenes or more: it cross-validates by leaving each one out."""
-    if len(paths) < 2:
-        raise InputError(f"the calibration study needs at least two scenes (it cross-validates "
-                         f"leaving one out), got {len(paths)}", field="SCENES",
-                         expected="two or more scene files, or a folder of them")
     with logbook.quiet(f"the {family} calibration study"):
         return _study(tuple(str(p) for p in paths), family, free, settings)
 
@@ -92,6 +88,11 @@ def _study(paths: tuple[str, ...], family: str, free, s: StudySettings) -> dict:
     base = Problem(scenes=paths, parameters=free, reference="Ex", elements=s.elements,
                    fixed=(("model.family", family),))
     fe = dataclasses.replace(base, reference="FE")
+    ex, fe_ref = measured(base), measured(fe)  # refuses scenes it cannot fit, before any fit
+    if len(paths) < 2:
+        raise InputError(f"the calibration study needs at least two scenes (it cross-validates "
+                         f"leaving one out), got {len(paths)}", field="SCENES",
+                         expected="two or more scene files, or a folder of them")
     problems = ([base, fe] + leave_one_out_problems(base) + single_case_problems(base, "frequencies")
                 + single_case_problems(base, "ratios"))
     fits = fit_many(problems, s.starts, s.seed, s.n_jobs, s.progress)
@@ -101,7 +102,6 @@ def _study(paths: tuple[str, ...], family: str, free, s: StudySettings) -> dict:
     cv = cross_validation(base, fits[2:2 + n])
     per_case, ratio_fits = fits[2 + n:2 + 2 * n], fits[2 + 2 * n:]
 
-    ex, fe_ref = measured(base), measured(fe)
     nominal, nominal_why = predict_with_failures(base)
     ratio_best = np.array([f.predicted[0] / f.predicted[0, 0] for f in ratio_fits])
     calibrated = base.overrides(ex_fit.values)

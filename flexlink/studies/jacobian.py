@@ -42,7 +42,8 @@ from flexlink.analysis.families import (FamilyModes, elastic_modes, family_modes
 from flexlink.analysis.outofplane import tilt_stiffnesses
 from flexlink.errors import FlexlinkError
 from flexlink.fe.formulation import FORMULATIONS
-from flexlink.fe.model import GROUND, FrameModel, layout
+from flexlink.fe.joints import spring_energies
+from flexlink.fe.model import FrameModel, layout
 
 log = logging.getLogger(__name__)
 
@@ -114,11 +115,8 @@ def followers(load, values: np.ndarray, index: int, parts, elements: int | None)
 
 def _spring_forms(model: FrameModel, follows: np.ndarray, shapes: np.ndarray) -> np.ndarray:
     """sum over the finite springs marked in ``follows`` of k (s_a - s_b)^2, per shape."""
-    s = model.springs
-    use = follows & np.isfinite(s.stiffness)
-    padded = np.vstack([shapes, np.zeros((1, shapes.shape[1]))])  # GROUND (-1) -> 0
-    a, b = s.dof_a[use], np.where(s.dof_b[use] == GROUND, -1, s.dof_b[use])
-    return (s.stiffness[use][:, None] * (padded[a] - padded[b]) ** 2).sum(axis=0)
+    use = follows & np.isfinite(model.springs.stiffness)
+    return spring_energies(model.springs, shapes)[use].sum(axis=0)
 
 
 def _mass_forms(part: str, model: FrameModel, follows: np.ndarray, shapes: np.ndarray):
