@@ -1,7 +1,8 @@
 """flexlink: finite-element modal analysis of planar linkages with flexible beam links.
 
-Stages, one module each, plain data between them:
-materials -> kinematics -> model -> assembly -> solve -> report / export.
+Stages, one package each, plain data between them (docs/architecture.md):
+scene -> kinematics -> fe (model, formulations, assembly) -> analysis (solve, sweeps,
+families) -> studies -> output -> commands; errors, units, meshes, fileio at the base.
 
 The public names below are imported on first use, so ``import flexlink`` (and ``flexlink
 --help``) does not load scipy or scikit-fem until a stage is needed.

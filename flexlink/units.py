@@ -67,3 +67,34 @@ def parse_quantity(text: object, dimension: str, *, source: str | None = None,
         raise InputError(f"unknown unit {unit!r} in {text!r}{hint}", source=source, field=field,
                          expected=expected)
     return number * table[unit]
+
+
+def parse_range(text: object, dimension: str, *, source: str | None = None,
+                field: str | None = None) -> tuple[float, float]:
+    """``"LOW:HIGH"`` with units -> (low, high) in SI units of ``dimension``: each end a
+    quantity (``parse_quantity``), e.g. ``"100 mm:1 m"``; a low end written as a bare number
+    takes the high end's unit (``"0:3000 rev/min"``). The one range syntax of every option."""
+    parts = text.split(":") if isinstance(text, str) else []
+    if len(parts) != 2:
+        example = f"1:10 {next(iter(UNITS[dimension]))}"
+        raise InputError(f"cannot read {text!r} as a range", source=source, field=field,
+                         expected=f"LOW:HIGH with units, e.g. '{example}'")
+    low, high = (p.strip() for p in parts)
+    low_read, high_read = _QUANTITY.match(low), _QUANTITY.match(high)
+    if low_read and not low_read.group(2) and high_read and high_read.group(2):
+        low = f"{low} {high_read.group(2)}"
+    return (parse_quantity(low, dimension, source=source, field=field),
+            parse_quantity(high, dimension, source=source, field=field))
+
+
+RPM = UNITS["angular speed"]["rev/min"]  # [rad/s] per rev/min
+
+
+def rev_per_min(omega: float) -> float:
+    """An angular speed ``omega`` [rad/s] in rev/min."""
+    return omega / RPM
+
+
+def percent_error(computed, reference):
+    """100 (computed - reference) / reference [%]: scalars or arrays (element by element)."""
+    return 100.0 * (computed - reference) / reference

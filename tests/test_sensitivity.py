@@ -12,7 +12,7 @@ from flexlink.studies.sensitivity import Span, draws, end_points, interval, span
 
 CASES = Path(__file__).resolve().parent.parent / "cases"
 CASE2 = CASES / "case2.toml"
-ELEMENTS = 4  # direction checks only; the study itself runs at STUDY_ELEMENTS
+ELEMENTS = 4  # direction checks only; the study itself runs at meshes.DEFAULT_ELEMENTS
 
 
 def test_every_assumed_table2_input_has_a_range_and_a_reason():

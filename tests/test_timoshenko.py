@@ -93,7 +93,11 @@ def test_range_warning_quotes_the_exact_timoshenko_drop():
     exact = exact_timoshenko_drop(STEEL, length)
     assert exact == pytest.approx(elements, rel=1e-3)  # 64 elements, O(h^2)
     assert abs(timoshenko_drop(STEEL, length) - exact) > 10 * abs(elements - exact)
-    topology = Topology(links=(LinkSpec("bar", "P", "Q", STEEL, 4),),
-                        joints=(JointSpec("P", True, math.inf, 0.0), JointSpec("Q", True, math.inf, 0.0)))
-    [warning] = model_warnings(build_model(topology, {"P": (0.0, 0.0), "Q": (length, 0.0)}))
+    joints = (JointSpec("P", True, math.inf, 0.0), JointSpec("Q", True, math.inf, 0.0))
+    points = {"P": (0.0, 0.0), "Q": (length, 0.0)}
+    topology = Topology(links=(LinkSpec("bar", "P", "Q", eb, 4),), joints=joints)
+    [warning] = model_warnings(build_model(topology, points))
     assert f"{100 * exact:.3g} % lower (exact solution" in warning
+    # the same link with Timoshenko elements is not told to use them
+    topology = Topology(links=(LinkSpec("bar", "P", "Q", STEEL, 4),), joints=joints)
+    assert model_warnings(build_model(topology, points)) == []

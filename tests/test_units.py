@@ -74,3 +74,26 @@ def test_values_without_a_known_unit_are_refused(value, problem):
 def test_unit_of_another_dimension_is_named():
     with pytest.raises(InputError, match="'N/mm' is a unit of translational stiffness"):
         parse_quantity("3 N/mm", "modulus", source="s.toml", field="material.E")
+
+
+def test_range_syntax_is_one_for_every_option():
+    """LOW:HIGH, each end with a unit, or a bare low end taking the high end's unit."""
+    from flexlink.units import RPM, parse_range
+    assert parse_range("100 mm:1 m", "length") == (pytest.approx(0.1), 1.0)
+    assert parse_range("0:3000 rev/min", "angular speed") == (0.0, pytest.approx(3000 * RPM))
+    assert parse_range("1e4:1e9 N/m", "translational stiffness") == (1e4, 1e9)
+    for bad in ("3000 rev/min", "1:2:3 rad/s", "0:3000"):
+        with pytest.raises(InputError):
+            parse_range(bad, "angular speed", field="--speeds")
+
+
+def test_speed_and_percent_conversions():
+    """rev/min back and forth to the last bit or two (one rounding each way); the percent
+    error's sign and size."""
+    from flexlink.units import parse_quantity, percent_error, rev_per_min
+    for rpm in (60, 1000, 2000, 3000):
+        assert rev_per_min(parse_quantity(f"{rpm} rev/min", "angular speed")) == pytest.approx(
+            rpm, rel=4e-16)
+    assert rev_per_min(2 * math.pi) == pytest.approx(60.0, rel=1e-15)  # one turn per second
+    assert percent_error(110.0, 100.0) == pytest.approx(10.0, rel=1e-14)
+    assert percent_error(90.0, 100.0) == pytest.approx(-10.0, rel=1e-14)

@@ -22,7 +22,8 @@ import math
 import numpy as np
 
 from flexlink.fe.assembly import assemble, reduction
-from flexlink.fe.model import GROUND, FrameModel
+from flexlink.fe.joints import spring_energies
+from flexlink.fe.model import FrameModel
 
 DIRECTIONS = ("x", "y")
 DOMINANT = 0.5  # a part holding at least this strain-energy fraction names the mode
@@ -72,6 +73,7 @@ def energy_parts(model: FrameModel, shapes: np.ndarray) -> EnergyParts:
         kinetic.append(np.einsum("ik,ik->k", local, M @ local))
         axial.append(link.section.EA / h * (du**2).sum(axis=0))
     springs = model.springs
+    per_spring = spring_energies(springs, U)
     groups: dict[str, list[int]] = {}
     for i, label in enumerate(springs.labels):
         if math.isfinite(springs.stiffness[i]):  # rigid springs carry no energy
@@ -82,11 +84,8 @@ def energy_parts(model: FrameModel, shapes: np.ndarray) -> EnergyParts:
         mass_at.setdefault(joint, []).append((node, mass))
     for joint in list(groups) + [j for j in mass_at if j not in groups]:
         idx = np.array(groups.get(joint, []), dtype=int)
-        a, b, k = springs.dof_a[idx], springs.dof_b[idx], springs.stiffness[idx]
-        ua = U[a]
-        ub = np.where((b == GROUND)[:, None], 0.0, U[np.where(b == GROUND, 0, b)])
-        energy = k[:, None] * (ua - ub) ** 2
-        translational = a % 3 != 2
+        energy = per_spring[idx]
+        translational = springs.dof_a[idx] % 3 != 2
         names.append(joint)
         is_link.append(False)
         strain.append(energy.sum(axis=0))

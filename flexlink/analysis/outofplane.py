@@ -8,19 +8,16 @@ revolute joint transmits both out-of-plane bending moments).
 
 from __future__ import annotations
 
-import dataclasses
 import functools
 
 from flexlink.analysis.solve import (AUTO_DENSE_MAX, ModalResult, lowest_elastic,
                                      require_elastic, solve_modes)
 from flexlink.fe.assembly import reduction
+from flexlink.fe.formulation import OUT_OF_PLANE_FORMULATION
 from flexlink.fe.model import FrameModel
-from flexlink.fe.pose import pose_model
-from flexlink.fe.rigid import rigidified
 from flexlink.fe.strip import (StripProperties, assemble_out_of_plane,
                                assemble_out_of_plane_reduced_dense, link_strips,
-                               out_of_plane_eigen_scale, out_of_plane_springs,
-                               strip_stiffness_scale)
+                               out_of_plane_eigen_scale)
 from flexlink.scene import Scene
 
 
@@ -32,16 +29,9 @@ def tilt_stiffnesses(scene: Scene) -> dict[str, float]:
 def out_of_plane_model(topology, points, tilt: dict[str, float]
                        ) -> tuple[FrameModel, tuple[StripProperties, ...]]:
     """(model, its ``link_strips``): ``topology``'s mesh at joint ``points`` [m] with the
-    out-of-plane bearing springs (``tilt``: Ktilt [N m/rad] per joint)."""
-    planar = pose_model(topology, points, warn=False)  # its mesh; its springs are replaced
-    strips = link_strips(planar)
-    springs = out_of_plane_springs(planar, topology, tilt)
-    # very stiff out-of-plane springs become exact constraints too, judged against the strip
-    # elements' own stiffness (w: translational; rx, ry: rotational)
-    model = rigidified(dataclasses.replace(planar, springs=springs),
-                       scales=strip_stiffness_scale(planar, strips),
-                       rotational=springs.dof_a % 3 != 0)
-    return model, strips
+    out-of-plane joint springs (``tilt``: Ktilt [N m/rad] per joint)."""
+    model = OUT_OF_PLANE_FORMULATION.model(topology, points, tilt)
+    return model, link_strips(model)
 
 
 def out_of_plane_modes(topology, points, tilt: dict[str, float], n_modes: int,

@@ -33,6 +33,11 @@ DENSE_REFUSE = 20000  # DOFs; a dense solve would need > 3 GB and minutes: refus
 ELASTIC, MECHANISM = "elastic", "rigid-body/mechanism"
 LOST_LIMIT = 10.0  # eps lambda_max / lambda_1 beyond which the lowest mode shapes are lost
 SPARE_MODES = 4  # solved beyond the elastic modes asked for, for mechanism modes below them
+# The checks on every eigen answer (``check``, and ``stacked.stacked_modes`` for a stack):
+BACKWARD_TOL = 1e-10  # normwise backward error of an eigenpair
+ORTHOGONALITY_TOL = 1e-6  # max |V^T M V - I|
+ZERO_TOL = 1e-6  # modes below ZERO_TOL * lambda_ref are rigid-body/mechanism modes
+ROUNDOFF_WARN = 1e-6  # eps lambda_max / lambda_1 above this: warn (the default frequency tol)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -244,6 +249,28 @@ def eigen_solve(p: Prepared, k: int, method: str, lambda_ref: float):
     return vals, vecs
 
 
+def backward_errors(KV, MV, vecs, vals, norm_K, norm_M) -> np.ndarray:
+    """Normwise backward error ||K v - lambda M v|| / ((||K|| + |lambda| ||M||) ||v||) of each
+    eigenpair: vectors along axis -2 of ``vecs`` (n, k) or a stack (P, n, k), ``KV`` = K vecs,
+    ``MV`` = M vecs, ``vals`` (k,) or (P, k); ``norm_K``, ``norm_M``: 1-norms, scalars or (P,)."""
+    R = np.linalg.norm(KV - MV * vals[..., None, :], axis=-2)
+    scale = np.asarray(norm_K)[..., None] + np.abs(vals) * np.asarray(norm_M)[..., None]
+    return R / (scale * np.linalg.norm(vecs, axis=-2))
+
+
+def not_finite_message() -> str:
+    return "eigen solve returned NaN or infinite eigenvalues"
+
+
+def negative_message(value: float) -> str:
+    return (f"negative eigenvalue {value:.6g} rad^2/s^2: K is not positive semi-definite "
+            "(check spring and section inputs)")
+
+
+def orthogonality_message(value: float) -> str:
+    return f"eigenvectors lost M-orthogonality: max |V^T M V - I| = {value:.3g}"
+
+
 @dataclasses.dataclass(frozen=True)
 class Evidence:
     """Per mode: relative residual and normwise backward error; max |V^T M V - I|."""
@@ -255,14 +282,13 @@ class Evidence:
 
 
 def check(p: Prepared, vals, vecs, zero: float, method: str,
-          backward_tol: float = 1e-10) -> Evidence:
+          backward_tol: float = BACKWARD_TOL) -> Evidence:
     """Mass-normalise ``vecs`` and check the answer: NaN, eigenvalues below ``-zero``
     [rad^2/s^2], backward error above ``backward_tol``, lost M-orthogonality (NumericalError)."""
     if not np.all(np.isfinite(vals)):
-        raise NumericalError("eigen solve returned NaN or infinite eigenvalues")
+        raise NumericalError(not_finite_message())
     if vals.min() < -zero:
-        raise NumericalError(f"negative eigenvalue {vals.min():.6g} rad^2/s^2: K is not positive "
-                             "semi-definite (check spring and section inputs)")
+        raise NumericalError(negative_message(vals.min()))
     # eigh already mass-normalises and ARPACK's vectors are normalised the same way; redo it
     # so the checks below do not rest on either
     vecs = vecs / np.sqrt(np.einsum("ij,ij->j", vecs, p.Mr @ vecs))
@@ -270,13 +296,13 @@ def check(p: Prepared, vals, vecs, zero: float, method: str,
     R = np.linalg.norm(KV - MV * vals, axis=0)
     with np.errstate(divide="ignore", invalid="ignore"):
         residuals = R / np.linalg.norm(KV, axis=0)
-    backward = R / ((_norm1(p.Kr) + np.abs(vals) * _norm1(p.Mr)) * np.linalg.norm(vecs, axis=0))
+    backward = backward_errors(KV, MV, vecs, vals, _norm1(p.Kr), _norm1(p.Mr))
     ortho = float(np.abs(vecs.T @ MV - np.eye(vecs.shape[1])).max())
     if backward.max() > backward_tol:
         raise NumericalError(f"eigen backward error {backward.max():.3g} exceeds {backward_tol:g} "
                              f"(mode {int(backward.argmax()) + 1}, {method} solver)")
-    if ortho > 1e-6:
-        raise NumericalError(f"eigenvectors lost M-orthogonality: max |V^T M V - I| = {ortho:.3g}")
+    if ortho > ORTHOGONALITY_TOL:
+        raise NumericalError(orthogonality_message(ortho))
     return Evidence(vecs, residuals, backward, ortho)
 
 
@@ -319,7 +345,7 @@ def label(vals, zero: float, lambda_ref: float, zero_tol: float, refined: bool,
                 "elements per link, or the energy refinement (analysis.analyze does by default)")
         elastic = vals[vals >= zero]
         # warn where the round-off could reach the default frequency tolerance (1e-6)
-        if elastic.size and np.finfo(float).eps * lambda_max / elastic[0] > 1e-6:
+        if elastic.size and np.finfo(float).eps * lambda_max / elastic[0] > ROUNDOFF_WARN:
             log.warning("eigenvalues carry about %.1g relative round-off (eps lambda_max / "
                         "lambda_1): the mesh is finer than double precision supports without "
                         "the energy refinement", np.finfo(float).eps * lambda_max / elastic[0])
@@ -327,7 +353,7 @@ def label(vals, zero: float, lambda_ref: float, zero_tol: float, refined: bool,
 
 
 def solve_modes(K, M, n_modes: int, *, T=None, lambda_ref: float, method: str = "auto",
-                zero_tol: float = 1e-6, backward_tol: float = 1e-10, energy=None,
+                zero_tol: float = ZERO_TOL, backward_tol: float = BACKWARD_TOL, energy=None,
                 reduced: bool = False) -> ModalResult:
     """Lowest ``n_modes`` modes of (K, M), optionally reduced by u = T q: ``prepare``,
     ``eigen_solve``, ``check``, then (optionally) ``refined_eigenvalues`` and ``label``.
@@ -400,11 +426,7 @@ def _refuse_beyond_the_model(solve, n_elastic: int, probe: int) -> None:
         probe *= 2
     available = low.n_dofs - low.condensed - n_mechanism
     if n_elastic > available:
-        raise InputError(
-            f"{n_elastic} elastic modes asked for, but the model has only {available} "
-            f"({low.n_dofs} DOFs, {n_mechanism} of them rigid-body/mechanism modes"
-            + (f", {low.condensed} massless and condensed" if low.condensed else "") + ")",
-            field="number of modes (-n)", expected=f"at most {available}, or a finer mesh (-e)")
+        raise _too_few_elastic(n_elastic, available, low)
 
 
 def require_elastic(result: ModalResult, n_elastic: int) -> ModalResult:
@@ -412,9 +434,15 @@ def require_elastic(result: ModalResult, n_elastic: int) -> ModalResult:
     model has (its DOFs less its rigid-body/mechanism modes)."""
     found = len(result.elastic)
     if found < n_elastic:
-        raise InputError(
-            f"{n_elastic} elastic modes asked for, but the model has only {found} ({result.n_dofs} "
-            f"DOFs, {result.kinds.count(MECHANISM)} of them rigid-body/mechanism modes"
-            + (f", {result.condensed} massless and condensed" if result.condensed else "") + ")",
-            field="number of modes (-n)", expected=f"at most {found}, or a finer mesh (-e)")
+        raise _too_few_elastic(n_elastic, found, result)
     return result
+
+
+def _too_few_elastic(asked: int, available: int, result: ModalResult) -> InputError:
+    """The refusal of ``asked`` elastic modes from a model with ``available``, which
+    ``result`` (a solve of it) describes."""
+    return InputError(
+        f"{asked} elastic modes asked for, but the model has only {available} ({result.n_dofs} "
+        f"DOFs, {result.kinds.count(MECHANISM)} of them rigid-body/mechanism modes"
+        + (f", {result.condensed} massless and condensed" if result.condensed else "") + ")",
+        field="number of modes (-n)", expected=f"at most {available}, or a finer mesh (-e)")

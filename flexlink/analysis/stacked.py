@@ -20,14 +20,12 @@ import logging
 
 import numpy as np
 
-from flexlink.analysis.solve import roundoff_floor
+from flexlink.analysis.solve import (BACKWARD_TOL, ORTHOGONALITY_TOL, ROUNDOFF_WARN, ZERO_TOL,
+                                     backward_errors, negative_message, not_finite_message,
+                                     orthogonality_message, roundoff_floor)
 from flexlink.errors import NumericalError
 
 log = logging.getLogger(__name__)
-
-BACKWARD_TOL = 1e-10  # as solve.solve_modes
-ORTHOGONALITY_TOL = 1e-6
-ZERO_TOL = 1e-6  # modes below ZERO_TOL * lambda_ref are rigid-body/mechanism modes
 
 
 @dataclasses.dataclass(frozen=True)
@@ -72,27 +70,21 @@ def stacked_modes(K: np.ndarray, M: np.ndarray, lambda_ref: np.ndarray, checked:
     lambda_max = diagonal.max(axis=1)
     zero = np.maximum(ZERO_TOL * lambda_ref, roundoff_floor(lambda_max))
     if not np.all(np.isfinite(vals)):
-        raise _fail("eigen solve returned NaN or infinite eigenvalues",
-                    ~np.isfinite(vals).all(axis=1))
+        raise _fail(not_finite_message(), ~np.isfinite(vals).all(axis=1))
     negative = vals[:, 0] < -zero
     if negative.any():
-        raise _fail(f"negative eigenvalue {vals[:, 0].min():.6g} rad^2/s^2: K is not positive "
-                    "semi-definite (check spring and section inputs)", negative)
+        raise _fail(negative_message(vals[:, 0].min()), negative)
     k = min(checked, vals.shape[1])
     x, lam = X[:, :, :k], vals[:, :k]
     KX, MX = K @ x, M @ x
-    R = np.linalg.norm(KX - MX * lam[:, None, :], axis=1)
-    norm_K = np.abs(K).sum(axis=1).max(axis=1)
-    norm_M = np.abs(M).sum(axis=1).max(axis=1)
-    backward = R / ((norm_K[:, None] + np.abs(lam) * norm_M[:, None])
-                    * np.linalg.norm(x, axis=1))
+    backward = backward_errors(KX, MX, x, lam, np.abs(K).sum(axis=1).max(axis=1),
+                               np.abs(M).sum(axis=1).max(axis=1))
     if backward.max() > BACKWARD_TOL:
         raise _fail(f"eigen backward error {backward.max():.3g} exceeds {BACKWARD_TOL:g}",
                     backward.max(axis=1) > BACKWARD_TOL)
     ortho = np.abs(x.transpose(0, 2, 1) @ MX - np.eye(k)).max(axis=(1, 2))
     if ortho.max() > ORTHOGONALITY_TOL:
-        raise _fail(f"eigenvectors lost M-orthogonality: max |V^T M V - I| = {ortho.max():.3g}",
-                    ortho > ORTHOGONALITY_TOL)
+        raise _fail(orthogonality_message(ortho.max()), ortho > ORTHOGONALITY_TOL)
     unsure = (lam >= ZERO_TOL * lambda_ref[:, None]) & (lam < zero[:, None])
     if unsure.any():
         raise _fail("a mode lies below the round-off floor of this mesh (100 eps lambda_max), "
@@ -100,8 +92,9 @@ def stacked_modes(K: np.ndarray, M: np.ndarray, lambda_ref: np.ndarray, checked:
                     unsure.any(axis=1))
     elastic = np.where(lam >= zero[:, None], lam, np.inf).min(axis=1)
     roundoff = np.finfo(float).eps * lambda_max / elastic
-    if roundoff.max() > 1e-6:
+    if roundoff.max() > ROUNDOFF_WARN:
         log.warning("eigenvalues carry up to %.1g relative round-off (eps lambda_max / "
-                    "lambda_1) at %d of %d poses", roundoff.max(), int((roundoff > 1e-6).sum()),
+                    "lambda_1) at %d of %d poses", roundoff.max(),
+                    int((roundoff > ROUNDOFF_WARN).sum()),
                     len(roundoff))
     return StackedModes(eigenvalues=vals, vectors=X, zero=zero)

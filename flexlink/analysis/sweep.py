@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import dataclasses
 import functools
+import logging
 import math
 from collections.abc import Iterable, Mapping
 
@@ -25,23 +26,27 @@ from flexlink.fe.assembly import (assemble, dense_slots, dense_sum, placed_link_
 from flexlink.fe.assembly import reduction as rigid_reduction
 from flexlink.fe.craig_bampton import CUTOFF, CraigBamptonPlan, fixed_interface_bound
 from flexlink.fe.truncation import CONVERGED, corrected
-from flexlink.errors import InputError
 from flexlink.fe.beams import link_entries
 from flexlink.fe.model import FrameModel, Topology, layout
 from flexlink.fe.pose import pose_model
 from flexlink.analysis.solve import (DENSE_LIMIT, DENSE_REFUSE, ELASTIC, SPARE_MODES,
                                      lowest_elastic, solve_modes)
 from flexlink.analysis.stacked import stacked_modes
+from flexlink.errors import InputError
 from flexlink.parallel import run_tasks, workers
+
+log = logging.getLogger(__name__)
 
 
 @dataclasses.dataclass(frozen=True)
 class SweepResult:
     """frequencies[i, j]: j-th elastic natural frequency [Hz] at pose i (NaN if fewer found);
-    mechanism_counts[i]: rigid-body/mechanism modes found at pose i."""
+    mechanism_counts[i]: rigid-body/mechanism modes found at pose i; note: why the sweep
+    solved the full model instead of the reduction asked for (None: as asked)."""
 
     frequencies: np.ndarray
     mechanism_counts: np.ndarray
+    note: str | None = None  # why the reduction asked for was not used, if it was not
 
 
 # A node's rotation R = [[c, s, 0], [-s, c, 0], [0, 0, 1]] (assembly.node_rotation), each entry as
@@ -148,6 +153,18 @@ def _lowest_elastic(solve, n_modes: int, expected_mechanisms: int):
 REDUCTIONS = (None, "craig-bampton")
 
 
+def craig_bampton_refusal(topology: Topology) -> str | None:
+    """Why the Craig-Bampton reduction cannot take ``topology``'s links, None if it can. It
+    reduces one unit chain per mesh size and scales it to each link, which is exact for
+    Euler-Bernoulli elements only: a Timoshenko element's shear parameter 12 EI / (k G A h^2)
+    changes with the element length h, so the scaled chain is another beam."""
+    others = sorted({spec.section.beam for spec in topology.links} - {"euler-bernoulli"})
+    if not others:
+        return None
+    return (f"the Craig-Bampton reduction takes Euler-Bernoulli links only, not {others[0]} "
+            "ones: the full model was solved at every pose")
+
+
 def modal_sweep(topology: Topology, poses: Iterable[Mapping[str, tuple[float, float]]],
                 n_modes: int, method: str = "auto", progress=None,
                 reduction: str | None = None) -> SweepResult:
@@ -158,6 +175,10 @@ def modal_sweep(topology: Topology, poses: Iterable[Mapping[str, tuple[float, fl
     end nodes and fixed-interface modes (``craig_bampton.py``; dense solve, ``method`` unused)."""
     if reduction not in REDUCTIONS:
         raise ValueError(f"unknown reduction {reduction!r}: one of {REDUCTIONS}")
+    note = craig_bampton_refusal(topology) if reduction == "craig-bampton" else None
+    if note:
+        log.info("%s", note)
+        reduction = None
     poses = list(poses)
     iterator = progress(poses) if progress else poses
     freqs = np.full((len(poses), n_modes), np.nan)
@@ -187,7 +208,7 @@ def modal_sweep(topology: Topology, poses: Iterable[Mapping[str, tuple[float, fl
         elastic, expected = _lowest_elastic(solve, n_modes, expected)
         freqs[i, :len(elastic)] = elastic
         mechanism[i] = expected
-    return SweepResult(frequencies=freqs, mechanism_counts=mechanism)
+    return SweepResult(frequencies=freqs, mechanism_counts=mechanism, note=note)
 
 
 def pose_geometry(topology: Topology, poses) -> tuple[np.ndarray, np.ndarray]:
@@ -226,9 +247,8 @@ def _craig_bampton_sweep(topology: Topology, poses, n_modes: int, freqs: np.ndar
     truncation correction did not converge) is solved again, with the others like it, on a
     basis rebuilt for the largest of them. Every pose's answer thus comes from a basis that
     fits it."""
-    if any(spec.section.beam != "euler-bernoulli" for spec in topology.links):
-        raise InputError("the Craig-Bampton reduction is built for Euler-Bernoulli links only",
-                         field="model.beam", expected="'euler-bernoulli', or no reduction")
+    if craig_bampton_refusal(topology):  # modal_sweep solves those on the full model
+        raise AssertionError(craig_bampton_refusal(topology))
     poses = list(poses)
     if not poses:
         return
@@ -322,4 +342,5 @@ def parallel_modal_sweep(topology: Topology, poses: Iterable[Mapping[str, tuple[
     parts = run_tasks(modal_sweep, [(topology, [poses[i] for i in chunk], n_modes, method, None,
                                      reduction) for chunk in chunks], n_jobs=n_jobs)
     return SweepResult(frequencies=np.concatenate([p.frequencies for p in parts]),
-                       mechanism_counts=np.concatenate([p.mechanism_counts for p in parts]))
+                       mechanism_counts=np.concatenate([p.mechanism_counts for p in parts]),
+                       note=parts[0].note if parts else None)

@@ -3,6 +3,8 @@ Monte Carlo samples and spreads, mesh and workers."""
 
 import click
 
+from flexlink.meshes import FIT_ELEMENTS
+
 
 def settings_options(command):
     """Decorate a command with --starts, --seed, --samples, --vf-sd, --thickness-sd, -e and
@@ -20,7 +22,7 @@ def settings_options(command):
                          help="Standard deviation of the fibre volume fraction."),
             click.option("--thickness-sd", default="0.15 mm", show_default=True,
                          help="Standard deviation of the laminate thickness, with unit."),
-            click.option("-e", "--elements", default=8, show_default=True,
+            click.option("-e", "--elements", default=FIT_ELEMENTS, show_default=True,
                          type=click.IntRange(1, 10000),
                          help="Elements per link in every evaluation."),
             click.option("--jobs", default=-1, show_default=True, type=int,

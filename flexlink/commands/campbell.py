@@ -9,21 +9,10 @@ from flexlink.commands._options import dumps, json_option, map_parallel_options,
 
 
 def parse_speeds(text: str) -> tuple[float, float]:
-    """"LOW:HIGH UNIT" (or "LOW UNIT:HIGH UNIT") -> (low, high) [rad/s]."""
-    from flexlink.errors import InputError
-    from flexlink.units import parse_quantity
+    """"LOW:HIGH UNIT" (or "LOW UNIT:HIGH UNIT") -> (low, high) [rad/s] (``units.parse_range``)."""
+    from flexlink.units import parse_range
 
-    parts = text.split(":")
-    if len(parts) != 2:
-        raise InputError(f"cannot read {text!r} as a speed range", field="--speeds",
-                         expected="LOW:HIGH with a unit, e.g. '0:3000 rev/min'")
-    low, high = (p.strip() for p in parts)
-    unit = high.split(None, 1)[1] if len(high.split(None, 1)) == 2 else ""
-    if low and not any(c.isalpha() for c in low.lstrip("eE+-.0123456789")) and unit:
-        low = f"{low} {unit}"
-    read = [parse_quantity(v, "angular speed", source="command line", field="--speeds")
-            for v in (low, high)]
-    return read[0], read[1]
+    return parse_range(text, "angular speed", source="command line", field="--speeds")
 
 
 @click.command("campbell")
@@ -58,6 +47,7 @@ def command(scene_path, speeds, n_modes, poses, elements, tol, margin, harmonics
     from flexlink.scene import load_scene
     from flexlink.studies.campbell import (RPM, bands, campbell_json, critical_csv,
                                            critical_speeds, nearest_margin, plot_campbell)
+    from flexlink.analysis.families import in_plane_only_note
     from flexlink.studies.tracking import (events_json, periodicity_json, reseeds_json,
                                            tracked_map, unsampled_json, unsampled_note,
                                            vanishing_lines)
@@ -88,6 +78,9 @@ def command(scene_path, speeds, n_modes, poses, elements, tol, margin, harmonics
                 "unsampled_dead_centres_deg": unsampled_json(result),
                 "unsampled_note": unsampled_note(result),
                 "files": [str(p) for p in paths]}
+    note = in_plane_only_note(scene, "this diagram")
+    if note:  # the diagram holds the in-plane modes only
+        document["note"] = note
     write_atomic(paths[2], dumps(document))
     if as_json:
         click.echo(dumps(document))
@@ -96,6 +89,8 @@ def command(scene_path, speeds, n_modes, poses, elements, tol, margin, harmonics
                f"{window[0] / RPM:g}-{window[1] / RPM:g} rev/min, harmonics 1..{harmonics}, "
                f"margin {100 * margin:g} %")
     click.echo(mesh.describe())
+    if note:
+        click.echo(note)
     click.echo(f"{'mode':>4} {'band [Hz]':>19}  label")
     for b in document["bands"]:
         click.echo(f"{b['mode']:>4} {b['min_Hz']:>9.2f}-{b['max_Hz']:<9.2f}  {b['label'] or ''}")

@@ -42,6 +42,7 @@ def command(scene_path, n_modes, poses, elements, tol, speed, margin, harmonics,
     --out), the poses where the transmission angle is 90 deg, and the crank harmonics that
     come within --margin of a natural frequency anywhere in the cycle. Writes cycle.csv,
     cycle.png and cycle.json to OUT/<scene>/."""
+    from flexlink.analysis.families import in_plane_only_note
     from flexlink.studies.cycle import (modal_map, modal_map_csv, plot_map, resonance_speed,
                                         resonances, runs)
     from flexlink.studies.campbell import nearest_harmonic
@@ -52,7 +53,7 @@ def command(scene_path, n_modes, poses, elements, tol, speed, margin, harmonics,
     from flexlink.fileio import prepare_out_dir, write_atomic
     from flexlink.parallel import use_scheduler
     from flexlink.scene import load_scene
-    from flexlink.units import parse_quantity
+    from flexlink.units import parse_quantity, rev_per_min
     from ._progress import progress_bar
     from ._written import announce, scene_folders
 
@@ -86,9 +87,9 @@ def command(scene_path, n_modes, poses, elements, tol, speed, margin, harmonics,
         "mu90_crank_deg": {k: [math.degrees(a) for a in v] for k, v in result.mu90.items()},
         "mechanism_modes_max": int(result.mechanism_counts.max()),
         "mesh": mesh.as_dict(),
-        "crank_speed_rev_per_min": None if omega is None else omega * 60 / (2 * math.pi),
+        "crank_speed_rev_per_min": None if omega is None else rev_per_min(omega),
         "resonance_check": {"speed_rev_per_min": None if check_speed is None
-                                                 else check_speed * 60 / (2 * math.pi),
+                                                 else rev_per_min(check_speed),
                             "note": check_note},
         "margin": margin,
         "resonances": [{"harmonic": h.harmonic, "harmonic_Hz": h.frequency, "mode": h.mode,
@@ -108,12 +109,17 @@ def command(scene_path, n_modes, poses, elements, tol, speed, margin, harmonics,
         "files": [str(p) for p in paths],
         "assumptions": [f"{a.field}: {a.note}" for a in scene.assumptions],
     }
+    note = result.note if not track else in_plane_only_note(scene, "this map")
+    if note:  # the map is not quite what was asked for: say what it is
+        document["note"] = note
     write_atomic(paths[2], dumps(document))
     if as_json:
         click.echo(dumps(document))
         return
     click.echo(f"{scene.name}: first {n_modes} elastic modes over {poses} crank angles")
     click.echo(mesh.describe())
+    if note:
+        click.echo(note)
     if scene.synthesis:
         click.echo(f"synthesis {scene.synthesis['method']}: " + ", ".join(
             f"{k} {1e3 * v:.3f} mm" for k, v in scene.synthesis["lengths_m"].items()))

@@ -40,6 +40,7 @@ def command(scenes, n_modes, elements, tol, method, subdivide, phases, amplitude
     export.json), and with several scenes the combined list in OUT/export.json."""
     from tqdm import tqdm
 
+    from flexlink.analysis.families import in_plane_only_note
     from flexlink.analysis.mesh import choose_mesh
     from flexlink.analysis.modal import analyze
     from flexlink.errors import FlexlinkError
@@ -72,6 +73,9 @@ def command(scenes, n_modes, elements, tol, method, subdivide, phases, amplitude
             summary = case_summary(result, n_modes)
             case = {"scene": scene.name, "file": str(path), "mesh": mesh.as_dict(),
                     "frequencies_Hz": [row["computed_Hz"] for row in summary["modes"]]}
+            note = in_plane_only_note(scene, "the export")
+            if note:  # the export holds the in-plane modes only
+                case["note"] = note
             case["files"] = export_case(result, summary, out, settings,
                                         record=_scene_record(document, case))
         except FlexlinkError as exc:  # the other scenes go on
@@ -89,6 +93,8 @@ def command(scenes, n_modes, elements, tol, method, subdivide, phases, amplitude
         finish(failures, len(files))
         return
     for case, mesh in zip(cases, meshes):
+        if "note" in case:
+            click.echo(case["note"])
         f = case["files"]
         click.echo(f"{case['scene']}: {counted(len(case['frequencies_Hz']), 'mode')} -> "
                    f"{f['folder']}/  ({len(f['vtu'])} .vtu, {len(f['pvd'])} .pvd with "

@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import math
-
 import click
 
 from flexlink.commands._failures import names_scene
@@ -28,6 +26,7 @@ def command(scene_path, poses, speed, as_json, out_dir):
     from flexlink.fileio import prepare_out_dir, write_atomic
     from flexlink.output.kinematics_report import family_text, motion_csv, motion_text
     from flexlink.scene import load_scene
+    from flexlink.units import rev_per_min
     from flexlink.studies.kinematics import family_studies, motion_study
     from flexlink.units import parse_quantity
     from ._progress import progress_bar
@@ -41,7 +40,7 @@ def command(scene_path, poses, speed, as_json, out_dir):
     members = family_studies(scene_path, scene, poses, omega)
     paths = [folder / "kinematics.csv", folder / "kinematics.json"]
     document = {"command": "kinematics", "poses": poses,
-                "crank_speed_rev_per_min": omega * 60 / (2 * math.pi) if omega else None,
+                "crank_speed_rev_per_min": rev_per_min(omega) if omega else None,
                 **doc, "family": members, "files": [str(p) for p in paths],
                 "assumptions": [f"{a.field}: {a.note}" for a in scene.assumptions]}
     write_atomic(paths[0], motion_csv(cycle, omega))

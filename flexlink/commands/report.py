@@ -38,6 +38,7 @@ def command(scenes, n_modes, elements, tol, method, cycle_poses, sensitivity, sa
     import plotly.offline
     from tqdm import tqdm
 
+    from flexlink.analysis.families import in_plane_only_note
     from flexlink.errors import FlexlinkError
     from flexlink.fileio import prepare_out_dir, write_atomic
     from flexlink.output.counts import counted
@@ -65,7 +66,10 @@ def command(scenes, n_modes, elements, tol, method, cycle_poses, sensitivity, sa
         for path in bar:
             try:
                 scene, mesh, result = analysed_scene(path, n_modes, elements, tol, method)
-                summary = {**case_summary(result, n_modes), "warnings": list(result.warnings)}
+                note = in_plane_only_note(scene, "this page")  # shown with the warnings
+                summary = {**case_summary(result, n_modes),
+                           "warnings": list(result.warnings) + ([note] if note else []),
+                           **({"note": note} if note else {})}
                 if sensitivity:
                     summary["sensitivity"] = scene_sensitivity(scene, n_modes, samples, seed,
                                                                jobs, as_json)
@@ -98,7 +102,10 @@ def command(scenes, n_modes, elements, tol, method, cycle_poses, sensitivity, sa
                 "scenes": [{"scene": p["summary"]["scene"], "file": p["summary"]["file"],
                             "mesh": p["mesh"]["elements_per_link"],
                             "frequencies_Hz": [r["computed_Hz"] for r in p["summary"]["modes"]],
-                            "cycle_map": p["cycle"] is not None and "unavailable" not in p["cycle"]}
+                            "cycle_map": p["cycle"] is not None and "unavailable" not in p["cycle"],
+                            **({"note": p["summary"]["note"]} if "note" in p["summary"] else {}),
+                            **({"cycle_map_note": p["cycle"]["note"]}
+                               if p["cycle"] and "note" in p["cycle"] else {})}
                            for p in pages],
                 "files": [str(report)] + [str(f) for f in written], "failures": failures}
     if as_json:

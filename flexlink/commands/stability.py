@@ -47,7 +47,7 @@ def command(scene_path, slow, as_json, out_dir):
         click.echo(dumps(document))
     else:
         for c in checks:
-            click.echo(f"[{'PASS' if c.passed else 'FAIL'}] {c.id:<5} {c.name}\n"
+            click.echo(f"[{'PASS' if c.passed else 'FAIL'}] {c.id}: {c.name}\n"
                        f"        expected: {c.expected}\n        got:      {c.got}")
         click.echo(f"\n{document['passed']} of {document['total']} checks passed"
                    + ("" if slow else " (slow checks skipped: --slow)"))

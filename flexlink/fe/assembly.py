@@ -17,6 +17,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from flexlink.fe.beams import link_entries
+from flexlink.fe.joints import joint_mass_entries
 from flexlink.fe.model import GROUND, FrameModel
 
 
@@ -96,10 +97,7 @@ def springs_stiffness_entries(springs):
 
 def point_mass_entries(model: FrameModel):
     """(rows, cols, values) of the lumped joint masses (translational DOFs only)."""
-    nodes = np.array([p[0] for p in model.point_masses], dtype=np.int64)
-    mass = np.array([p[1] for p in model.point_masses], dtype=float)
-    idx = np.concatenate([3 * nodes, 3 * nodes + 1])
-    return idx, idx, np.concatenate([mass, mass])
+    return joint_mass_entries(model.point_masses, (0, 1))
 
 
 def assemble(model: FrameModel) -> tuple[sp.csr_matrix, sp.csr_matrix]:

@@ -19,7 +19,8 @@ import math
 import numpy as np
 import scipy.sparse as sp
 
-from flexlink.fe.model import GROUND, FrameModel
+from flexlink.fe.joints import spring_energies
+from flexlink.fe.model import FrameModel
 from flexlink.fe.timoshenko import twice_bending_energy
 
 
@@ -46,12 +47,8 @@ def twice_strain_energy(model: FrameModel, shapes: np.ndarray) -> np.ndarray:
         a, b = rz[:-1] - chord, rz[1:] - chord
         total += (s.EA / h * (stretch**2).sum(axis=0)
                   + bending_energy(s, h, a, b).sum(axis=0))
-    springs = model.springs
-    finite = np.isfinite(springs.stiffness)  # rigid springs carry no energy: u satisfies them
-    da = U[springs.dof_a[finite]]
-    to_ground = springs.dof_b[finite] == GROUND
-    db = np.where(to_ground[:, None], 0.0, U[np.where(to_ground, 0, springs.dof_b[finite])])
-    total += (springs.stiffness[finite][:, None] * (da - db) ** 2).sum(axis=0)
+    finite = np.isfinite(model.springs.stiffness)  # rigid springs carry no energy
+    total += spring_energies(model.springs, U)[finite].sum(axis=0)
     return total
 
 

@@ -4,15 +4,11 @@ Plain data only; no matrices here beyond each link's local ones (see ``link.py``
 
 Global DOFs: node i owns 3i (ux [m]), 3i+1 (uy [m]), 3i+2 (rz [rad]). Every link has its own
 chain of nodes, so two links meeting at a joint have two coincident nodes; the joint joins
-them through explicit spring elements:
-  - a pin (or bearing) between two links: a translational spring Kt [N/m] in x and in y and a
-    torsional spring Kr [N m/rad] between the two end nodes;
-  - a ground bearing: the same springs between the link's node and the ground; a ``welded``
-    ground joint (links fixed to each other, turning together in one bearing, e.g. a
-    triangular rocker built from two beams) has the bearing springs on its first link's node
-    only and ties the other links' nodes to that node rigidly;
-  - a drive: a torsional spring between the driven link's node and the ground, in parallel with
-    its bearing's Kr.
+them through explicit spring elements (``joints.py``, shared with the out-of-plane model): a
+translational spring Kt [N/m] in x and in y and a torsional spring Kr [N m/rad] per pin or
+bearing, a rigid weld between the links of a ``welded`` ground joint (one bearing on its
+first link's node), and the drive: a torsional spring between the driven link's node and the
+ground, in parallel with its bearing's Kr.
 A stiffness of ``inf`` ("rigid" in a scene file) is an exact constraint, not a penalty: the
 two DOFs are merged (or the DOF is fixed, for ground) by ``assembly.reduction``.
 """
@@ -27,10 +23,14 @@ import numpy as np
 
 from flexlink.errors import InputError
 from flexlink.fe.beams import THEORIES, beam_matrices
+from flexlink.fe.joints import GROUND as GROUND  # the models' name for the ground DOF
+from flexlink.fe.joints import JointDofs, Springs, springs_of_joints
 
 BENDINGS = ("edgewise", "flatwise")
 DOF_NAMES = ("ux", "uy", "rz")
-GROUND = -1
+# in-plane joints: Kt on ux and uy, Kr on rz; the drive holds rz
+IN_PLANE_JOINTS = JointDofs(bearing_labels=("Kt x", "Kt y", "Kr"), weld_labels=("x", "y", "r"),
+                            drive_dof=2)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -192,16 +192,6 @@ class LinkMesh:
 
 
 @dataclasses.dataclass(frozen=True)
-class Springs:
-    """Spring elements between global DOFs ``dof_a`` and ``dof_b`` (GROUND = -1): arrays."""
-
-    dof_a: np.ndarray
-    dof_b: np.ndarray
-    stiffness: np.ndarray
-    labels: tuple[str, ...]
-
-
-@dataclasses.dataclass(frozen=True)
 class FrameModel:
     """Everything assembly needs at one pose."""
 
@@ -227,6 +217,11 @@ class _Layout:
     joint_nodes: dict[str, tuple[int, ...]]
 
 
+def in_plane_stiffness(joint: JointSpec) -> tuple[float, float, float]:
+    """A joint's bearing stiffness on (ux, uy, rz): Kt, Kt [N/m], Kr [N m/rad]."""
+    return joint.Kt, joint.Kt, joint.Kr
+
+
 def _layout(topology: Topology) -> _Layout:
     joint_nodes = {j.name: [] for j in topology.joints}
     first_nodes, next_node = [], 0
@@ -240,53 +235,17 @@ def _layout(topology: Topology) -> _Layout:
         joint_nodes[spec.end].append(next_node + spec.elements)
         next_node += spec.elements + 1
 
-    dof_a, dof_b, k, labels = [], [], [], []
-
-    def spring(a_node, b_node, dof, stiffness, label):
-        if stiffness == 0.0:
-            return
-        dof_a.append(3 * a_node + dof)
-        dof_b.append(GROUND if b_node == GROUND else 3 * b_node + dof)
-        k.append(stiffness)
-        labels.append(label)
-
     point_masses = []
     for joint in topology.joints:
         attached = joint_nodes[joint.name]
         if not attached:
             raise InputError(f"joint {joint.name!r} has no link attached", field=f"joints.{joint.name}")
-        partners = [GROUND] * len(attached) if joint.ground else [attached[0]] * len(attached)
-        if joint.welded:
-            for node in attached[1:]:
-                for dof, name in ((0, "x"), (1, "y"), (2, "r")):
-                    spring(node, attached[0], dof, math.inf, f"{joint.name} weld {name}")
-            attached, partners = attached[:1], partners[:1]
-        for node, other in zip(attached, partners):
-            if node == other:
-                continue
-            for dof, name in ((0, "x"), (1, "y")):
-                spring(node, other, dof, joint.Kt, f"{joint.name} Kt {name}")
-            spring(node, other, 2, joint.Kr, f"{joint.name} Kr")
         if joint.mass > 0:
             point_masses.append((attached[0], joint.mass))
-    if topology.drive is not None:
-        drive = topology.drive
-        link_index = next((i for i, s in enumerate(topology.links) if s.name == drive.link), None)
-        if link_index is None:
-            raise InputError(f"drive names link {drive.link!r}, which is not defined", field="drive.link")
-        spec = topology.links[link_index]
-        if drive.joint not in (spec.start, spec.end):
-            raise InputError(f"drive joint {drive.joint!r} is not an end of link {drive.link!r}",
-                             field="drive.joint")
-        node = first_nodes[link_index] + (0 if drive.joint == spec.start else spec.elements)
-        spring(node, GROUND, 2, drive.stiffness, f"drive {drive.link}@{drive.joint}")
-
-    arrays = (np.asarray(dof_a, dtype=np.int64), np.asarray(dof_b, dtype=np.int64),
-              np.asarray(k, dtype=float))
-    for array in arrays:
-        array.flags.writeable = False  # shared by every model of this topology
+    springs = springs_of_joints(topology, joint_nodes, first_nodes, IN_PLANE_JOINTS,
+                                in_plane_stiffness)
     return _Layout(first_nodes=tuple(first_nodes), n_nodes=next_node,
-                   springs=Springs(*arrays, tuple(labels)), point_masses=tuple(point_masses),
+                   springs=springs, point_masses=tuple(point_masses),
                    joint_nodes={name: tuple(v) for name, v in joint_nodes.items()})
 
 

@@ -23,8 +23,9 @@ of the section (rotary inertia per unit length rho Ip), and the thin-strip St Ve
 J = b t^3/3 (1 - 0.63 t/b) (Roark, rectangle, b >= t). G is the laminate's in-plane shear
 modulus, which governs the twisting of a thin strip.
 
-Joints (bearing springs, between coincident link-end nodes or to ground, exactly as in the
-planar model): the translational stiffness Kt [N/m] resists w; a tilt stiffness Ktilt
+Joints (bearing springs, between coincident link-end nodes or to ground, and the weld of a
+welded ground joint, built by ``joints.springs_of_joints`` as for the planar model): the
+translational stiffness Kt [N/m] resists w; a tilt stiffness Ktilt
 [N m/rad] resists rx and ry (a pin or bearing whose axis is the plane normal resists being
 tilted out of the plane). Scene keys: ``joints.Ktilt`` (or ``joints.<J>.Ktilt``), default
 "rigid" (an ideal revolute joint transmits both bending moments); "rigid" is an exact
@@ -40,9 +41,13 @@ import numpy as np
 import scipy.sparse as sp
 
 from flexlink.fe.assembly import reduced_dense_pair, springs_stiffness_entries
-from flexlink.fe.model import GROUND, FrameModel, Section, Springs
+from flexlink.fe.joints import JointDofs, Springs, joint_mass_entries
+from flexlink.fe.model import FrameModel, Section
 
 DOF_NAMES = ("w", "rx", "ry")
+# out-of-plane joints: Kt on w, Ktilt on rx and ry; the drive acts about the plane normal only
+OUT_OF_PLANE_JOINTS = JointDofs(bearing_labels=("w", "rx", "ry"), weld_labels=("w", "rx", "ry"),
+                                drive_dof=None)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -155,31 +160,15 @@ def strip_entries(model: FrameModel, strips: tuple[StripProperties, ...]):
     return rows, cols, values.reshape(2, -1)
 
 
-def out_of_plane_springs(model: FrameModel, topology, tilt: dict[str, float]) -> Springs:
-    """Bearing springs of every joint: Kt on w, ``tilt[joint]`` on rx and ry."""
-    dof_a, dof_b, k, labels = [], [], [], []
-    for joint in topology.joints:
-        attached = model.joint_nodes[joint.name]
-        partners = [GROUND] * len(attached) if joint.ground else [attached[0]] * len(attached)
-        for node, other in zip(attached, partners):
-            if node == other:
-                continue
-            for dof, name, stiffness in ((0, "w", joint.Kt), (1, "rx", tilt[joint.name]),
-                                         (2, "ry", tilt[joint.name])):
-                if stiffness == 0.0:
-                    continue
-                dof_a.append(3 * node + dof)
-                dof_b.append(GROUND if other == GROUND else 3 * other + dof)
-                k.append(stiffness)
-                labels.append(f"{joint.name} {name}")
-    return Springs(np.asarray(dof_a, dtype=np.int64), np.asarray(dof_b, dtype=np.int64),
-                   np.asarray(k, dtype=float), tuple(labels))
+def out_of_plane_stiffness(joint, tilt) -> tuple[float, float, float]:
+    """A joint's bearing stiffness on (w, rx, ry): Kt [N/m], then its Ktilt [N m/rad] from
+    ``tilt`` (joint name -> Ktilt) twice."""
+    return joint.Kt, tilt[joint.name], tilt[joint.name]
 
 
 def strip_mass_entries(model: FrameModel):
     """(rows, cols, values) of the lumped joint masses [kg], on w only."""
-    idx = np.array([3 * node for node, _ in model.point_masses], dtype=np.int64)
-    return idx, idx, np.array([m for _, m in model.point_masses], dtype=float)
+    return joint_mass_entries(model.point_masses, (0,))
 
 
 def assemble_out_of_plane(model: FrameModel, springs: Springs):

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from flexlink.studies.mac_comparison import ShapeComparison
+from flexlink.units import percent_error
 
 
 def comparison_json(c: ShapeComparison, n_modes: int) -> dict:
@@ -17,7 +18,7 @@ def comparison_json(c: ShapeComparison, n_modes: int) -> dict:
     fa, fb = c.a.frequencies, c.b.frequencies
     return {"family": c.family, **sides, "mac": c.mac.tolist(),
             "pairs": [{"a": i + 1, "b": j + 1, "mac": m,
-                       "difference_pct": 100.0 * (fb[j] - fa[i]) / fa[i]}
+                       "difference_pct": percent_error(fb[j], fa[i])}
                       for i, j, m in c.pairs]}
 
 

@@ -12,10 +12,7 @@ import numpy as np
 
 from flexlink.analysis.identity import DIRECTIONS, mode_identity, participating_mass, total_mass
 from flexlink.analysis.modal import CaseResult
-
-
-def percent_error(computed: float, reference: float) -> float:
-    return 100.0 * (computed - reference) / reference
+from flexlink.units import percent_error
 
 
 def comparison_rows(result: CaseResult, n_modes: int, computed=None, kinds=None) -> list[dict]:

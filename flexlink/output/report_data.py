@@ -78,17 +78,21 @@ def cycle_data(cycle: ModalMap | None, crank_angle: float, reason: str | None = 
                ) -> dict | None:
     """The modal map over the crank cycle (frequencies [Hz] against crank angle [deg]), the
     analysed pose's crank angle and where a transmission angle is 90 deg; None when no map
-    was asked for, {"unavailable": reason} when one could not be made."""
+    was asked for, {"unavailable": reason} when one could not be made; "note": why the map
+    was solved on the full model, when it was not reduced as asked."""
     if cycle is None:
         return None if reason is None else {"unavailable": reason}
     order = np.argsort(np.degrees(cycle.q) % 360.0)
     crank = np.degrees(cycle.q)[order] % 360.0
-    return {"crank_deg": _rounded(crank),
+    data = {"crank_deg": _rounded(crank),
             "frequencies_Hz": [_rounded(cycle.frequencies[order, j])
                                for j in range(cycle.frequencies.shape[1])],
             "pose_deg": math.degrees(crank_angle) % 360.0,
             "mu90_deg": {pair: [math.degrees(a) % 360.0 for a in angles]
                          for pair, angles in cycle.mu90.items()}}
+    if cycle.note:
+        data["note"] = cycle.note
+    return data
 
 
 def scene_page(result: CaseResult, summary: dict, mesh: dict, modes: ModeSet,

@@ -18,7 +18,6 @@ from flexlink.fe.model import DriveSpec, JointSpec, LinkSpec, Section, Topology
 from flexlink.kinematics import FourBar, Linkage, State
 from flexlink.scene.source import Assumption
 
-FALLBACK_ELEMENTS = 16  # per link, for library calls that name no mesh; commands use the mesh rule
 CONTINUATION_STEP = math.radians(5.0)  # [rad] between poses continued along a general scene's input
 
 
@@ -161,7 +160,7 @@ class Scene:
 
     def topology(self, elements_per_link: int | None = None) -> Topology:
         """Links, joints and drive with ``elements_per_link`` (else the scene's pinned mesh, else
-        each link's own count, else FALLBACK_ELEMENTS)."""
+        each link's own count, else meshes.DEFAULT_ELEMENTS)."""
         if not self.links:
             raise InputError("the scene has no [links] beams: kinematics only", source=self.path,
                              field="links")

@@ -8,7 +8,8 @@ from flexlink.fe.model import LinkSpec
 from flexlink.kinematics import FourBar
 from flexlink.kinematics.linkage import four_bar_linkage
 from flexlink.scene import parts, schema
-from flexlink.scene.contract import FALLBACK_ELEMENTS, Scene
+from flexlink.meshes import DEFAULT_ELEMENTS
+from flexlink.scene.contract import Scene
 from flexlink.scene.source import SceneSource
 
 LINKS = (("crank", "O2", "A"), ("coupler", "A", "B"), ("rocker", "O4", "B"))
@@ -44,7 +45,7 @@ def build_four_bar(src: SceneSource, sf: schema.SceneFile) -> Scene:
     guess = {k: v for k, v in fb.pose(start, pose.branch).joints.items() if k in ("A", "B")}
     assumptions = list(src.assumptions)
     lengths = dict(zip(("crank", "coupler", "rocker"), fb.lengths[1:]))
-    elements = sf.mesh.elements_per_link or FALLBACK_ELEMENTS
+    elements = sf.mesh.elements_per_link or DEFAULT_ELEMENTS
     links = tuple(LinkSpec(name, a, b, parts.section(src, sf, name, parts.material(
         src, sf, name, assumptions), lengths[name]), elements) for name, a, b in LINKS)
     return Scene(

@@ -22,7 +22,8 @@ from flexlink.fe.model import LinkSpec
 from flexlink.kinematics import Body, FourBar, Linkage
 from flexlink.kinematics.synthesis import brodell_soni, extended_rocker, minimax
 from flexlink.scene import parts, schema
-from flexlink.scene.contract import FALLBACK_ELEMENTS, Scene
+from flexlink.meshes import DEFAULT_ELEMENTS
+from flexlink.scene.contract import Scene
 from flexlink.scene.source import SceneSource
 
 FOUR_BAR_BODIES = (("crank", "O2", "A"), ("coupler", "A", "B"), ("rocker", "O4", "B"))
@@ -189,7 +190,7 @@ def build_general(src: SceneSource, sf: schema.SceneFile) -> Scene:
         compliant = sf.prb is not None and sf.prb.strip == name  # its bending is the pin
         if length is None and not compliant and not {table.start, table.end} <= set(ground):
             raise _across_bodies(src, linkage, name, table.start, table.end)
-        n = table.elements or sf.mesh.elements_per_link or FALLBACK_ELEMENTS
+        n = table.elements or sf.mesh.elements_per_link or DEFAULT_ELEMENTS
         section = parts.section(src, sf, name, parts.material(src, sf, name, assumptions), length)
         links.append(LinkSpec(name, table.start, table.end, section, n))
         used += [j for j in (table.start, table.end) if j not in used]

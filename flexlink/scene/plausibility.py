@@ -129,10 +129,13 @@ def model_warnings(model) -> list[str]:
     """Links outside Euler-Bernoulli theory: stubby (L/h < SLENDER_LIMIT), or so soft in shear
     (E/G large, as in fabric composites) that Timoshenko theory lowers the first bending
     frequency by more than SHEAR_WARN. The first-order estimate picks the links; the drop
-    quoted is the exact one of Timoshenko theory for that link (``exact_timoshenko_drop``)."""
+    quoted is the exact one of Timoshenko theory for that link (``exact_timoshenko_drop``).
+    Links already modelled with Timoshenko elements are not Euler-Bernoulli beams: no warning."""
     out = []
     for link in model.links:
         s = link.section
+        if s.beam != "euler-bernoulli":
+            continue
         ratio, drop = link.length / s.depth, timoshenko_drop(s, link.length)
         if ratio < SLENDER_LIMIT or drop > SHEAR_WARN:
             exact = exact_timoshenko_drop(s, link.length)

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 from flexlink.analysis.families import elastic_modes
 from flexlink.scene import Scene, load_scene
+from flexlink.units import percent_error
 
 OTHER_BENDING = {"flatwise": "edgewise", "edgewise": "flatwise"}
 OTHER_SHEAR = {"printed": "isotropic", "isotropic": "printed"}
@@ -17,7 +18,7 @@ def _mean_abs_errors(scene: Scene, computed) -> dict[str, float]:
     for name, values in columns.items():
         pairs = [(c, r) for c, r in zip(computed, values)]
         if pairs:
-            out[name] = float(sum(abs(100.0 * (c - r) / r) for c, r in pairs) / len(pairs))
+            out[name] = float(sum(abs(percent_error(c, r)) for c, r in pairs) / len(pairs))
     return out
 
 

@@ -28,7 +28,7 @@ from flexlink.studies.array_shapes import check_shape
 from flexlink.studies.jacobian import case_modes, log_frequency_sensitivities
 from flexlink.parallel import run_tasks
 from flexlink.scene import Scene, load_scene
-from flexlink.units import parse_quantity
+from flexlink.units import parse_range, percent_error
 
 log = logging.getLogger(__name__)
 
@@ -100,16 +100,13 @@ def parse_free(spec: str) -> FreeParameter:
     """``"NAME=LOW:HIGH"`` with units, e.g. ``"L1=100 mm:1 m"``, ``"Kt=1e4 N/m:1e9 N/m"``."""
     name, sep, bounds = spec.partition("=")
     name = name.strip()
-    low, sep2, high = bounds.partition(":")
-    if not (sep and sep2) or name not in KNOWN:
+    if not (sep and ":" in bounds) or name not in KNOWN:
         raise InputError(f"cannot read {spec!r}", source="command line", field="--free",
                          expected=f"NAME=LOW:HIGH with units, NAME one of {sorted(KNOWN)}, "
                                   "e.g. 'L1=100 mm:1 m'")
-    dimension = KNOWN[name][1]
-    return FreeParameter(name, parse_quantity(low.strip(), dimension, source="command line",
-                                              field=f"--free {name}"),
-                         parse_quantity(high.strip(), dimension, source="command line",
-                                        field=f"--free {name}"))
+    low, high = parse_range(bounds, KNOWN[name][1], source="command line",
+                            field=f"--free {name}")
+    return FreeParameter(name, low, high)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -267,7 +264,7 @@ class _PredictionErrors:
 
     @property
     def errors_pct(self) -> np.ndarray:
-        return 100.0 * (self.predicted / self.reference - 1.0)
+        return percent_error(self.predicted, self.reference)
 
     @property
     def mean_abs_error_pct(self) -> float | None:

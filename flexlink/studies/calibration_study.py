@@ -14,12 +14,14 @@ import numpy as np
 from flexlink import logbook
 from flexlink.analysis.families import scene_family
 from flexlink.errors import InputError
+from flexlink.meshes import FIT_ELEMENTS
 from flexlink.scene import load_scene
 from flexlink.studies.array_shapes import check_shape
 from flexlink.studies.calibration import (DEFAULT_FREE, CrossValidation, FitResult, FreeParameter,
                                           Problem, case_label, cross_validation, fit_many,
                                           leave_one_out_problems, mean_abs, measured, parse_free,
                                           predict_with_failures, ratios, single_case_problems)
+from flexlink.units import percent_error
 from flexlink.studies.uncertainty import (Inputs, MonteCarlo, Sensitivities, monte_carlo,
                                           scene_inputs, sensitivities)
 
@@ -45,7 +47,7 @@ class StudySettings:
     samples: int = 200
     vf_sd: float = 0.05
     thickness_sd: float = 0.15e-3  # [m]
-    elements: int | None = 8
+    elements: int | None = FIT_ELEMENTS
     n_jobs: int = -1
     progress: bool = False
 
@@ -197,7 +199,7 @@ def best_family(studies) -> CalibrationStudy | None:
 
 
 def _pct(predicted, reference):
-    return 100.0 * (np.asarray(predicted) / np.asarray(reference) - 1.0)
+    return percent_error(np.asarray(predicted), np.asarray(reference))
 
 
 def _uncertainty(paths, overrides, s: StudySettings, reference) -> UncertaintySummary:

@@ -20,8 +20,8 @@ import math
 import numpy as np
 
 from flexlink.errors import InputError
+from flexlink.units import RPM
 
-RPM = 2 * math.pi / 60.0  # rad/s per rev/min
 
 
 @dataclasses.dataclass(frozen=True)

@@ -24,6 +24,7 @@ from flexlink.analysis.modal import analyze
 from flexlink.errors import NumericalError
 from flexlink.scene import Scene
 from flexlink.analysis.solve import DENSE_LIMIT
+from flexlink.units import percent_error
 
 # ORDER: see module docstring; the second extrapolation step uses ORDER + 2
 REPEAT_BUDGET_S = 5.0  # a level stops repeating once its runs took this long (slow dense levels)
@@ -181,7 +182,7 @@ def measured_column(scene: Scene) -> tuple[str, list[float]] | None:
 def _pct(computed, measured) -> list[float]:
     """% error of ``computed`` against ``measured`` [Hz], over the modes both have."""
     k = min(len(computed), len(measured))
-    return [100 * (computed[i] - measured[i]) / measured[i] for i in range(k)]
+    return [percent_error(computed[i], measured[i]) for i in range(k)]
 
 
 @dataclasses.dataclass(frozen=True)

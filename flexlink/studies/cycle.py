@@ -17,6 +17,7 @@ from flexlink.fileio import write_atomic
 from flexlink.kinematics.linkage import Cycle, crank_angles, crossings
 from flexlink.scene import Scene
 from flexlink.scene.contract import pose_transmission_angles
+from flexlink.analysis.families import in_plane_only_note
 from flexlink.analysis.sweep import modal_sweep
 from flexlink.parallel import on_cluster, run_tasks
 
@@ -40,13 +41,16 @@ def transmission_angles(scene: Scene, cycle: Cycle) -> dict[str, np.ndarray]:
 @dataclasses.dataclass(frozen=True)
 class ModalMap:
     """frequencies[i, j]: j-th elastic natural frequency [Hz] at input angle q[i] [rad];
-    mu90: input angles [rad] where a transmission angle is 90 deg, by body pair."""
+    mu90: input angles [rad] where a transmission angle is 90 deg, by body pair; note: why the
+    full model was solved instead of the reduction asked for, or that it holds only the
+    in-plane modes of a scene of another family (None: as asked)."""
 
     scene: str
     q: np.ndarray
     frequencies: np.ndarray
     mechanism_counts: np.ndarray
     mu90: dict[str, np.ndarray]
+    note: str | None = None
 
 
 def modal_map(scene: Scene, n_poses: int = 360, n_modes: int = 3,
@@ -56,6 +60,9 @@ def modal_map(scene: Scene, n_poses: int = 360, n_modes: int = 3,
 
     ``reduction``: as in ``sweep.modal_sweep``; by default the Craig-Bampton links
     (tests/test_craig_bampton.py: within 1e-6 of the full model), None for the full model.
+    Links the reduction cannot take (``sweep.craig_bampton_refusal``) are solved on the full
+    model, and the map's ``note`` says so (as it says when the scene's family is not planar:
+    ``families.in_plane_only_note``).
     Inside ``parallel.use_scheduler`` the sweep runs as one task on the cluster (the same
     computation: a Craig-Bampton basis fits the whole sweep, so it is not split)."""
     cycle = kinematic_cycle(scene, n_poses)
@@ -75,7 +82,9 @@ def modal_map(scene: Scene, n_poses: int = 360, n_modes: int = 3,
     mu90 = {k: crossings(cycle.q, mu, math.pi / 2)
             for k, mu in transmission_angles(scene, cycle).items()}
     return ModalMap(scene=scene.name, q=cycle.q, frequencies=sweep.frequencies,
-                    mechanism_counts=sweep.mechanism_counts, mu90=mu90)
+                    mechanism_counts=sweep.mechanism_counts, mu90=mu90,
+                    note="; ".join(n for n in (in_plane_only_note(scene, "this map"), sweep.note)
+                                  if n) or None)
 
 
 @dataclasses.dataclass(frozen=True)

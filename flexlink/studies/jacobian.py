@@ -36,12 +36,13 @@ import logging
 
 import numpy as np
 
-from flexlink.analysis.families import (IN_PLANE, FamilyModes, elastic_modes, family_modes,
-                                        paired, part_model, quadratic_forms)
+from flexlink.analysis.families import (FamilyModes, elastic_modes, family_modes, paired,
+                                        part_model, quadratic_forms)
 from flexlink.analysis.outofplane import tilt_stiffnesses
 from flexlink.errors import FlexlinkError
-from flexlink.fe.model import GROUND, FrameModel, build_model, layout
-from flexlink.fe.strip import out_of_plane_springs
+from flexlink.fe.formulation import FORMULATIONS
+from flexlink.fe.joints import spring_energies
+from flexlink.fe.model import FrameModel, layout
 from flexlink.studies.derivatives import log_slope
 
 log = logging.getLogger(__name__)
@@ -73,12 +74,9 @@ def _part_springs(scene, part: str, elements: int | None) -> tuple[np.ndarray, n
     """(spring stiffnesses as the scene sets them, before any is made rigid; joint masses) of
     ``part``'s model, in the model's order."""
     topology = scene.topology(elements)
-    lay = layout(topology)
-    masses = np.array([m for _, m in lay.point_masses], dtype=float)
-    if part == IN_PLANE:
-        return np.asarray(lay.springs.stiffness, dtype=float), masses
-    planar = build_model(topology, scene.rigid_pose().joints, lay)
-    return out_of_plane_springs(planar, topology, tilt_stiffnesses(scene)).stiffness, masses
+    masses = np.array([m for _, m in layout(topology).point_masses], dtype=float)
+    springs = FORMULATIONS[part].springs(topology, tilt_stiffnesses(scene))
+    return np.asarray(springs.stiffness, dtype=float), masses
 
 
 def followers(load, values: np.ndarray, index: int, parts, elements: int | None):
@@ -117,21 +115,18 @@ def followers(load, values: np.ndarray, index: int, parts, elements: int | None)
 
 def _spring_forms(model: FrameModel, follows: np.ndarray, shapes: np.ndarray) -> np.ndarray:
     """sum over the finite springs marked in ``follows`` of k (s_a - s_b)^2, per shape."""
-    s = model.springs
-    use = follows & np.isfinite(s.stiffness)
-    padded = np.vstack([shapes, np.zeros((1, shapes.shape[1]))])  # GROUND (-1) -> 0
-    a, b = s.dof_a[use], np.where(s.dof_b[use] == GROUND, -1, s.dof_b[use])
-    return (s.stiffness[use][:, None] * (padded[a] - padded[b]) ** 2).sum(axis=0)
+    use = follows & np.isfinite(model.springs.stiffness)
+    return spring_energies(model.springs, shapes)[use].sum(axis=0)
 
 
 def _mass_forms(part: str, model: FrameModel, follows: np.ndarray, shapes: np.ndarray):
-    """sum over the joint masses marked in ``follows`` of m |s at the node|^2, per shape (in
-    plane: x and y; out of plane: w)."""
+    """sum over the joint masses marked in ``follows`` of m |s at the node|^2, per shape, on
+    the DOFs a joint mass moves in ``part`` (in plane: x and y; out of plane: w)."""
     out = np.zeros(shapes.shape[1])
+    dofs = FORMULATIONS[part].mass_dofs
     for (node, mass), use in zip(model.point_masses, follows):
         if use:
-            dofs = [3 * node, 3 * node + 1] if part == IN_PLANE else [3 * node]
-            out += mass * (shapes[dofs] ** 2).sum(axis=0)
+            out += mass * (shapes[[3 * node + d for d in dofs]] ** 2).sum(axis=0)
     return out
 
 

@@ -25,6 +25,7 @@ import numpy as np
 
 from flexlink.errors import InputError
 from flexlink.kinematics.linkage import State
+from flexlink.units import percent_error
 
 
 @dataclasses.dataclass(frozen=True)
@@ -83,7 +84,7 @@ class PrbComparison:
 
     @property
     def prb_vs_fe_pct(self) -> float:
-        return 100 * (self.prb.frequency - self.fe[0]) / self.fe[0]
+        return percent_error(self.prb.frequency, self.fe[0])
 
 
 def compare_prb(scene, n_modes: int, elements: int | None = None) -> PrbComparison:

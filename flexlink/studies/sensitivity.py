@@ -26,6 +26,7 @@ import numpy as np
 
 from flexlink.analysis.families import elastic_modes
 from flexlink.errors import FlexlinkError, InputError
+from flexlink.meshes import DEFAULT_ELEMENTS
 from flexlink.parallel import run_tasks
 from flexlink.scene import load_scene
 from flexlink.studies.array_shapes import check_shape
@@ -34,8 +35,6 @@ from flexlink.studies.uncertainty import draw_samples, material_overrides, scene
 log = logging.getLogger(__name__)
 RIGID = "rigid"
 LOG_SPAN = 10.0  # high / low from which a range is sampled log-uniformly
-# mesh of the study: its discretisation error (~1e-4 in mode 4) is far below the spreads studied
-STUDY_ELEMENTS = 16
 
 
 @dataclasses.dataclass(frozen=True)
@@ -215,8 +214,8 @@ class SceneSensitivity:
 def sensitivity_study(scene, n_modes: int = 4, samples: int = 200, seed: int = 1,
                       n_jobs: int = 1, progress: bool = False) -> SceneSensitivity:
     """End points and the Monte Carlo interval of ``scene`` on the study's mesh
-    (``STUDY_ELEMENTS``), with its reference columns."""
-    points = end_points(scene.path, n_modes, STUDY_ELEMENTS, n_jobs, progress)
-    spread = interval(scene.path, samples, seed, n_modes, STUDY_ELEMENTS, n_jobs, progress)
+    (``DEFAULT_ELEMENTS``), with its reference columns."""
+    points = end_points(scene.path, n_modes, DEFAULT_ELEMENTS, n_jobs, progress)
+    spread = interval(scene.path, samples, seed, n_modes, DEFAULT_ELEMENTS, n_jobs, progress)
     reference = dict(scene.reference.columns) if scene.reference else {}
-    return SceneSensitivity(points, spread, reference, STUDY_ELEMENTS)
+    return SceneSensitivity(points, spread, reference, DEFAULT_ELEMENTS)

@@ -23,6 +23,7 @@ from flexlink.fe.assembly import assemble, reduction
 from flexlink.fe.energy import lumped_mass
 from flexlink.errors import FlexlinkError, InputError, KinematicsError, NumericalError
 from flexlink.kinematics.fourbar import FourBar
+from flexlink.meshes import DEFAULT_ELEMENTS
 from flexlink.fe.model import JointSpec, LinkSpec, Section, Topology, build_model
 from flexlink.scene.plausibility import SHEAR_WARN, SLENDER_LIMIT, model_warnings, pose_warnings, timoshenko_drop
 from flexlink.fe.rigid import RIGID_RATIO, element_stiffness_scale
@@ -31,11 +32,16 @@ from flexlink.analysis.solve import DENSE_REFUSE, MECHANISM, solve_modes
 
 log = logging.getLogger(__name__)
 
-ELEMENTS = 16  # per link: fast, and every check is about the solver, not the mesh
+ELEMENTS = DEFAULT_ELEMENTS  # every check is about the solver, not the mesh
 
 
 @dataclasses.dataclass(frozen=True)
 class Check:
+    """One check: ``id`` a short descriptive name, what it ``expected`` and what it ``got`` (text
+    for people), whether it ``passed``, and ``details``: the numbers it measured (SI units or
+    as named), for a judge that wants to see them (tests/test_stability.py judges them
+    against its own closed forms and tolerances)."""
+
     id: str
     name: str
     expected: str
@@ -60,7 +66,6 @@ def _rel(a, b) -> float:
     return float(np.max(np.abs(a - b) / np.abs(b)))
 
 
-# -- 1 --------------------------------------------------------------------------------------
 def bearing_sweep(scene: Scene) -> Check:
     """Kt = Kr of every joint from 0 to 1e30: eigenvalues rise monotonically to the exact
     rigid-joint limit; none negative or NaN; backward error small throughout."""
@@ -94,7 +99,7 @@ def bearing_sweep(scene: Scene) -> Check:
     trans, rot = element_stiffness_scale(pose_model(topo, pose.joints, warn=False))
     passed = (monotone and finite and max(backward) < 1e-10 and agree < 1e-6 and limit < 1e-12
               and rows[0]["zero_modes"] == 8 and bool(logged))
-    return Check("1", "bearing stiffness 0 .. 1e30 (Kt N/m = Kr N m/rad)",
+    return Check("bearing-sweep", "bearing stiffness 0 .. 1e30 (Kt N/m = Kr N m/rad)",
                  f"8 zero modes and {n} elastic ones at k = 0; eigenvalues monotone in k; none NaN/negative; backward "
                  "error < 1e-10; highest penalty value within 1e-6 of the exact rigid path; "
                  f"rigid, with a logged warning, from {RIGID_RATIO:g} x the stiffest element "
@@ -104,7 +109,10 @@ def bearing_sweep(scene: Scene) -> Check:
                  f"{values[last]:.0e} (Kt still a penalty) vs exact {agree:.1e}; all rigid from "
                  f"k = {values[first_all]:.0e}, equal to exact within {limit:.1e}; "
                  f"{len(logged)} warnings logged",
-                 passed, {"sweep": rows, "exact_Hz": exact.frequencies[:n].tolist()})
+                 passed, {"sweep": rows, "exact_Hz": exact.frequencies[:n].tolist(),
+                          "eigenvalues": lams.tolist(), "exact_eigenvalues": exact_lams.tolist(),
+                          "backward_error_max": max(backward), "penalty_vs_exact": agree,
+                          "rigid_vs_exact": limit, "warnings_logged": len(logged)})
 
 
 class _captured:
@@ -125,7 +133,6 @@ class _captured:
         self.logger.propagate = self.propagate
 
 
-# -- 2 and 7c -------------------------------------------------------------------------------
 def _free_crank(scene: Scene, Kt=None):
     topo = _with_joints(scene.topology(ELEMENTS), Kr=0.0)
     if Kt is not None:
@@ -162,14 +169,19 @@ def free_crank(scene: Scene) -> Check:
     cross = float(np.abs(V[:, r.elastic].T @ (M @ V[:, [r.kinds.index(MECHANISM)]])).max()) \
         if n_mech else math.nan
     passed = n_mech == 1 and r.kinds[0] == MECHANISM and off <= 0 and cross < 1e-8
-    return Check("2", "free crank, all Kr = 0",
+    return Check("free-crank", "free crank, all Kr = 0",
                  "exactly one zero mode, first, labelled rigid-body/mechanism; elastic modes "
                  "shifted by a vanishing drive spring k_d by k_d phi_d^2 / (2 lambda) (first order, "
                  "within 1 %), and M-orthogonal to the mechanism mode (1e-8)",
                  f"{n_mech} mechanism mode(s) ({r.frequencies[0]:.1e} Hz), labelled "
                  f"{r.kinds[0]!r}; elastic shift by the weak drive max {np.abs(change).max():.1e}, "
                  f"first-order prediction max {np.abs(expected).max():.1e}; M-coupling "
-                 f"{cross:.1e}", passed, {"elastic_Hz": el.tolist()})
+                 f"{cross:.1e}", passed,
+                 {"elastic_Hz": el.tolist(), "mechanism_modes": n_mech, "kinds": list(r.kinds),
+                  "frequencies_Hz": r.frequencies.tolist(), "m_coupling": cross,
+                  "drive_stiffness": float(springs.stiffness[drive]),
+                  "drive_rotation": phi.tolist(), "shift": change.tolist(),
+                  "eigenvalues": r.eigenvalues[r.elastic[:k]].tolist()})
 
 
 def sparse_mechanism(scene: Scene) -> Check:
@@ -186,14 +198,17 @@ def sparse_mechanism(scene: Scene) -> Check:
     lam_max = float((K.diagonal() / M.diagonal()).max())
     tol = max(1e-10, 100 * np.finfo(float).eps * lam_max / dense.eigenvalues[dense.elastic[0]])
     passed = same and sparse.kinds.count(MECHANISM) == 1 and diff < tol
-    return Check("7c", "mechanism mode with the sparse solver",
+    return Check("sparse-mechanism", "mechanism mode with the sparse solver",
                  f"shift < 0; sparse finds the same 1 mechanism + 9 elastic modes as dense, "
                  f"frequencies within {tol:.1e} (100 eps lambda_max / lambda_1)",
                  f"shift {shift:.3g} rad^2/s^2; kinds equal {same}; "
-                 f"{sparse.kinds.count(MECHANISM)} mechanism; max difference {diff:.1e}", passed)
+                 f"{sparse.kinds.count(MECHANISM)} mechanism; max difference {diff:.1e}", passed,
+                 {"shift": shift, "kinds_equal": same,
+                  "mechanism_modes": sparse.kinds.count(MECHANISM), "max_difference": diff,
+                  "lambda_max": lam_max,
+                  "lambda_1": float(dense.eigenvalues[dense.elastic[0]])})
 
 
-# -- 3 --------------------------------------------------------------------------------------
 def slenderness(scene: Scene) -> Check:
     """Every link's in-plane depth set to L / ratio, ratio from 1e4 down to 3; once with the
     scene's material, once with steel (E/G = 2.6)."""
@@ -223,7 +238,7 @@ def slenderness(scene: Scene) -> Check:
              if any(r["material"] == m and not r["warnings"] for r in rows) else None
              for m in ("scene", "steel")}
     stubby = rows[-1]["warnings"][0] if rows[-1]["warnings"] else "(no warning)"
-    return Check("3", "slender L/h = 1e4 to stubby L/h = 3 (scene material, then steel)",
+    return Check("slenderness", "slender L/h = 1e4 to stubby L/h = 3 (scene material, then steel)",
                  f"finite positive frequencies; a warning naming L/h exactly where L/h < "
                  f"{SLENDER_LIMIT:g} or shear lowers the first bending frequency by > "
                  f"{100 * SHEAR_WARN:g} % (Timoshenko)",
@@ -232,7 +247,6 @@ def slenderness(scene: Scene) -> Check:
                  f"(steel); steel at L/h 3: \"{stubby}\"", ok, {"rows": rows})
 
 
-# -- 4 --------------------------------------------------------------------------------------
 def _raises(fn, kind):
     try:
         fn()
@@ -246,7 +260,7 @@ def kinematics(scene: Scene) -> list[Check]:
     checks = []
     no90 = FourBar.from_ratios(0.2, 1.2, 0.9, 0.3)  # mu stays within [41.8, 68.0] deg
     msg = _raises(lambda: no90.pose_at_mu(math.radians(90)), KinematicsError)
-    checks.append(Check("4a", "mu = 90 deg unreachable (R = 0.2, 1.2, 0.9)",
+    checks.append(Check("unreachable-mu", "mu = 90 deg unreachable (R = 0.2, 1.2, 0.9)",
                         "KinematicsError naming the reachable range", msg or "no error",
                         bool(msg and "not reachable" in msg)))
     triple = FourBar.from_ratios(0.6, 0.7, 0.8, 0.3)  # s + l > p + q: triple rocker
@@ -261,12 +275,12 @@ def kinematics(scene: Scene) -> list[Check]:
     toggle = triple.pose(limit)  # closes to round-off: a pose, warned about as a dead centre
     at = pose_warnings(triple, RigidPose(toggle.theta2, toggle.joints,
                                          {"coupler/rocker": toggle.mu}, toggle.branch))
-    checks.append(Check("4b", "non-Grashof linkage (R = 0.6, 0.7, 0.8)",
+    checks.append(Check("non-grashof", "non-Grashof linkage (R = 0.6, 0.7, 0.8)",
                         "errors for mu limits and for a crank angle where the loop cannot close; "
                         "a warning that the input cannot turn fully",
                         f"{(msg or 'no error')[:70]}...; theta2 = 180: {(beyond or 'no error')[:60]}...",
                         bool(msg and beyond and any("cannot turn" in w for w in warnings))))
-    checks.append(Check("4c", "pose at and near a dead centre (mu -> 180 deg)",
+    checks.append(Check("dead-centre", "pose at and near a dead centre (mu -> 180 deg)",
                         "at the dead centre the pose (mu = 180 deg) with a dead-centre warning; "
                         "1e-4 rad before it a warning with the distance in degrees",
                         f"at: mu = {math.degrees(toggle.mu):.4f} deg, "
@@ -275,16 +289,16 @@ def kinematics(scene: Scene) -> list[Check]:
                         f"{[w for w in warnings if 'dead centre' in w][:1]}",
                         bool(math.isclose(toggle.mu, math.pi, abs_tol=1e-6)
                              and any("dead centre" in w for w in at)
-                             and any("dead centre" in w for w in warnings))))
+                             and any("dead centre" in w for w in warnings)),
+                        {"mu_at_toggle_rad": toggle.mu, "mu_near_rad": near.mu}))
     return checks
 
 
-# -- 5 --------------------------------------------------------------------------------------
 def contrast(scene: Scene) -> list[Check]:
     """Steel crank with a 1e6 times softer coupler; then a 1e6 times lighter coupler."""
     pose, topo = scene.rigid_pose(), scene.topology(ELEMENTS)
     out = []
-    for cid, what, field in (("5a", "stiffness", "E"), ("5b", "mass", "density")):
+    for cid, what, field in (("stiffness-contrast", "stiffness", "E"), ("mass-contrast", "mass", "density")):
         links = []
         for spec in topo.links:
             s = spec.section
@@ -303,17 +317,18 @@ def contrast(scene: Scene) -> list[Check]:
         out.append(Check(cid, f"{what} contrast 1e6 (steel crank, coupler {what} / 1e6)",
                          "dense and sparse frequencies agree within 1e-8",
                          f"max relative difference {diff:.1e} (unrefined eigenvalues: {raw:.1e}); "
-                         f"f1 {dense.frequencies[0]:.6g} Hz", diff < 1e-8))
+                         f"f1 {dense.frequencies[0]:.6g} Hz", diff < 1e-8,
+                         {"max_difference": diff, "unrefined_difference": raw,
+                          "dense_Hz": dense.frequencies.tolist()}))
     return out
 
 
-# -- 6 --------------------------------------------------------------------------------------
 def dense_refused(scene: Scene) -> Check:
     """A model above DENSE_REFUSE DOFs: the dense solver refuses with a message."""
     elements = DENSE_REFUSE // 9 + 10
     topology = scene.topology(elements)
     msg = _raises(lambda: _modes(topology, scene.rigid_pose().joints, 4, "dense"), NumericalError)
-    return Check("6a", f"dense solve of {3 * sum(l.elements + 1 for l in topology.links)} DOFs",
+    return Check("dense-refused", f"dense solve of {3 * sum(l.elements + 1 for l in topology.links)} DOFs",
                  f"refused with a message (limit {DENSE_REFUSE} DOFs), before any allocation",
                  msg or "no error", bool(msg and "refused" in msg))
 
@@ -351,7 +366,7 @@ def large_sparse(scene: Scene, sizes=(12_500, 25_000, 50_000, 100_000)) -> Check
         t0 = time.perf_counter()
         done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
         if done.returncode != 0:
-            return Check("6b", "sparse path up to 1e5 DOFs", "solves", done.stderr[-300:], False)
+            return Check("large-sparse", "sparse path up to 1e5 DOFs", "solves", done.stderr[-300:], False)
         n, f1, exact, rss_before, rss_after = done.stdout.split()
         rows.append({"dofs": int(n), "f1_Hz": float(f1), "closed_form_Hz": float(exact),
                      "peak_MB": float(rss_after) / 1024,
@@ -364,7 +379,7 @@ def large_sparse(scene: Scene, sizes=(12_500, 25_000, 50_000, 100_000)) -> Check
                                 np.log([r["work_MB"] for r in rows]), 1)[0])
     accuracy = max(_rel(r["f1_Hz"], r["closed_form_Hz"]) for r in rows)
     passed = max(per_dof) < 2.5 * min(per_dof) and exponent < 1.25 and accuracy < 1e-6
-    return Check("6b", f"sparse path up to {rows[-1]['dofs']} DOFs",
+    return Check("large-sparse", f"sparse path up to {rows[-1]['dofs']} DOFs",
                  "solves; f1 = closed form (1e-6); memory of the work grows linearly (kB per "
                  "DOF within 2.5x across sizes, fitted exponent < 1.25)",
                  "; ".join(f"{r['dofs']} DOFs {r['work_MB']:.0f} MB {r['seconds']:.1f} s" for r in rows)
@@ -393,10 +408,10 @@ def _memory_kb(field: str) -> int:
         return next(int(line.split()[1]) for line in fh if line.startswith(field + ":"))
 
 
-# -- 7 --------------------------------------------------------------------------------------
 def repeated(scene: Scene) -> Check:
-    """Two identical, uncoupled cantilevers (at 0 and 60 deg): every frequency twice."""
-    s = next(iter(scene.sections.values()))
+    """Two identical, uncoupled cantilevers (at 0 and 60 deg): every frequency twice. Euler-
+    Bernoulli links whatever the scene's beam theory: the check is about the solver."""
+    s = dataclasses.replace(next(iter(scene.sections.values())), beam="euler-bernoulli")
     joints = (JointSpec("Ga", True, math.inf, math.inf), JointSpec("Ea", False, 0.0, 0.0),
               JointSpec("Gb", True, math.inf, math.inf), JointSpec("Eb", False, 0.0, 0.0))
     links = (LinkSpec("a", "Ga", "Ea", s, ELEMENTS), LinkSpec("b", "Gb", "Eb", s, ELEMENTS))
@@ -415,12 +430,15 @@ def repeated(scene: Scene) -> Check:
     closed = beta1**2 * math.sqrt(s.EI / (s.mass_per_length * L**4)) / (2 * math.pi)
     passed = pairs < 1e-10 and vs_dense < 1e-10 and max(ortho, out["dense"][1]) < 1e-10 \
         and mech == 0 and _rel(f[0], closed) < 1e-6
-    return Check("7a", "repeated eigenvalues: two identical uncoupled cantilevers",
+    return Check("repeated-eigenvalues", "repeated eigenvalues: two identical uncoupled cantilevers",
                  "4 pairs, each pair equal (1e-10); sparse = dense; M-orthonormal (1e-10); "
                  "pair 1 = closed form 1.8751^2 sqrt(EI/(rhoA L^4)) / 2 pi (1e-6)",
                  f"pair spread {pairs:.1e}; sparse vs dense {vs_dense:.1e}; orthogonality "
                  f"{max(ortho, out['dense'][1]):.1e}; f1 {f[0]:.6f} Hz vs closed form "
-                 f"{closed:.6f} Hz", passed)
+                 f"{closed:.6f} Hz", passed,
+                 {"sparse_Hz": f.tolist(), "dense_Hz": out["dense"][0].tolist(),
+                  "orthogonality": max(ortho, out["dense"][1]), "mechanism_modes": mech,
+                  "length": L, "elements": ELEMENTS})
 
 
 def massless(scene: Scene) -> list[Check]:
@@ -435,11 +453,12 @@ def massless(scene: Scene) -> list[Check]:
     hrz = solve_modes(K, M, 6, T=T, lambda_ref=lam)
     r = solve_modes(K, no_rotary, 6, T=T, lambda_ref=lam)
     diff = _rel(r.frequencies, hrz.frequencies)
-    checks = [Check("7b-1", "lumped mass without rotary inertia (every rz DOF massless)",
+    checks = [Check("massless-rotations", "lumped mass without rotary inertia (every rz DOF massless)",
                     "massless DOFs condensed, no solver error; within 1e-3 of HRZ lumping at 64 "
                     "elements/link (rotary inertia is an O(h^2) effect)",
                     f"{r.condensed} DOFs condensed; max difference from HRZ {diff:.1e}",
-                    r.condensed > 0 and diff < 1e-3)]
+                    r.condensed > 0 and diff < 1e-3,
+                    {"condensed": r.condensed, "max_difference": diff})]
     # a node hanging on springs only, with no mass, tied to the coupler's mid node
     small = build_model(scene.topology(ELEMENTS), pose.joints)
     Ks, Ms = assemble(small)
@@ -460,26 +479,28 @@ def massless(scene: Scene) -> list[Check]:
     Tx = sp.block_diag([Ts, sp.identity(3)]).tocsr()
     r = solve_modes(Kx.tocsr(), Mx, 6, T=Tx, lambda_ref=in_plane_eigen_scale(small))
     diff = _rel(r.frequencies, base.frequencies)
-    checks.append(Check("7b-2", "a massless node hanging on springs",
+    checks.append(Check("massless-node", "a massless node hanging on springs",
                         "condensed (3 DOFs); frequencies unchanged (1e-10): it carries no inertia",
                         f"{r.condensed} DOFs condensed; max change {diff:.1e}",
-                        r.condensed == 3 and diff < 1e-10))
+                        r.condensed == 3 and diff < 1e-10,
+                        {"condensed": r.condensed, "max_difference": diff}))
     Kz = sp.block_diag([Ks, sp.csr_matrix((3, 3))]).tocsr()
     msg = _raises(lambda: solve_modes(Kz, Mx, 6, T=Tx, lambda_ref=in_plane_eigen_scale(small)), NumericalError)
-    checks.append(Check("7b-3", "a node with neither mass nor stiffness",
+    checks.append(Check("empty-node", "a node with neither mass nor stiffness",
                         "NumericalError that says so (never a solver crash)", msg or "no error",
                         bool(msg and "neither mass nor stiffness" in msg)))
     return checks
 
 
-# -- 8 --------------------------------------------------------------------------------------
 def units(scene: Scene) -> list[Check]:
     """Easy unit slips: caught by plausibility ranges or by explicit units."""
-    cases = (("8a", "mm typed as m", {"linkage.ground": "300 m"}, "did you mean 300 mm"),
-             ("8b", "GPa typed as Pa", {"material": {"E": "53 Pa", "density": "1490 kg/m^3"}},
+    cases = (("unit-mm-as-m", "mm typed as m", {"linkage.ground": "300 m"},
+              "did you mean 300 mm"),
+             ("unit-gpa-as-pa", "GPa typed as Pa", {"material": {"E": "53 Pa", "density": "1490 kg/m^3"}},
               "did you mean 53 GPa"),
-             ("8c", "mm typed as m in a section", {"section.width": "20 m"}, "did you mean 20 mm"),
-             ("8d", "a bare number", {"section.width": 20}, "without a unit"))
+             ("unit-section-mm-as-m", "mm typed as m in a section", {"section.width": "20 m"},
+              "did you mean 20 mm"),
+             ("unit-bare-number", "a bare number", {"section.width": 20}, "without a unit"))
     out = []
     for cid, what, overrides, needle in cases:
         msg = _raises(lambda overrides=overrides: load_scene(scene.path, overrides=overrides),
@@ -525,22 +546,24 @@ def singular_poses(scene: Scene) -> list[Check]:
     own = tracked_map(scene, 36, 3, 4).periodicity
     own_flat = bool(scene.four_bar.flat_poses())  # a change point itself: says why not
     return [
-        Check("9a", "change-point four-bar: crank and flat pose",
+        Check("change-point-crank", "change-point four-bar: crank and flat pose",
               "crank turns fully, no 'cannot turn fully' warning; the flat pose at 180 deg "
               "is a pose with mu = 180 deg",
               f"turns fully: {cp.four_bar.crank_turns_fully()}; flat pose mu = "
               f"{math.degrees(flat.mu):.4f} deg; warnings: {[w[:60] for w in warnings]}",
               cp.four_bar.crank_turns_fully() and abs(flat.mu - math.pi) < 1e-6
-              and not any("cannot turn fully" in w for w in warnings)),
-        Check("9b", "change-point four-bar: tracked map through the flat pose (72 poses)",
+              and not any("cannot turn fully" in w for w in warnings),
+              {"mu_flat_rad": flat.mu}),
+        Check("change-point-tracking", "change-point four-bar: tracked map through the flat pose (72 poses)",
               "tracked lines hold the sorted frequencies at every pose (within 1e-8); the "
               "flat pose flagged as singular, with its mechanism mode; the map says why it "
               "does not close",
               f"largest relative difference {same:.1e}; singular poses {flagged} deg; "
               f"{tracked.periodicity.note[:90]}...",
               same < 1e-8 and flat_flagged and not tracked.periodicity.closes
-              and "start pose" in tracked.periodicity.note),
-        Check("9c", "the scene's tracked map over one turn (36 poses)",
+              and "start pose" in tracked.periodicity.note,
+              {"largest_relative_difference": same, "singular_poses_deg": flagged}),
+        Check("scene-map-periodicity", "the scene's tracked map over one turn (36 poses)",
               "the start pose does not come back: a note saying so" if own_flat else
               "closes: every line comes back to its own start shape",
               own.note, ("start pose" in own.note and not own.closes) if own_flat else own.closes),
@@ -553,8 +576,8 @@ SLOW = (large_sparse,)
 
 
 def run_checks(scene: Scene, slow: bool = False, progress=None) -> list[Check]:
-    """Every fast check (and the slow ones if ``slow``), in issue order; a check that raises
-    unexpectedly is reported as failed, never hides the others."""
+    """Every fast check (and the slow ones if ``slow``), in the order of ``FAST`` and ``SLOW``;
+    a check that raises unexpectedly is reported as failed, never hides the others."""
     if scene.kind != "four-bar":  # every check varies a four-bar's inputs one at a time
         raise InputError("the stability checks vary the inputs of a four-bar scene; this is a "
                          "general scene", source=scene.path, field="linkage.type",
@@ -571,4 +594,4 @@ def run_checks(scene: Scene, slow: bool = False, progress=None) -> list[Check]:
         for c in result if isinstance(result, list) else [result]:
             out.append(dataclasses.replace(c, details={**c.details,
                                                        "seconds": time.perf_counter() - t0}))
-    return sorted(out, key=lambda c: c.id)
+    return out
