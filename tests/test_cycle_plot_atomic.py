@@ -8,7 +8,8 @@ import numpy as np
 import pytest
 from matplotlib.figure import Figure
 
-from flexlink.studies.cycle import ModalMap, plot_map
+from flexlink.output.cycle_report import plot_map
+from flexlink.studies.cycle import ModalMap
 
 
 def small_map() -> ModalMap:

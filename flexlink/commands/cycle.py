@@ -42,12 +42,12 @@ def command(scene_path, n_modes, poses, elements, tol, speed, margin, harmonics,
     --out), the poses where the transmission angle is 90 deg, and the crank harmonics that
     come within --margin of a natural frequency anywhere in the cycle. Writes cycle.csv,
     cycle.png and cycle.json to OUT/<scene>/."""
-    from flexlink.studies.cycle import (modal_map, modal_map_csv, plot_map, resonance_speed,
-                                        resonances, runs)
+    from flexlink.output.cycle_report import modal_map_csv, plot_map
+    from flexlink.output.tracking_report import (events_json, periodicity_json, plot_tracked,
+                                                 reseeds_json, tracked_csv, unsampled_json)
+    from flexlink.studies.cycle import modal_map, resonance_speed, resonances, runs
     from flexlink.studies.campbell import nearest_harmonic
-    from flexlink.studies.tracking import (events_json, periodicity_json, plot_tracked,
-                                           reseeds_json, tracked_csv, tracked_map,
-                                           unsampled_json, unsampled_note)
+    from flexlink.studies.tracking import tracked_map, unsampled_note
     from flexlink.analysis.mesh import choose_mesh
     from flexlink.fileio import prepare_out_dir, write_atomic
     from flexlink.parallel import use_scheduler
