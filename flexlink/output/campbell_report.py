@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from flexlink.output.cycle_report import write_figure
+from flexlink.output.figures import write_figure
 from flexlink.studies.campbell import RPM, Band, CriticalSpeed, NearestMargin
 
 

@@ -1,15 +1,19 @@
-"""The cycle map's files: the CSV of frequencies over the crank angle and the PNG of the map
-(``studies.cycle.ModalMap``), and the axes every cycle plot shares."""
+"""The cycle map's renderings (``studies.cycle.ModalMap``, or ``studies.tracking.TrackedMap``
+for its tracked lines): the CSV of frequencies over the crank angle, the PNG of the map, the
+JSON document of `flexlink cycle` and its text summary."""
 
 from __future__ import annotations
 
-import io
 import math
 
 import numpy as np
 
 from flexlink.fileio import write_atomic
-from flexlink.studies.cycle import ModalMap, Resonance
+from flexlink.output.figures import cycle_axes, write_figure
+from flexlink.output.tracking_report import (events_json, periodicity_json, plot_tracked,
+                                             reseeds_json, tracked_csv, unsampled_json)
+from flexlink.studies.cycle import ModalMap, Resonance, runs
+from flexlink.studies.tracking import TrackedMap, unsampled_note
 
 
 def modal_map_csv(result: ModalMap) -> str:
@@ -19,36 +23,6 @@ def modal_map_csv(result: ModalMap) -> str:
     for q, row in zip(result.q, result.frequencies):
         lines.append(f"{math.degrees(q):.6g}," + ",".join(f"{v:.8g}" for v in row))
     return "\n".join(lines) + "\n"
-
-
-def cycle_axes(ax, deg: np.ndarray, mu90: dict, hits, title: str) -> None:
-    """What every cycle plot shows besides its lines: the mu = 90 deg poses (vertical), the
-    resonating harmonics (horizontal, red), one revolution of crank angle [deg], the title and
-    the legend."""
-    for k, (pair, angles) in enumerate(mu90.items()):
-        for i, a in enumerate(angles):
-            ax.axvline(math.degrees(a), color="0.4", ls=":" if k else "--", lw=1,
-                       label=f"mu = 90 deg ({pair})" if i == 0 else None)
-    for f in sorted({h.frequency for h in hits}):
-        ax.axhline(f, color="red", ls="-.", lw=0.8)
-    ax.set_xlabel("crank angle [deg]")
-    ax.set_ylabel("natural frequency [Hz]")
-    ax.set_xlim(deg[0], deg[0] + 360)
-    ax.set_title(title)
-    ax.legend(fontsize=8)
-
-
-def write_figure(fig, path, dpi: int = 120) -> None:
-    """Save a pyplot figure as PNG to ``path`` atomically (a drawing that fails half-way leaves
-    the old picture) and close it."""
-    import matplotlib.pyplot as plt
-
-    buffer = io.BytesIO()
-    try:
-        fig.savefig(buffer, format="png", dpi=dpi)
-    finally:
-        plt.close(fig)
-    write_atomic(path, buffer.getvalue())
 
 
 def plot_map(result: ModalMap, path, crank_speed: float | None = None,
@@ -70,3 +44,104 @@ def plot_map(result: ModalMap, path, crank_speed: float | None = None,
     ax.grid(alpha=0.3)
     fig.tight_layout()
     write_figure(fig, path)
+
+
+def cycle_document(scene, result: ModalMap | TrackedMap, mesh, poses: int,
+                   omega: float | None, check: tuple[float | None, str | None], margin: float,
+                   hits: list[Resonance], nearest: tuple[float, int, int] | None,
+                   paths) -> dict:
+    """The JSON document of `flexlink cycle`: each mode's range over the cycle [Hz] and where
+    [deg], the mu = 90 deg poses, the resonance check at ``check`` = (speed [rad/s] or None,
+    note) with its ``hits``, the tracking (for a ``TrackedMap``), ``nearest``
+    (``campbell.nearest_harmonic``) and the files written."""
+    check_speed, check_note = check
+    track = isinstance(result, TrackedMap)
+    f = result.frequencies
+    return {
+        "command": "cycle", "scene": scene.name, "poses": poses,
+        "synthesis": scene.synthesis,
+        "modes": [{"mode": j + 1, "min_Hz": float(f[:, j].min()),
+                   "at_crank_deg": math.degrees(result.q[f[:, j].argmin()]) % 360.0,
+                   "max_Hz": float(f[:, j].max()),
+                   "at_crank_deg_max": math.degrees(result.q[f[:, j].argmax()]) % 360.0}
+                  for j in range(f.shape[1])],
+        "mu90_crank_deg": {k: [math.degrees(a) for a in v] for k, v in result.mu90.items()},
+        "mechanism_modes_max": int(result.mechanism_counts.max()),
+        "mesh": mesh.as_dict(),
+        "crank_speed_rev_per_min": None if omega is None else omega * 60 / (2 * math.pi),
+        "resonance_check": {"speed_rev_per_min": None if check_speed is None
+                                                 else check_speed * 60 / (2 * math.pi),
+                            "note": check_note},
+        "margin": margin,
+        "resonances": [{"harmonic": h.harmonic, "harmonic_Hz": h.frequency, "mode": h.mode,
+                        "closest_relative_gap": h.closest,
+                        "crank_deg_ranges": [[round(math.degrees(a), 2), round(math.degrees(b), 2)]
+                                             for a, b in runs(h.angles, 2 * math.pi / poses)]}
+                       for h in hits],
+        "tracking": {"by": "MAC", "labels": list(result.labels),
+                     "events": events_json(result), "reseeds": reseeds_json(result),
+                     "periodicity": periodicity_json(result),
+                     "unsampled_dead_centres_deg": unsampled_json(result),
+                     "unsampled_note": unsampled_note(result)} if track
+        else {"by": "frequency order"},
+        "nearest_harmonic": None if nearest is None else dict(zip(
+            ("relative_gap", "mode", "harmonic"), nearest)),
+        "files": [str(p) for p in paths],
+        "assumptions": [f"{a.field}: {a.note}" for a in scene.assumptions],
+    }
+
+
+def cycle_text(document: dict, mesh_line: str, harmonics: int) -> list[str]:
+    """The text summary of `flexlink cycle` from its ``document`` (``cycle_document``), with
+    the mesh's one-line description ``mesh_line``."""
+    margin = document["margin"]
+    out = [f"{document['scene']}: first {len(document['modes'])} elastic modes over "
+           f"{document['poses']} crank angles", mesh_line]
+    synthesis = document["synthesis"]
+    if synthesis:
+        out.append(f"synthesis {synthesis['method']}: " + ", ".join(
+            f"{k} {1e3 * v:.3f} mm" for k, v in synthesis["lengths_m"].items()))
+    out.append(f"{'mode':>4} {'min [Hz]':>10} {'at [deg]':>9} {'max [Hz]':>10} {'at [deg]':>9}")
+    labels = document["tracking"].get("labels", [])
+    for m in document["modes"]:
+        out.append(f"{m['mode']:>4} {m['min_Hz']:>10.2f} {m['at_crank_deg']:>9.1f} "
+                   f"{m['max_Hz']:>10.2f} {m['at_crank_deg_max']:>9.1f}"
+                   + (f"  {labels[m['mode'] - 1]}" if m["mode"] <= len(labels) else ""))
+    for pair, angles in document["mu90_crank_deg"].items():
+        where = (", ".join(f"{a:.2f}" for a in angles) + " deg") if angles else "never in the cycle"
+        out.append(f"mu = 90 deg ({pair}) at crank {where}")
+    check = document["resonance_check"]
+    if check["note"]:
+        out.append(check["note"])
+    if check["speed_rev_per_min"] and not document["resonances"]:
+        near = document["nearest_harmonic"]
+        out.append(f"resonance check at {check['speed_rev_per_min']:g} "
+                   f"rev/min: no harmonic 1..{harmonics} within {100 * margin:g} % of a natural "
+                   f"frequency; nearest: harmonic {near['harmonic']} at "
+                   f"{100 * near['relative_gap']:.1f} % from mode {near['mode']}")
+    tracking = document["tracking"]
+    for e in tracking.get("events", []):
+        out.append(f"{e['kind']} of modes {e['lines'][0]} and {e['lines'][1]} at crank "
+                   f"{e['crank_deg']:.1f} deg (gap {100 * e['gap']:.1f} %)")
+    for r in tracking.get("reseeds", []):
+        out.append(f"re-seeded line{'s' if len(r['lines']) > 1 else ''} "
+                   f"{', '.join(map(str, r['lines']))} at crank "
+                   f"{r['crank_deg']:.1f} deg: {r['reason']}")
+    if tracking.get("unsampled_note"):
+        out.append(f"warning: {tracking['unsampled_note']}")
+    if tracking.get("periodicity"):
+        out.append(f"periodicity: {tracking['periodicity']['note']}")
+    for h in document["resonances"]:
+        ranges = ", ".join(f"{a:.1f}-{b:.1f}" for a, b in h["crank_deg_ranges"])
+        out.append(f"resonance: harmonic {h['harmonic']} ({h['harmonic_Hz']:.2f} Hz) within "
+                   f"{100 * margin:g} % of mode {h['mode']} at crank {ranges} deg")
+    return out
+
+
+def write_map(csv_path, png_path, result: ModalMap | TrackedMap, crank_speed: float | None,
+              hits: list[Resonance]) -> None:
+    """The map's CSV and PNG (tracked lines with their events for a ``TrackedMap``), each
+    written atomically."""
+    track = isinstance(result, TrackedMap)
+    write_atomic(csv_path, tracked_csv(result) if track else modal_map_csv(result))
+    (plot_tracked if track else plot_map)(result, png_path, crank_speed, hits)

@@ -7,7 +7,7 @@ import math
 
 import numpy as np
 
-from flexlink.output.cycle_report import cycle_axes, write_figure
+from flexlink.output.figures import cycle_axes, write_figure
 from flexlink.studies.tracking import TrackedMap
 
 
