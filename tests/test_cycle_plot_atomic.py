@@ -8,7 +8,8 @@ import numpy as np
 import pytest
 from matplotlib.figure import Figure
 
-from flexlink.studies.cycle import ModalMap, plot_map
+from flexlink.output.cycle_report import plot_map
+from flexlink.studies.cycle import ModalMap
 
 
 def small_map() -> ModalMap:
@@ -43,3 +44,40 @@ def test_a_drawing_that_fails_half_way_keeps_the_old_picture(tmp_path, monkeypat
     assert target.read_bytes()[:4] == b"\x89PNG"
     assert stat.S_IMODE(target.stat().st_mode) == 0o644
     assert [p.name for p in tmp_path.iterdir()] == ["case-cycle.png"]
+
+
+def test_tracked_and_campbell_pictures_are_written_atomically(tmp_path, monkeypatch):
+    """The Campbell diagram and the tracked map go through the same writer: a renderer dying
+    half-way leaves the old picture and no temporary file."""
+    from flexlink.output.campbell_report import plot_campbell
+    from flexlink.output.tracking_report import plot_tracked
+    from flexlink.studies.campbell import RPM, Band
+    from flexlink.studies.tracking import TrackedMap, Tracks
+
+    q = small_map().q
+    f = small_map().frequencies
+    tracked = TrackedMap(scene="test", q=q, frequencies=f, mu90={},
+                         tracks=Tracks(frequencies=f, shapes=(), mac=np.ones_like(f),
+                                       rank=np.zeros_like(f, dtype=int), events=()))
+    draws = {
+        "campbell.png": lambda path: plot_campbell([Band(1, 9.0, 11.0)], (0.0, 3000 * RPM), 0.05,
+                                                   3, [], path),
+        "tracked.png": lambda path: plot_tracked(tracked, path),
+    }
+
+    def half_then_fail(self, fname, **kwargs):
+        if hasattr(fname, "write"):
+            fname.write(b"\x89PNG half")
+        else:
+            with open(fname, "wb") as fh:
+                fh.write(b"\x89PNG half")
+        raise RuntimeError("renderer died")
+
+    monkeypatch.setattr(Figure, "savefig", half_then_fail)
+    for name, draw in draws.items():
+        target = tmp_path / name
+        target.write_bytes(b"old picture")
+        with pytest.raises(RuntimeError):
+            draw(target)
+        assert target.read_bytes() == b"old picture"
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(draws)

@@ -1,5 +1,6 @@
 """The package's shape: lower stages never import higher ones, no two modules import each other
-(directly or round a loop), the kinematics stage stays light, and a public name means one thing.
+(directly or round a loop), the kinematics stage stays light, studies and kinematics neither
+write files nor draw, and a public name means one thing.
 
 Imports are read with ``ast`` from every module, function-level imports included, so a lazy
 import inside a command or a drawing function counts like a top-level one."""
@@ -146,6 +147,87 @@ def test_one_module_per_public_name():
                 defined[node.name].append(name)
     shared = {k: v for k, v in defined.items() if len(v) > 1}
     assert set(shared) - SHARED_NAMES == set(), shared
+
+
+# Stages that compute and return results: they neither write files nor draw.
+QUIET_STAGES = ("studies", "kinematics")
+DRAWING_LIBRARIES = {"matplotlib", "plotly", "pyvista"}
+WRITING_CALLS = {"write_atomic", "write_atomic_with", "staged_folder", "write_text",
+                 "write_bytes", "savefig", "to_csv", "savetxt", "save", "savez",
+                 "savez_compressed", "dump"}
+OPEN_MODE = set("rwaxbt+")
+
+
+def _called_name(node: ast.Call) -> str | None:
+    if isinstance(node.func, ast.Name):
+        return node.func.id
+    if isinstance(node.func, ast.Attribute):
+        return node.func.attr
+    return None
+
+
+def _opens_for_writing(node: ast.Call) -> bool:
+    """``open(path, "w")``, ``Path.open("a")``, ``open(path, mode="wb")``...: a string argument
+    made of mode letters that asks to write, append, create or update."""
+    texts = [a.value for a in [*node.args, *(k.value for k in node.keywords if k.arg == "mode")]
+             if isinstance(a, ast.Constant) and isinstance(a.value, str)]
+    return any(text and set(text) <= OPEN_MODE and set(text) & set("wax+") for text in texts)
+
+
+def writes_or_draws(path: Path) -> list[str]:
+    """What module ``path`` does that only ``output/`` may: file-writing calls and imports of
+    drawing libraries, anywhere in its body (inside functions too), as "line: what"."""
+    found = []
+    for node in ast.walk(ast.parse(path.read_text(), str(path))):
+        if isinstance(node, ast.Import):
+            roots = {alias.name.split(".")[0] for alias in node.names}
+        elif isinstance(node, ast.ImportFrom):
+            roots = {(node.module or "").split(".")[0]} if not node.level else set()
+        elif isinstance(node, ast.Call):
+            name = _called_name(node)
+            if name in WRITING_CALLS or (name == "open" and _opens_for_writing(node)):
+                found.append(f"{node.lineno}: calls {name}")
+            continue
+        else:
+            continue
+        found += [f"{node.lineno}: imports {root}" for root in sorted(roots & DRAWING_LIBRARIES)]
+    return sorted(found, key=lambda line: int(line.split(":")[0]))
+
+
+def test_studies_and_kinematics_neither_write_nor_draw():
+    """Only ``output/`` renders: a study or the kinematics returns its result, and the command
+    hands it to ``output/``, which writes through ``fileio``."""
+    offenders = {name: found for name, path in all_modules().items()
+                 if name.split(".")[1:2] and name.split(".")[1] in QUIET_STAGES
+                 and (found := writes_or_draws(path))}
+    assert offenders == {}
+
+
+def test_checker_sees_writes_and_drawing_imports(tmp_path):
+    """The walk itself: writes and drawing imports inside functions are found, reading is not."""
+    source = tmp_path / "study.py"
+    source.write_text(
+        "import json\n"
+        "def plot(result, path):\n"
+        "    import matplotlib.pyplot as plt\n"
+        "    from plotly import graph_objects\n"
+        "    plt.figure().savefig(path)\n"
+        "def save(path, text, frame):\n"
+        "    from flexlink.fileio import write_atomic\n"
+        "    write_atomic(path, text)\n"
+        "    path.write_text(text)\n"
+        "    frame.to_csv(path)\n"
+        "    with open(path, mode='a') as fh:\n"
+        "        json.dump({}, fh)\n"
+        "    with path.open('wb'):\n"
+        "        pass\n"
+        "def read(path):\n"
+        "    with open(path) as fh, open('/proc/self/status', 'r') as gh:\n"
+        "        return fh.read() + gh.read()\n")
+    assert writes_or_draws(source) == [
+        "3: imports matplotlib", "4: imports plotly", "5: calls savefig", "8: calls write_atomic",
+        "9: calls write_text", "10: calls to_csv", "11: calls open", "12: calls dump",
+        "13: calls open"]
 
 
 def test_kinematics_loads_no_fe_or_sparse_solver():

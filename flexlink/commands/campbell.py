@@ -45,12 +45,12 @@ def command(scene_path, speeds, n_modes, poses, elements, tol, margin, harmonics
     from flexlink.fileio import prepare_out_dir, write_atomic
     from flexlink.parallel import use_scheduler
     from flexlink.scene import load_scene
-    from flexlink.studies.campbell import (RPM, bands, campbell_json, critical_csv,
-                                           critical_speeds, nearest_margin, plot_campbell)
     from flexlink.analysis.families import in_plane_only_note
-    from flexlink.studies.tracking import (events_json, periodicity_json, reseeds_json,
-                                           tracked_map, unsampled_json, unsampled_note,
-                                           vanishing_lines)
+    from flexlink.output.campbell_report import campbell_json, critical_csv, plot_campbell
+    from flexlink.output.tracking_report import (events_json, periodicity_json, reseeds_json,
+                                                 unsampled_json)
+    from flexlink.studies.campbell import RPM, bands, critical_speeds, nearest_margin
+    from flexlink.studies.tracking import tracked_map, unsampled_note, vanishing_lines
     from ._progress import progress_bar
     from ._written import announce, scene_folders
 

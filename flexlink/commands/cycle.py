@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import math
 import click
 
 from flexlink.commands._failures import names_scene
@@ -43,17 +42,15 @@ def command(scene_path, n_modes, poses, elements, tol, speed, margin, harmonics,
     come within --margin of a natural frequency anywhere in the cycle. Writes cycle.csv,
     cycle.png and cycle.json to OUT/<scene>/."""
     from flexlink.analysis.families import in_plane_only_note
-    from flexlink.studies.cycle import (modal_map, modal_map_csv, plot_map, resonance_speed,
-                                        resonances, runs)
+    from flexlink.output.cycle_report import cycle_document, cycle_text, write_map
+    from flexlink.studies.cycle import modal_map, resonance_speed, resonances
     from flexlink.studies.campbell import nearest_harmonic
-    from flexlink.studies.tracking import (events_json, periodicity_json, plot_tracked,
-                                           reseeds_json, tracked_csv, tracked_map,
-                                           unsampled_json, unsampled_note)
+    from flexlink.studies.tracking import tracked_map
     from flexlink.analysis.mesh import choose_mesh
     from flexlink.fileio import prepare_out_dir, write_atomic
     from flexlink.parallel import use_scheduler
     from flexlink.scene import load_scene
-    from flexlink.units import parse_quantity, rev_per_min
+    from flexlink.units import parse_quantity
     from ._progress import progress_bar
     from ._written import announce, scene_folders
 
@@ -73,42 +70,10 @@ def command(scene_path, n_modes, poses, elements, tol, speed, margin, harmonics,
     to_zero = [(j, r.pose) for r in result.tracks.reseeds for j in r.vanishing] if track else []
     hits = resonances(result, check_speed, margin, harmonics, to_zero) if check_speed else []
     paths = [folder / "cycle.csv", folder / "cycle.png", folder / "cycle.json"]
-    write_atomic(paths[0], tracked_csv(result) if track else modal_map_csv(result))
-    (plot_tracked if track else plot_map)(result, paths[1], check_speed, hits)
-    f = result.frequencies
-    document = {
-        "command": "cycle", "scene": scene.name, "poses": poses,
-        "synthesis": scene.synthesis,
-        "modes": [{"mode": j + 1, "min_Hz": float(f[:, j].min()),
-                   "at_crank_deg": math.degrees(result.q[f[:, j].argmin()]) % 360.0,
-                   "max_Hz": float(f[:, j].max()),
-                   "at_crank_deg_max": math.degrees(result.q[f[:, j].argmax()]) % 360.0}
-                  for j in range(f.shape[1])],
-        "mu90_crank_deg": {k: [math.degrees(a) for a in v] for k, v in result.mu90.items()},
-        "mechanism_modes_max": int(result.mechanism_counts.max()),
-        "mesh": mesh.as_dict(),
-        "crank_speed_rev_per_min": None if omega is None else rev_per_min(omega),
-        "resonance_check": {"speed_rev_per_min": None if check_speed is None
-                                                 else rev_per_min(check_speed),
-                            "note": check_note},
-        "margin": margin,
-        "resonances": [{"harmonic": h.harmonic, "harmonic_Hz": h.frequency, "mode": h.mode,
-                        "closest_relative_gap": h.closest,
-                        "crank_deg_ranges": [[round(math.degrees(a), 2), round(math.degrees(b), 2)]
-                                             for a, b in runs(h.angles, 2 * math.pi / poses)]}
-                       for h in hits],
-        "tracking": {"by": "MAC", "labels": list(result.labels),
-                     "events": events_json(result), "reseeds": reseeds_json(result),
-                     "periodicity": periodicity_json(result),
-                     "unsampled_dead_centres_deg": unsampled_json(result),
-                     "unsampled_note": unsampled_note(result)} if track
-        else {"by": "frequency order"},
-        "nearest_harmonic": None if not check_speed else dict(zip(
-            ("relative_gap", "mode", "harmonic"),
-            nearest_harmonic(result.frequencies, check_speed, harmonics))),
-        "files": [str(p) for p in paths],
-        "assumptions": [f"{a.field}: {a.note}" for a in scene.assumptions],
-    }
+    write_map(paths[0], paths[1], result, check_speed, hits)
+    nearest = nearest_harmonic(result.frequencies, check_speed, harmonics) if check_speed else None
+    document = cycle_document(scene, result, mesh, poses, omega, (check_speed, check_note),
+                              margin, hits, nearest, paths)
     note = result.note if not track else in_plane_only_note(scene, "this map")
     if note:  # the map is not quite what was asked for: say what it is
         document["note"] = note
@@ -116,43 +81,6 @@ def command(scene_path, n_modes, poses, elements, tol, speed, margin, harmonics,
     if as_json:
         click.echo(dumps(document))
         return
-    click.echo(f"{scene.name}: first {n_modes} elastic modes over {poses} crank angles")
-    click.echo(mesh.describe())
-    if note:
-        click.echo(note)
-    if scene.synthesis:
-        click.echo(f"synthesis {scene.synthesis['method']}: " + ", ".join(
-            f"{k} {1e3 * v:.3f} mm" for k, v in scene.synthesis["lengths_m"].items()))
-    click.echo(f"{'mode':>4} {'min [Hz]':>10} {'at [deg]':>9} {'max [Hz]':>10} {'at [deg]':>9}")
-    labels = document["tracking"].get("labels", [])
-    for m in document["modes"]:
-        click.echo(f"{m['mode']:>4} {m['min_Hz']:>10.2f} {m['at_crank_deg']:>9.1f} "
-                   f"{m['max_Hz']:>10.2f} {m['at_crank_deg_max']:>9.1f}"
-                   + (f"  {labels[m['mode'] - 1]}" if m["mode"] <= len(labels) else ""))
-    for pair, angles in document["mu90_crank_deg"].items():
-        where = (", ".join(f"{a:.2f}" for a in angles) + " deg") if angles else "never in the cycle"
-        click.echo(f"mu = 90 deg ({pair}) at crank {where}")
-    if check_note:
-        click.echo(check_note)
-    if check_speed and not hits:
-        near = document["nearest_harmonic"]
-        click.echo(f"resonance check at {document['resonance_check']['speed_rev_per_min']:g} "
-                   f"rev/min: no harmonic 1..{harmonics} within {100 * margin:g} % of a natural "
-                   f"frequency; nearest: harmonic {near['harmonic']} at "
-                   f"{100 * near['relative_gap']:.1f} % from mode {near['mode']}")
-    for e in document.get("tracking", {}).get("events", []):
-        click.echo(f"{e['kind']} of modes {e['lines'][0]} and {e['lines'][1]} at crank "
-                   f"{e['crank_deg']:.1f} deg (gap {100 * e['gap']:.1f} %)")
-    for r in document.get("tracking", {}).get("reseeds", []):
-        click.echo(f"re-seeded line{'s' if len(r['lines']) > 1 else ''} "
-                   f"{', '.join(map(str, r['lines']))} at crank "
-                   f"{r['crank_deg']:.1f} deg: {r['reason']}")
-    if document.get("tracking", {}).get("unsampled_note"):
-        click.echo(f"warning: {document['tracking']['unsampled_note']}")
-    if document.get("tracking", {}).get("periodicity"):
-        click.echo(f"periodicity: {document['tracking']['periodicity']['note']}")
-    for h in document["resonances"]:
-        ranges = ", ".join(f"{a:.1f}-{b:.1f}" for a, b in h["crank_deg_ranges"])
-        click.echo(f"resonance: harmonic {h['harmonic']} ({h['harmonic_Hz']:.2f} Hz) within "
-                   f"{100 * margin:g} % of mode {h['mode']} at crank {ranges} deg")
+    for line in cycle_text(document, mesh.describe(), harmonics):
+        click.echo(line)
     announce(paths, as_json)
