@@ -47,3 +47,24 @@ def test_resonance_label_is_the_nearest_parametric_one():
     # f = 10, 25 Hz; 12.5 rev/s is 2 f_2 / 4 exactly (primary); 11.7 rev/s is (f_1 + f_2)/3.
     assert _nearest(np.array([10.0, 25.0]), 12.5, 6) == ((2,), 4, "primary")
     assert _nearest(np.array([10.0, 25.0]), 35.0 / 3.0, 6) == ((1, 2), 3, "combination")
+
+
+@pytest.mark.parametrize("speeds, expected", [("3000:0 rev/min", "--speeds"),
+                                              ("500:500 rev/min", "--speeds")])
+def test_backwards_or_empty_speed_range_is_a_one_line_error(tmp_path, speeds, expected):
+    from click.testing import CliRunner
+
+    from flexlink.cli import main
+    result = CliRunner().invoke(main, ["stability-map", str(CASES_DIR / "case1.toml"),
+                                       "--speeds", speeds, "--out", str(tmp_path)])
+    assert result.exit_code == 2
+    assert expected in result.output and "Traceback" not in result.output
+
+
+def test_document_lists_instability_ranges(model):
+    from flexlink.output.stability_map import stability_csv, stability_document
+    result = stability_map(model, np.array([0.0, 2 * np.pi]))
+    document = stability_document("case 1", result, model)
+    assert document["instability_ranges"] == []
+    assert document["largest_modulus"][0] == 1.0
+    assert stability_csv(result).count("\n") == 3

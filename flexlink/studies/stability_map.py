@@ -84,7 +84,7 @@ def periodic_model(scene: Scene, n_modes: int = 6, poses: int = 37,
         raise InputError(f"poses must be an odd count of at least 3, got {poses}")
     if not 0.0 <= damping_ratio < 1.0:
         raise InputError(f"damping ratio {damping_ratio} is outside [0, 1)",
-                         field="damping-ratio", expected="a ratio in [0, 1)")
+                         field="--damping-ratio", expected="a ratio in [0, 1)")
     topology = scene.topology(elements_per_link)
     state0 = scene.rigid_state(None)
     model0, static, _ = pose_modes(topology, state0.points, n_modes)
@@ -195,15 +195,13 @@ def stability_map(model: PeriodicModel, speeds: np.ndarray, steps: int = 200,
                   harmonics: int = 6, progress=None) -> StabilityMap:
     """The largest Floquet multiplier over ``speeds`` [rad/s]. At zero speed the equations do
     not vary: nothing is parametrically excited, the modulus is 1 and the rate 0 by definition
-    (the damped modes decay). ``progress``: called once per speed."""
+    (the damped modes decay). ``progress``: wraps the loop over speeds (a progress bar)."""
     speeds = np.asarray(speeds, dtype=float)
     modulus, rate = np.ones(len(speeds)), np.zeros(len(speeds))
-    for i, speed in enumerate(speeds):
-        if speed > 0.0:
-            result = speed_multipliers(model, speed, steps)
+    for i in (progress or iter)(range(len(speeds))):
+        if speeds[i] > 0.0:
+            result = speed_multipliers(model, speeds[i], steps)
             modulus[i], rate[i] = result.largest_modulus, result.growth_rate
-        if progress is not None:
-            progress()
     return StabilityMap(speeds, modulus, rate, _ranges(model, speeds, modulus, rate, harmonics))
 
 
