@@ -137,16 +137,24 @@ def _turning(model, reference, T) -> np.ndarray:
     """R (reduced) taking co-rotating node DOFs to global ones: each node's (ux, uy) turned by
     how far its link has turned since the reference pose (``reference``: its link angles).
     The co-rotating DOFs keep a mode's meaning over the turn (a crank's bending stays bending
-    after half a revolution); global ones do not."""
-    turn = _link_angles(model) - reference
-    c, s = np.cos(turn)[node_owners(model)], np.sin(turn)[node_owners(model)]
+    after half a revolution); global ones do not. A rigid pin's shared translation turns
+    with the first of its links (one DOF, one rotation: any choice is a valid coordinate)."""
+    node_turn = (_link_angles(model) - reference)[node_owners(model)]
+    if T is not None:
+        T = T.tocsc()
+        for j in np.flatnonzero(np.diff(T.indptr) > 1):
+            nodes = T.indices[T.indptr[j]:T.indptr[j + 1]] // 3
+            node_turn[nodes] = node_turn[nodes[0]]
+    c, s = np.cos(node_turn), np.sin(node_turn)
     R = np.zeros((model.n_dofs, model.n_dofs))
     ux, uy = 3 * np.arange(len(model.nodes)), 3 * np.arange(len(model.nodes)) + 1
     R[ux, ux], R[ux, uy], R[uy, ux], R[uy, uy] = c, -s, s, c
     R[ux + 2, ux + 2] = 1.0
-    Rr = R if T is None else np.asarray(T.T @ (T.T @ R.T).T)
+    # R T = T Rr: Rr = (T^T T)^-1 T^T R T, T^T T counting the DOFs tied in each column
+    Rr = R if T is None else (np.asarray(T.T @ (T.T @ R.T).T)
+                              / np.diff(T.indptr)[:, None])
     if not np.allclose(Rr.T @ Rr, np.eye(Rr.shape[0]), atol=1e-12):
-        raise NumericalError("a grounded DOF is one direction of a turning node: the "
+        raise NumericalError("a grounded or tied DOF is one direction of a turning node: the "
                              "co-rotating coordinates cannot be formed")
     return Rr
 
