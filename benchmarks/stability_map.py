@@ -1,0 +1,47 @@
+"""Stability map of Table II case 1: 300 speeds over 0:3000 rev/min, 6 modes (target: under
+10 s on one core).
+
+    PYTHONPATH=. python benchmarks/stability_map.py [--speeds N]
+
+CPU time of this process with BLAS on one thread: the periodic model (37 poses) and the Floquet
+map over the speeds, reported apart and together.
+"""
+
+from __future__ import annotations
+
+import os
+
+for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_var, "1")  # one core: set before numpy loads its BLAS
+
+import argparse  # noqa: E402
+import math  # noqa: E402
+import time  # noqa: E402
+from pathlib import Path  # noqa: E402
+
+import numpy as np  # noqa: E402
+
+from flexlink.scene import load_scene  # noqa: E402
+from flexlink.studies.stability_map import periodic_model, stability_map  # noqa: E402
+
+ROOT = Path(__file__).resolve().parent.parent
+GOAL = 10.0  # s
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("--speeds", type=int, default=300)
+    count = parser.parse_args().speeds
+    t0 = time.process_time()
+    model = periodic_model(load_scene(ROOT / "cases/case1.toml"), n_modes=6)
+    t1 = time.process_time()
+    result = stability_map(model, np.linspace(0.0, 3000.0, count) * 2 * math.pi / 60)
+    t2 = time.process_time()
+    total = t2 - t0
+    print(f"case 1, {count} speeds, 6 modes: model {t1 - t0:.2f} s, map {t2 - t1:.2f} s, "
+          f"total {total:.2f} s CPU; {len(result.ranges)} unstable ranges")
+    print(f"stability map under {GOAL:g} s: {'MET' if total < GOAL else 'NOT MET'}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,55 @@
+"""``flexlink stability-map SCENE --speeds "0:3000 rev/min"``: parametric (Floquet) stability."""
+
+from __future__ import annotations
+
+import click
+
+from flexlink.commands._failures import names_scene
+from flexlink.commands._options import dumps, json_option, out_option
+
+
+@click.command("stability-map")
+@click.argument("scene_path", metavar="SCENE", type=click.Path())
+@click.option("--speeds", required=True, help="Crank speed range, e.g. '0:3000 rev/min'.")
+@click.option("--count", default=300, show_default=True, type=click.IntRange(2, 100000),
+              help="Speeds over the range.")
+@click.option("-n", "--modes", "n_modes", default=6, show_default=True,
+              type=click.IntRange(1, 50), help="Static modes of the reduced basis.")
+@click.option("--damping-ratio", default=0.01, show_default=True, type=float,
+              help="Modal damping ratio in [0, 1).")
+@json_option
+@out_option
+@names_scene("scene_path")
+def command(scene_path, speeds, count, n_modes, damping_ratio, as_json, out_dir):
+    """Largest Floquet multiplier of SCENE's periodic elastic equations against crank speed
+    and the unstable ranges, labelled by the nearest parametric resonance. Writes
+    stability-map.png, .csv and .json to OUT/<scene>/."""
+    import numpy as np
+
+    from flexlink.commands.campbell import parse_speeds
+    from flexlink.fileio import prepare_out_dir, write_atomic
+    from flexlink.output.stability_map import (plot_stability, stability_csv,
+                                               stability_document, stability_lines)
+    from flexlink.scene import load_scene
+    from flexlink.studies.campbell import _check_speeds
+    from flexlink.studies.stability_map import periodic_model, stability_map
+    from ._progress import progress_bar
+    from ._written import announce, scene_folders
+
+    low, high = _check_speeds(parse_speeds(speeds))
+    [folder] = scene_folders(prepare_out_dir(out_dir), [scene_path])
+    scene = load_scene(scene_path)
+    model = periodic_model(scene, n_modes, damping_ratio=damping_ratio)
+    result = stability_map(model, np.linspace(low, high, count),
+                           progress=progress_bar("speeds", as_json))
+    paths = [folder / f"stability-map.{x}" for x in ("png", "csv", "json")]
+    plot_stability(result, paths[0], scene.name)
+    write_atomic(paths[1], stability_csv(result))
+    document = {**stability_document(scene.name, result, model),
+                "files": [str(p) for p in paths]}
+    write_atomic(paths[2], dumps(document))
+    if as_json:
+        click.echo(dumps(document))
+        return
+    click.echo("\n".join(stability_lines(document)))
+    announce(paths, as_json)
