@@ -5,11 +5,16 @@ from __future__ import annotations
 
 from flexlink.studies.campbell import RPM
 
+# Said with every map until the basis is checked as the cycle map's Craig-Bampton basis is.
+BASIS_CAVEAT = ("the reduced basis (the reference pose's lowest static modes) is not checked "
+                "for convergence: ranges change with the number of modes, so treat them as "
+                "indicative (docs/critical-speeds.md)")
+
 
 def stability_document(scene_name: str, result, model) -> dict:
     """The JSON document: per speed the largest modulus and growth rate, and the ranges."""
     return {
-        "command": "stability-map", "scene": scene_name,
+        "command": "stability-map", "scene": scene_name, "caveat": BASIS_CAVEAT,
         "damping_ratio": model.damping_ratio, "poses": len(model.angles),
         "basis_frequencies_Hz": model.frequencies.tolist(),
         "speeds_rev_per_min": (result.speeds / RPM).tolist(),
@@ -31,7 +36,8 @@ def stability_csv(result) -> str:
 
 def stability_lines(document: dict) -> list[str]:
     out = [f"{document['scene']}: {len(document['basis_frequencies_Hz'])} modes, damping ratio "
-           f"{document['damping_ratio']:g}, {len(document['speeds_rev_per_min'])} speeds"]
+           f"{document['damping_ratio']:g}, {len(document['speeds_rev_per_min'])} speeds",
+           f"caveat: {document['caveat']}"]
     ranges = document["instability_ranges"]
     if not ranges:
         return out + ["no parametric instability in the range"]
