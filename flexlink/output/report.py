@@ -10,6 +10,7 @@ import math
 
 import numpy as np
 
+from flexlink.analysis.damping import damping_ratios
 from flexlink.analysis.identity import DIRECTIONS, mode_identity, participating_mass, total_mass
 from flexlink.analysis.modal import CaseResult
 
@@ -21,11 +22,15 @@ def percent_error(computed: float, reference: float) -> float:
 def comparison_rows(result: CaseResult, n_modes: int, computed=None, kinds=None) -> list[dict]:
     """One dict per elastic mode: mode, computed [Hz], and for each reference column its value
     [Hz] and % error (computed vs reference); for the planar model's own modes also its
-    identity (``identity.mode_identity``: label, energy fractions, effective masses)."""
+    identity (``identity.mode_identity``: label, energy fractions, effective masses) and its
+    damping ratio from the links' loss factors (``damping.damping_ratios``)."""
     identity = [{}] * n_modes
     if computed is None:
         computed = result.elastic_frequencies(n_modes)
-        identity = mode_identity(result.model, result.modes.shapes[:, result.modes.elastic[:n_modes]])
+        shapes = result.modes.shapes[:, result.modes.elastic[:n_modes]]
+        zeta = damping_ratios(result.model, shapes, result.scene.loss_factors)
+        identity = [{**row, "damping_ratio": float(z)}
+                    for row, z in zip(mode_identity(result.model, shapes), zeta)]
     columns = result.scene.reference.columns if result.scene.reference else {}
     rows = []
     for i, f in enumerate(computed):
@@ -117,6 +122,8 @@ def format_case(summary: dict) -> str:
     header = f"{'mode':>4} {'computed Hz':>12}" + "".join(f" {r + ' Hz':>9} {'err %':>8}" for r in refs)
     if rows and "kind" in rows[0]:
         header += "  kind"
+    if rows and "damping_ratio" in rows[0]:
+        header += f" {'zeta %':>7}"
     if rows and "label" in rows[0]:
         header += f" {'m_x g':>7} {'m_y g':>7}  label"
     lines.append(header)
@@ -127,6 +134,8 @@ def format_case(summary: dict) -> str:
                 line += f" {row[f'{r}_Hz']:>9.1f} {row[f'error_vs_{r}_pct']:>+8.1f}"
         if "kind" in row:
             line += f"  {row['kind']}"
+        if "damping_ratio" in row:
+            line += f" {100 * row['damping_ratio']:>7.3f}"
         if "label" in row:
             mass = row["effective_mass_kg"]
             line += f" {1e3 * mass['x']:>7.3f} {1e3 * mass['y']:>7.3f}  {row['label']}"
@@ -134,6 +143,8 @@ def format_case(summary: dict) -> str:
     if summary["mean_abs_error_pct"]:
         lines.append("mean |error|: " + ", ".join(
             f"vs {k} {v:.1f} %" for k, v in sorted(summary["mean_abs_error_pct"].items())))
+    lines += [f"damping: {a['field']} = {a['value']}, {a['note']}"
+              for a in summary["assumptions"] if a["field"].endswith("loss_factor")]
     if summary["mechanism_modes_Hz"]:
         lines.append("rigid-body/mechanism modes (not paired): " + ", ".join(
             f"{f:.3g} Hz" for f in summary["mechanism_modes_Hz"]))
