@@ -138,7 +138,7 @@ def test_material_file_loss_factor_outside_range(tmp_path):
 
 def test_modes_command_shows_zeta_and_its_assumption(tmp_path):
     """JSON rows carry damping_ratio (eta / 2 weighted by the links' strain share, so below
-    the composite default's 0.005 with compliant pins); the text shows a zeta % column and the
+    the composite default's 0.005 with compliant pins); the text shows a zeta % line and the
     assumed loss factor."""
     import json
 
@@ -149,4 +149,4 @@ def test_modes_command_shows_zeta_and_its_assumption(tmp_path):
     assert all(0.004 < z < 0.005 for z in zeta)
     assert any(a["field"] == "material.loss_factor" for a in case["assumptions"])
     text = CliRunner().invoke(main, args).output
-    assert "zeta %" in text and "damping: material.loss_factor = 0.01" in text
+    assert "damping ratio zeta %" in text and "damping: material.loss_factor = 0.01" in text

@@ -122,8 +122,6 @@ def format_case(summary: dict) -> str:
     header = f"{'mode':>4} {'computed Hz':>12}" + "".join(f" {r + ' Hz':>9} {'err %':>8}" for r in refs)
     if rows and "kind" in rows[0]:
         header += "  kind"
-    if rows and "damping_ratio" in rows[0]:
-        header += f" {'zeta %':>7}"
     if rows and "label" in rows[0]:
         header += f" {'m_x g':>7} {'m_y g':>7}  label"
     lines.append(header)
@@ -134,8 +132,6 @@ def format_case(summary: dict) -> str:
                 line += f" {row[f'{r}_Hz']:>9.1f} {row[f'error_vs_{r}_pct']:>+8.1f}"
         if "kind" in row:
             line += f"  {row['kind']}"
-        if "damping_ratio" in row:
-            line += f" {100 * row['damping_ratio']:>7.3f}"
         if "label" in row:
             mass = row["effective_mass_kg"]
             line += f" {1e3 * mass['x']:>7.3f} {1e3 * mass['y']:>7.3f}  {row['label']}"
@@ -143,6 +139,9 @@ def format_case(summary: dict) -> str:
     if summary["mean_abs_error_pct"]:
         lines.append("mean |error|: " + ", ".join(
             f"vs {k} {v:.1f} %" for k, v in sorted(summary["mean_abs_error_pct"].items())))
+    if rows and "damping_ratio" in rows[0]:
+        lines.append("damping ratio zeta % (material loss, strain-energy weighted): " + ", ".join(
+            f"{100 * row['damping_ratio']:.3f}" for row in rows))
     lines += [f"damping: {a['field']} = {a['value']}, {a['note']}"
               for a in summary["assumptions"] if a["field"].endswith("loss_factor")]
     if summary["mechanism_modes_Hz"]:
