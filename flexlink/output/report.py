@@ -22,15 +22,11 @@ def percent_error(computed: float, reference: float) -> float:
 def comparison_rows(result: CaseResult, n_modes: int, computed=None, kinds=None) -> list[dict]:
     """One dict per elastic mode: mode, computed [Hz], and for each reference column its value
     [Hz] and % error (computed vs reference); for the planar model's own modes also its
-    identity (``identity.mode_identity``: label, energy fractions, effective masses) and its
-    damping ratio from the links' loss factors (``damping.damping_ratios``)."""
+    identity (``identity.mode_identity``: label, energy fractions, effective masses)."""
     identity = [{}] * n_modes
     if computed is None:
         computed = result.elastic_frequencies(n_modes)
-        shapes = result.modes.shapes[:, result.modes.elastic[:n_modes]]
-        zeta = damping_ratios(result.model, shapes, result.scene.loss_factors)
-        identity = [{**row, "damping_ratio": float(z)}
-                    for row, z in zip(mode_identity(result.model, shapes), zeta)]
+        identity = mode_identity(result.model, result.modes.shapes[:, result.modes.elastic[:n_modes]])
     columns = result.scene.reference.columns if result.scene.reference else {}
     rows = []
     for i, f in enumerate(computed):
@@ -83,6 +79,9 @@ def case_summary(result: CaseResult, n_modes: int, family: str = "planar", compu
         "dofs": modes.n_dofs,
         "solver": modes.solver,
         "modes": rows,
+        # per elastic mode, from the links' loss factors (``damping.damping_ratios``) [-]
+        "damping_ratio": [] if computed is not None else [float(z) for z in damping_ratios(
+            result.model, modes.shapes[:, modes.elastic[:n_modes]], scene.loss_factors)],
         "mechanism_modes_Hz": mechanism,
         "mass_kg": {"total": total_mass(result.model),
                     "participating": dict(zip(DIRECTIONS, map(float, participating_mass(result.model))))},
@@ -139,9 +138,9 @@ def format_case(summary: dict) -> str:
     if summary["mean_abs_error_pct"]:
         lines.append("mean |error|: " + ", ".join(
             f"vs {k} {v:.1f} %" for k, v in sorted(summary["mean_abs_error_pct"].items())))
-    if rows and "damping_ratio" in rows[0]:
+    if summary.get("damping_ratio"):
         lines.append("damping ratio zeta % (material loss, strain-energy weighted): " + ", ".join(
-            f"{100 * row['damping_ratio']:.3f}" for row in rows))
+            f"{100 * z:.3f}" for z in summary["damping_ratio"]))
     lines += [f"damping: {a['field']} = {a['value']}, {a['note']}"
               for a in summary["assumptions"] if a["field"].endswith("loss_factor")]
     if summary["mechanism_modes_Hz"]:
