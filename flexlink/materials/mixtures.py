@@ -57,6 +57,17 @@ _FIELDS = {"E": "modulus", "G": "modulus", "density": "density"}
 
 
 @dataclasses.dataclass(frozen=True)
+class LossFactor:
+    """A material loss factor eta [-] in [0, 1) with its plausible range (low, high) and the
+    source of the value."""
+
+    value: float
+    low: float
+    high: float
+    source: str
+
+
+@dataclasses.dataclass(frozen=True)
 class Constituent:
     """An isotropic constituent. E, G [Pa], density [kg/m^3], poisson [-].
 
@@ -69,6 +80,7 @@ class Constituent:
     density: float
     poisson: float
     spread: dict[str, float] = dataclasses.field(default_factory=dict)
+    loss: LossFactor | None = None  # the file's material loss factor, if it gives one
 
     def __post_init__(self):
         for field in ("E", "G", "density"):
@@ -148,7 +160,26 @@ def _read_constituent(path: Traversable) -> Constituent:
         raise InputError("missing or not a number", source=src, field="poisson.mean",
                          expected="a dimensionless number in (-1, 0.5)")
     return Constituent(name=data.get("name", path.name.removesuffix(".toml")), E=values["E"],
-                       G=values["G"], density=values["density"], poisson=float(nu), spread=spread)
+                       G=values["G"], density=values["density"], poisson=float(nu), spread=spread,
+                       loss=_read_loss(data.get("loss_factor"), src))
+
+
+def _read_loss(entry, src: str) -> LossFactor | None:
+    """``loss_factor = { mean = ..., low = ..., high = ..., source = "..." }`` of a material
+    file (plain numbers in [0, 1)), or None when the file gives none."""
+    if entry is None:
+        return None
+    expected = "loss_factor = { mean = 0.001, low = 1e-4, high = 3e-3, source = '...' } in [0, 1)"
+    if not isinstance(entry, dict):
+        raise InputError(f"got {entry!r}", source=src, field="loss_factor", expected=expected)
+    values = {}
+    for key in ("mean", "low", "high"):
+        value = entry.get(key, entry.get("mean"))
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or not 0 <= value < 1:
+            raise InputError(f"got {value!r}", source=src, field=f"loss_factor.{key}",
+                             expected="a plain number in [0, 1)")
+        values[key] = float(value)
+    return LossFactor(values["mean"], values["low"], values["high"], str(entry.get("source", src)))
 
 
 def rule_of_mixtures(fiber: Constituent, matrix: Constituent, fiber_fraction: float) -> Lamina:

@@ -142,6 +142,7 @@ class Scene:
     synthesis: dict | None = None  # method, inputs and the synthesised lengths [m]
     composite: Composite | None = None  # the shared material, where it is a composite
     loads: tuple[LoadSpec, ...] = ()  # external loads for the driving torque
+    loss_factors: dict[str, float] = dataclasses.field(default_factory=dict)  # link -> eta [-]
     origin: dict[str, str] = dataclasses.field(default_factory=dict, repr=False, compare=False)
 
     @property

@@ -48,6 +48,7 @@ def build_four_bar(src: SceneSource, sf: schema.SceneFile) -> Scene:
     elements = sf.mesh.elements_per_link or DEFAULT_ELEMENTS
     links = tuple(LinkSpec(name, a, b, parts.section(src, sf, name, parts.material(
         src, sf, name, assumptions), lengths[name]), elements) for name, a, b in LINKS)
+    loss = {name: parts.loss_factor(src, sf, name, assumptions) for name, _, _ in LINKS}
     return Scene(
         name=sf.name or src.path.stem, path=str(src.path), kind="four-bar",
         linkage=four_bar_linkage(*fb.lengths), four_bar=fb, start=start, branch=pose.branch,
@@ -56,5 +57,5 @@ def build_four_bar(src: SceneSource, sf: schema.SceneFile) -> Scene:
         drive=parts.drive(src, sf, {n: (a, b) for n, a, b in LINKS}, GROUND),
         elements_per_link=sf.mesh.elements_per_link, reference=parts.reference(sf),
         assumptions=parts.unique(assumptions + parts.default_assumptions(src, sf, list(JOINTS))), options=parts.options(src, sf, list(JOINTS)),
-        composite=parts.composite(sf), origin=dict(src.origin))
+        composite=parts.composite(sf), loss_factors=loss, origin=dict(src.origin))
 

@@ -177,7 +177,7 @@ def build_general(src: SceneSource, sf: schema.SceneFile) -> Scene:
     linkage = Linkage(ground=ground, bodies=tuple(bodies), driver=driver)
     known = sorted({j for b in bodies for j in b.joints} | set(ground))
     assumptions = list(src.assumptions)
-    links, used = [], []
+    links, used, loss = [], [], {}
     for name, table in sf.links.items():
         for key in ("start", "end"):
             joint = getattr(table, key)
@@ -193,6 +193,7 @@ def build_general(src: SceneSource, sf: schema.SceneFile) -> Scene:
         n = table.elements or sf.mesh.elements_per_link or DEFAULT_ELEMENTS
         section = parts.section(src, sf, name, parts.material(src, sf, name, assumptions), length)
         links.append(LinkSpec(name, table.start, table.end, section, n))
+        loss[name] = parts.loss_factor(src, sf, name, assumptions)
         used += [j for j in (table.start, table.end) if j not in used]
     joints = parts.joints(src, sf, used, set(ground)) if links else ()
     for warning in structure_warnings(linkage, tuple(links), joints):
@@ -204,4 +205,5 @@ def build_general(src: SceneSource, sf: schema.SceneFile) -> Scene:
         drive=parts.drive(src, sf, {l.name: (l.start, l.end) for l in links}, set(ground)),
         elements_per_link=sf.mesh.elements_per_link, reference=parts.reference(sf),
         assumptions=parts.unique(assumptions + parts.default_assumptions(src, sf, used)), options=parts.options(src, sf, used),
-        synthesis=synthesis, composite=parts.composite(sf), origin=dict(src.origin))
+        synthesis=synthesis, composite=parts.composite(sf), loss_factors=loss,
+        origin=dict(src.origin))

@@ -9,7 +9,8 @@ import math
 
 from flexlink.errors import InputError
 from flexlink.fe.model import DriveSpec, JointSpec, Section
-from flexlink.materials.mixtures import BeamMaterial, isotropic, load_constituent, woven_composite
+from flexlink.materials.mixtures import (BeamMaterial, LossFactor, isotropic, load_constituent,
+                                         woven_composite)
 from flexlink.scene import schema
 from flexlink.scene.contract import Composite, Options, PrbOptions, Reference, Variant
 from flexlink.scene.source import Assumption, SceneSource
@@ -72,6 +73,38 @@ def material(src: SceneSource, sf: schema.SceneFile, link: str,
                                       "solid with nu = 0.3); G is not given",
                                       src.file_of(f"{field}.E")))
     return BeamMaterial(name=field, E=m.E, G=G, density=m.density)
+
+
+# Loss factors [-] where neither the scene nor the material file gives one (Ashby, Materials
+# Selection in Mechanical Design, loss-coefficient chart): a woven carbon laminate's is matrix
+# dominated (carbon/epoxy 2e-3 to 1e-2, a polyester matrix higher); E and density are taken as
+# a structural metal's (1e-4 to 1e-3), the range widened to 1e-2 since the material is unnamed.
+WOVEN_LOSS = LossFactor(0.01, 2e-3, 2e-2, "Ashby, loss-coefficient chart (CFRP 2e-3 to 1e-2)")
+GENERIC_LOSS = LossFactor(1e-3, 1e-4, 1e-2, "Ashby, loss-coefficient chart (metals 1e-4 to 1e-3)")
+
+
+def loss_factor(src: SceneSource, sf: schema.SceneFile, link: str,
+                assumptions: list[Assumption]) -> float:
+    """A link's material loss factor eta [-]: as written in its material table, else its named
+    material file's, else ``WOVEN_LOSS`` or ``GENERIC_LOSS``; a value not written in the scene
+    is listed as an assumption with its range."""
+    own = sf.links.get(link)
+    field = f"links.{link}.material" if own is not None and own.material else "material"
+    m = own.material if own is not None and own.material else sf.material
+    if m is None or m.loss_factor is not None:
+        return 0.0 if m is None else m.loss_factor
+    try:
+        named = load_constituent(m.isotropic).loss if m.isotropic is not None else None
+    except InputError as exc:
+        raise InputError(str(exc), source=src.file_of(field), field=field) from None
+    default = named or (WOVEN_LOSS if m.composite is not None else GENERIC_LOSS)
+    where = "the material file" if named else "default"
+    assumptions.append(Assumption(
+        f"{field}.loss_factor", f"{default.value:g}",
+        f"assumed ({where}): material loss factor {default.value:g}, plausible "
+        f"{default.low:g} to {default.high:g} ({default.source}); loss_factor is not given",
+        src.file_of(field)))  # no sampled range: frequencies do not depend on it
+    return default.value
 
 
 def merged_section(sf: schema.SceneFile, link: str) -> tuple[dict, dict[str, str]]:

@@ -155,6 +155,13 @@ class MaterialTable(Table):
     G: MODULUS | None = doc("Shear modulus; if not given, E / 2.6 (nu = 0.3) is used and listed "
                             "as an assumption.", default=None)
     density: DENSITY | None = doc("Density (with E).", default=None)
+    loss_factor: number(0.0, 1.0, high_open=True) | None = doc(
+        "Material loss factor eta (dimensionless): the fraction 2 pi of the strain energy lost "
+        "per cycle, giving each mode's damping ratio by strain-energy weighting. If not given, "
+        "the material file's value, else 0.01 for a woven composite (carbon/epoxy laminates "
+        "2e-3 to 1e-2, a polyester matrix higher) or 1e-3 for E and density (structural "
+        "metals 1e-4 to 1e-3; Ashby, Materials Selection in Mechanical Design, loss-coefficient "
+        "chart), listed as an assumption.", default=None)
 
     @model_validator(mode="after")
     def _one_kind(self):
