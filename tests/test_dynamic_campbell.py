@@ -1,6 +1,7 @@
 """Speed-dependent Campbell diagram: the per-pose reduction against the full operating-point
 solve, and the diagram at zero speed against the static (frozen-pose) one."""
 
+import json
 import math
 
 import numpy as np
@@ -62,3 +63,28 @@ def test_critical_range_edges_follow_the_band_at_speed(case1):
     [c] = [c for c in dynamic_critical(flat, 0.05, 1)]
     assert (c.low, c.high) == pytest.approx((2 * math.pi * 30 * 0.95, 2 * math.pi * 30 * 1.05),
                                             rel=1e-12)
+
+
+def test_campbell_dynamic_command(tmp_path):
+    from click.testing import CliRunner
+
+    from flexlink.cli import main
+
+    result = CliRunner().invoke(main, [
+        "campbell", str(CASES_DIR / "case1.toml"), "--speeds", "0:2000 rev/min", "--dynamic",
+        "--speed-steps", "3", "--poses", "6", "-e", "4", "-n", "2", "--json",
+        "--out", str(tmp_path)])
+    assert result.exit_code == 0, result.output
+    document = json.loads(result.output)
+    at_speed = document["at_speed"]
+    # the frozen bands of the diagram at speed are the static command's own bands
+    edges = [[b["min_Hz"], b["max_Hz"]] for b in document["bands"]]
+    assert np.ravel([[b["min_Hz"], b["max_Hz"]] for b in at_speed["frozen_bands"]]) \
+        == pytest.approx(np.ravel(edges), rel=1e-12)
+    first = at_speed["bands_at_speed"][0]
+    assert first["min_Hz"] == pytest.approx([b["min_Hz"] for b in document["bands"]], rel=1e-12)
+    assert [s["rev_per_min"] for s in at_speed["bands_at_speed"]] == pytest.approx(
+        [0, 1000, 2000])
+    assert (tmp_path / "case1" / "campbell_at_speed.csv").exists()
+    assert all(s["frozen_rev_per_min"] or s["at_speed_rev_per_min"]
+               for s in at_speed["critical_speeds"])
