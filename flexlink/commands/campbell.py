@@ -31,16 +31,22 @@ def parse_speeds(text: str) -> tuple[float, float]:
               help="Relative distance from a band that counts as critical.")
 @click.option("--harmonics", default=10, show_default=True, type=click.IntRange(1, 10000),
               help="Crank harmonics n = 1 ... this number.")
+@click.option("--dynamic", is_flag=True,
+              help="Also the bands at each speed from the modes at speed (inertia preload, "
+                   "centrifugal, Coriolis), and how they move the critical speed ranges.")
+@click.option("--speed-steps", default=50, show_default=True, type=click.IntRange(2, 100000),
+              help="Crank speeds across the range for --dynamic.")
 @map_parallel_options(sorted_map=False)
 @json_option
 @out_option
 @names_scene("scene_path")
-def command(scene_path, speeds, n_modes, poses, elements, tol, margin, harmonics, jobs, scheduler,
-            as_json, out_dir):
+def command(scene_path, speeds, n_modes, poses, elements, tol, margin, harmonics, dynamic,
+            speed_steps, jobs, scheduler, as_json, out_dir):
     """Campbell diagram of SCENE: each tracked mode's frequency band over the crank cycle
     against crank speed, the harmonics n x speed and the margin band; the critical speed
     ranges where a harmonic enters a band (with the margin), or the nearest margin when none
-    does. Writes campbell.png, campbell.csv and campbell.json to OUT/<scene>/."""
+    does. Writes campbell.png, campbell.csv and campbell.json to OUT/<scene>/; with
+    --dynamic also campbell_at_speed.png and .csv, and the ranges at speed in the JSON."""
     from flexlink.analysis.mesh import choose_mesh
     from flexlink.fileio import prepare_out_dir, write_atomic
     from flexlink.parallel import use_scheduler
@@ -66,6 +72,9 @@ def command(scene_path, speeds, n_modes, poses, elements, tol, margin, harmonics
     nearest = nearest_margin(found, window, harmonics)
     labels = dict(enumerate(result.labels, start=1))
     paths = [folder / "campbell.png", folder / "campbell.csv", folder / "campbell.json"]
+    at_speed = _at_speed(scene, window, n_modes, poses, mesh.elements, margin, harmonics,
+                         speed_steps, folder, progress_bar("poses at speed", as_json)) \
+        if dynamic else None
     plot_campbell(found, window, margin, harmonics, critical, paths[0], scene.name, labels)
     write_atomic(paths[1], critical_csv(critical, found))
     document = {"command": "campbell", "scene": scene.name,
@@ -77,7 +86,8 @@ def command(scene_path, speeds, n_modes, poses, elements, tol, margin, harmonics
                 "periodicity": periodicity_json(result),
                 "unsampled_dead_centres_deg": unsampled_json(result),
                 "unsampled_note": unsampled_note(result),
-                "files": [str(p) for p in paths]}
+                **({"at_speed": at_speed[0]} if at_speed else {}),
+                "files": [str(p) for p in paths + (at_speed[2] if at_speed else [])]}
     note = in_plane_only_note(scene, "this diagram")
     if note:  # the diagram holds the in-plane modes only
         document["note"] = note
@@ -112,4 +122,25 @@ def command(scene_path, speeds, n_modes, poses, elements, tol, margin, harmonics
         click.echo("no critical speed in the range; nearest margin: harmonic "
                    f"{n['harmonic']} of mode {n['mode']}, relative gap "
                    f"{100 * n['relative_gap']:.2f} % at {n['at_rev_per_min']:.1f} rev/min")
-    announce(paths, as_json)
+    for line in at_speed[1] if at_speed else ():
+        click.echo(line)
+    announce(paths + (at_speed[2] if at_speed else []), as_json)
+
+
+def _at_speed(scene, window, n_modes, poses, elements, margin, harmonics, steps, folder,
+              progress):
+    """(JSON, text lines, files written) of the speed-dependent diagram over ``window``."""
+    import numpy as np
+
+    from flexlink.fileio import write_atomic
+    from flexlink.output.dynamic_campbell import (dynamic_csv, dynamic_json, dynamic_lines,
+                                                  plot_dynamic)
+    from flexlink.studies.dynamic_campbell import critical_shifts, dynamic_campbell
+
+    result = dynamic_campbell(scene, np.linspace(*window, steps), poses, n_modes, elements,
+                              progress=progress)
+    shifts = critical_shifts(result, margin, harmonics)
+    files = [folder / "campbell_at_speed.png", folder / "campbell_at_speed.csv"]
+    plot_dynamic(result, margin, harmonics, files[0], scene.name)
+    write_atomic(files[1], dynamic_csv(result))
+    return dynamic_json(result, shifts), dynamic_lines(result, shifts), files

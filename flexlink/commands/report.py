@@ -46,7 +46,7 @@ def command(scenes, n_modes, elements, tol, method, cycle_poses, sensitivity, sa
     from flexlink.output.export_vtk import mode_set
     from flexlink.output.html_report import render_page
     from flexlink.output.report import case_summary
-    from flexlink.output.report_data import cycle_data, scene_page
+    from flexlink.output.report_data import at_speed_data, cycle_data, scene_page
     from flexlink.scene import scene_files
     from flexlink.studies.cycle import modal_map
     from ._analysed import analysed_scene
@@ -88,7 +88,8 @@ def command(scenes, n_modes, elements, tol, method, cycle_poses, sensitivity, sa
                          "history": list(mesh.history)}
             pages.append(scene_page(result, summary, mesh_info, mode_set(result, n_modes),
                                     cycle_data(cycle, result.pose.crank_angle, reason),
-                                    exported, out))
+                                    exported, out,
+                                    at_speed_data(scene, n_modes, mesh.elements)))
     if not pages:  # nothing to show: no page, only the reasons
         finish(failures, len(files))
     stamp = datetime.datetime.now().astimezone().strftime("%Y-%m-%d %H:%M %Z")

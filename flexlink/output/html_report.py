@@ -290,6 +290,54 @@ def cycle_section(page: dict, figures: list) -> str:
               "pose, dotted: transmission angle 90 deg.</p>")
 
 
+def at_speed_section(page: dict, figures: list) -> str:
+    """The scene at its declared operating speed: torque curve, frequencies against speed at
+    the pose, and the preload's axial forces per link; "" (no section) without a speed."""
+    at = page.get("at_speed")
+    if at is None:
+        return ""
+    parts = [f"<h3>At speed</h3><p>Crank speed {_number(at['rev_per_min'], 1)} rev/min "
+             f"({_number(at['rad_per_s'], 3)} rad/s), as the scene declares. Assumptions: "
+             + "; ".join(_e(a) for a in at["assumptions"]) + ".</p>"]
+    torque = at["torque"]
+    if "unavailable" in torque:
+        parts.append(f"<p>Driving torque not available: {_e(torque['unavailable'])}</p>")
+    else:
+        s = torque["summary"]
+        data = [{"type": "scatter", "mode": "lines", "x": torque["crank_deg"],
+                 "y": torque["torque_N_m"], "name": "driving torque",
+                 "hovertemplate": "%{x:.1f} deg: %{y:.4g} N m<extra></extra>"}]
+        layout = {"xaxis": {"title": {"text": "crank angle [deg]"}, "range": [0, 360],
+                            "dtick": 60},
+                  "yaxis": {"title": {"text": "driving torque [N m]"}}, "showlegend": False}
+        parts.append(_figure(page, figures, "torque", data, layout)
+                     + f'<p class="note">Driving torque on the crank over one turn: peak '
+                       f"{s['peak_torque_N_m']:.4g} N m at {s['peak_torque_at_deg']:.0f} deg, "
+                       f"mean {s['mean_torque_N_m']:.4g} N m, mean power "
+                       f"{s['mean_power_W']:.4g} W.</p>")
+    modes = at["modes"]
+    if "unavailable" in modes:
+        parts.append(f"<p>Modes at speed not available: {_e(modes['unavailable'])}</p>")
+        return "".join(parts)
+    data = [{"type": "scatter", "mode": "lines+markers", "x": modes["rev_per_min"], "y": f,
+             "name": f"mode {j + 1}",
+             "hovertemplate": "%{x:.0f} rev/min: %{y:.2f} Hz<extra></extra>"}
+            for j, f in enumerate(modes["frequencies_Hz"])]
+    layout = {"xaxis": {"title": {"text": "crank speed [rev/min]"}},
+              "yaxis": {"title": {"text": "frequency at speed [Hz]"}},
+              "legend": {"orientation": "h", "y": -0.25}, "height": 380}
+    rows = [[_e(a["link"]), _number(a["tension"], 3), _number(a["compression"], 3)]
+            for a in modes["axial_N"]]
+    return "".join(parts) + (
+        _figure(page, figures, "speed", data, layout)
+        + '<p class="note">Frequencies at the analysed pose from rest to the operating speed '
+          "(inertia preload, centrifugal softening, Coriolis coupling), in frequency order"
+        + ("; the frame diverges at the operating speed" if modes["diverges"] else "")
+        + ".</p><h4>Axial preload at the operating speed</h4>"
+        + _table(["link", "largest tension [N]", "largest compression [N]"], rows,
+                 numeric_from=1))
+
+
 def files_section(page: dict, figures: list) -> str:
     files = page["files"]
     links = [f'<li><a href="{_e(p)}">{_e(p)}</a></li>' for p in files["vtu"] + files["pvd"]]
@@ -309,7 +357,7 @@ def _failures(messages) -> str:
 
 SECTIONS = (pose_section, frequency_section, assumptions_section, sensitivity_section,
             mesh_section, modes_section,
-            cycle_section, files_section)
+            cycle_section, at_speed_section, files_section)
 
 
 def render_page(pages: list[dict], plotly_js: str, title: str = "flexlink report",

@@ -17,8 +17,12 @@ from pathlib import Path
 import numpy as np
 
 from flexlink.analysis.modal import CaseResult
+from flexlink.errors import FlexlinkError
 from flexlink.output.export_vtk import ModeSet
+from flexlink.scene import Scene
 from flexlink.studies.cycle import ModalMap
+from flexlink.studies.operating_point import ASSUMPTIONS, operating_modes
+from flexlink.studies.torque import torque_study
 
 MM = 1e3  # m -> mm
 DIGITS = 5  # significant digits kept in the page's coordinates: far below a pixel
@@ -95,16 +99,63 @@ def cycle_data(cycle: ModalMap | None, crank_angle: float, reason: str | None = 
     return data
 
 
+SPEED_STEPS = 11  # crank speeds from rest to the operating speed in the frequency diagram
+TORQUE_POSES = 72
+
+
+def at_speed_data(scene: Scene, n_modes: int, elements_per_link: int) -> dict | None:
+    """The scene at its declared operating speed ([operation] crank_speed): the driving torque
+    over the cycle [N m], the operating-point frequencies at the scene's pose from rest to that
+    speed [Hz] (None where a mode diverges) and each link's largest tension and compression of
+    the preload there [N]; None when the scene declares no speed. A part the scene cannot give
+    is {"unavailable": reason}."""
+    speed = scene.options.crank_speed
+    if speed is None:
+        return None
+    out = {"rev_per_min": speed * 30 / math.pi, "rad_per_s": speed, "assumptions": ASSUMPTIONS}
+    try:
+        curve = torque_study(scene, speed, poses=TORQUE_POSES)
+        order = np.argsort(np.degrees(curve.q) % 360.0)
+        out["torque"] = {"crank_deg": _rounded(np.degrees(curve.q[order]) % 360.0),
+                         "torque_N_m": [float(t) for t in curve.torque[order]],
+                         "summary": curve.summary()}
+    except FlexlinkError as exc:
+        out["torque"] = {"unavailable": str(exc)}
+    try:
+        speeds = np.linspace(0.0, speed, SPEED_STEPS)
+        points = [operating_modes(scene, w, n_modes, elements_per_link) for w in speeds]
+    except FlexlinkError as exc:
+        out["modes"] = {"unavailable": str(exc)}
+        return out
+    lines = []
+    for j in range(n_modes):
+        line = []
+        for p in points:
+            s = p.modes.eigenvalues[j]
+            line.append(float(p.frequencies[j]) if s.imag > 1e-9 * abs(s) else None)
+        lines.append(line)
+    last = points[-1]
+    out["modes"] = {"rev_per_min": [float(w * 30 / math.pi) for w in speeds],
+                    "frequencies_Hz": lines,
+                    "static_Hz": [float(f) for f in last.static_frequencies],
+                    "diverges": bool(last.modes.negative_stiffness),
+                    "axial_N": [{"link": name, "tension": float(max(f.max(), 0.0)),
+                                 "compression": float(min(f.min(), 0.0))}
+                                for name, f in last.axial_forces.items()]}
+    return out
+
+
 def scene_page(result: CaseResult, summary: dict, mesh: dict, modes: ModeSet,
-               cycle: dict | None, files: dict, out: Path) -> dict:
+               cycle: dict | None, files: dict, out: Path, at_speed: dict | None = None) -> dict:
     """Everything the report shows for one scene. ``summary``: ``report.case_summary`` (with
     its "warnings"); ``mesh``: ``MeshRule.as_dict()`` with "describe"; ``cycle``:
-    ``cycle_data``; ``files``: ``export.export_case``'s answer, linked relative to ``out``."""
+    ``cycle_data``; ``files``: ``export.export_case``'s answer, linked relative to ``out``;
+    ``at_speed``: ``at_speed_data``."""
     def relative(paths):
         return [Path(p).relative_to(out).as_posix() for p in paths]
 
     stem = Path(result.scene.path).stem
     return {"id": stem, "summary": summary, "mesh": mesh, "drawing": linkage_drawing(result),
-            "shapes": mode_shapes(modes), "cycle": cycle,
+            "shapes": mode_shapes(modes), "cycle": cycle, "at_speed": at_speed,
             "files": {"vtu": relative(files.get("vtu", [])),
                       "pvd": relative(files.get("pvd", []))}}

@@ -1,0 +1,56 @@
+"""The report's "At speed" section: present exactly for a scene that declares an operating
+speed, with the torque curve, the frequencies from rest to that speed and the axial preload."""
+
+import json
+import re
+
+import pytest
+from click.testing import CliRunner
+
+from conftest import CASES_DIR
+from flexlink.cli import main
+
+
+@pytest.fixture(scope="module")
+def page(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("scenes")
+    text = (CASES_DIR / "case3.toml").read_text()
+    text = text.replace('base = "_table2.toml"',
+                        f'base = "{(CASES_DIR / "_table2.toml").as_posix()}"')
+    (folder / "case3_speed.toml").write_text(
+        text + '\n[operation]\ncrank_speed = "600 rev/min"\n')
+    out = tmp_path_factory.mktemp("report")
+    result = CliRunner().invoke(main, ["report", str(folder / "case3_speed.toml"),
+                                       str(CASES_DIR / "case1.toml"), "-e", "8", "-n", "2",
+                                       "--cycle-poses", "0", "--json", "--out", str(out)])
+    assert result.exit_code == 0, result.output
+    return (out / "report.html").read_text()
+
+
+def _scene(html: str, stem: str) -> str:
+    return re.search(rf'<section class="scene" id="scene-{stem}">(.*?)</section>', html,
+                     re.S).group(1)
+
+
+def test_section_appears_exactly_for_the_scene_with_a_speed(page):
+    assert "<h3>At speed</h3>" in _scene(page, "case3_speed")
+    assert "At speed" not in _scene(page, "case1")
+    assert 'id="fig-case1-speed"' not in page and 'id="fig-case1-torque"' not in page
+    for name in ("torque", "speed"):
+        assert f'id="fig-case3_speed-{name}"' in page
+    assert "Axial preload at the operating speed" in _scene(page, "case3_speed")
+
+
+def test_frequencies_at_rest_are_the_static_ones_of_the_page(page):
+    data = json.loads(re.search(r'id="flexlink-data">(.*?)</script>', page, re.S).group(1)
+                      .replace("<\\/", "</"))
+    figure = next(f for f in data["figures"] if f["id"] == "fig-case3_speed-speed")
+    at_rest = [trace["y"][0] for trace in figure["data"]]
+    speeds = figure["data"][0]["x"]
+    assert speeds[0] == 0 and speeds[-1] == pytest.approx(600)
+    # the frequency table's computed column at the pose (printed to 2 decimals)
+    table = _scene(page, "case3_speed")
+    for f in at_rest:
+        assert f"{f:,.2f}" in table
+    # at 600 rev/min the first mode moves (preload and rotating terms are in)
+    assert figure["data"][0]["y"][-1] != pytest.approx(at_rest[0], rel=1e-6)
