@@ -211,3 +211,33 @@ def test_a_swap_failing_after_the_old_folder_moved_aside_puts_it_back(tmp_path, 
     monkeypatch.undo()
     assert (target / "modes.json").read_text() == "old"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["scene"]
+
+
+def test_a_signal_between_the_two_renames_of_a_swap_waits_for_the_second(tmp_path, monkeypatch):
+    """SIGTERM arriving just after the old folder moved aside is held until the new one is in
+    place: the target is never missing when the run stops."""
+    import signal
+
+    from flexlink.fileio import Terminated, signals_raise
+
+    previous = signal.getsignal(signal.SIGTERM)
+    signals_raise()
+    try:
+        target = tmp_path / "scene"
+        target.mkdir()
+        (target / "modes.json").write_text("old")
+        real = os.replace
+
+        def replace(source, destination):
+            real(source, destination)
+            if str(destination).endswith(".old"):
+                os.kill(os.getpid(), signal.SIGTERM)
+
+        monkeypatch.setattr(os, "replace", replace)
+        with pytest.raises(Terminated):
+            with staged_folder(target) as stage:
+                (stage / "modes.json").write_text("new")
+        monkeypatch.undo()
+        assert (target / "modes.json").read_text() == "new"
+    finally:
+        signal.signal(signal.SIGTERM, previous)

@@ -152,7 +152,7 @@ def _input_error(src: SceneSource, errors: list[dict]) -> InputError:
     problems = list(dict.fromkeys(_problem(src, e) for e in errors))
     problems.sort(key=lambda p: "unknown" not in p[1])
     (field, message), rest = problems[0], problems[1:]
-    source = src.file_of(field.strip("[]"))
+    source = src.file_of(field[1:-1] if field.startswith("[") else field)
     if rest:
         also = "; ".join(f"{f}: {m}" for f, m in rest)
         message += f" (and {len(rest)} more problem{'s' if len(rest) > 1 else ''}: {also})"
