@@ -241,3 +241,53 @@ def test_a_signal_between_the_two_renames_of_a_swap_waits_for_the_second(tmp_pat
         assert (target / "modes.json").read_text() == "new"
     finally:
         signal.signal(signal.SIGTERM, previous)
+
+
+def test_a_staged_folder_keeps_the_files_other_commands_wrote(tmp_path):
+    target = tmp_path / "case1"
+    target.mkdir()
+    (target / "modes.json").write_text("from modes")
+    (target / "case1_modes.vtu").write_text("old export")
+    (target / "case1_mode9.png").write_text("old picture this run does not draw")
+    with staged_folder(target, keep=lambda name: not name.startswith("case1_")) as stage:
+        (stage / "case1_modes.vtu").write_text("new export")
+    assert sorted(p.name for p in target.iterdir()) == ["case1_modes.vtu", "modes.json"]
+    assert (target / "modes.json").read_text() == "from modes"
+    assert (target / "case1_modes.vtu").read_text() == "new export"
+
+
+def test_signals_raise_outside_the_main_thread_does_nothing(monkeypatch):
+    """Python allows signal handlers only in the main thread: from a worker thread (a dask or
+    joblib worker running a command's code) the call must neither raise nor install one."""
+    import signal
+    import threading
+
+    from flexlink.fileio import signals_raise
+
+    before = signal.getsignal(signal.SIGTERM)
+    errors = []
+
+    def call():
+        try:
+            signals_raise()
+        except Exception as exc:  # noqa: BLE001 - any exception is the failure
+            errors.append(exc)
+
+    worker = threading.Thread(target=call)
+    worker.start()
+    worker.join()
+    assert errors == [] and signal.getsignal(signal.SIGTERM) == before
+
+
+def test_leftovers_of_another_users_live_process_are_kept(tmp_path, monkeypatch):
+    """os.kill(pid, 0) on another user's process raises PermissionError: that process is
+    alive, and its temporary file must stay."""
+    leftover = tmp_path / ".modes.json.~4242~abc.tmp"
+    leftover.write_text("being written by someone else")
+
+    def not_ours(pid, sig):
+        raise PermissionError(1, "Operation not permitted")
+
+    monkeypatch.setattr(os, "kill", not_ours)
+    assert sweep_stale(tmp_path) == []
+    assert leftover.exists()
