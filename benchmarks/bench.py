@@ -356,7 +356,7 @@ SHIPPED = dict(starts=8, samples=200, elements=6)  # the shipped report: 3 famil
 
 def _study(families, n_jobs, **settings):
     from flexlink.scene import scene_files
-    from flexlink.studies.comparison import StudySettings, run_study
+    from flexlink.studies.calibration_study import StudySettings, run_study
 
     files = [str(f) for f in scene_files([ROOT / "cases"])]
     return [run_study(files, fam, None, StudySettings(n_jobs=n_jobs, **settings))
@@ -365,7 +365,10 @@ def _study(families, n_jobs, **settings):
 
 def _numbers(studies) -> str:
     """The studies' results without their settings (which name the worker count)."""
-    return json.dumps([{k: v for k, v in st.items() if k != "settings"} for st in studies])
+    from flexlink.output.calibration_json import study_document
+
+    return json.dumps([{k: v for k, v in study_document(st).items() if k != "settings"}
+                       for st in studies])
 
 
 def _burn(n: int) -> int:
@@ -433,10 +436,10 @@ def calibration(full: bool) -> None:
     studies = _study(["planar", "out-of-plane", "3d"], -1, **SHIPPED)
     full_wall = time.perf_counter() - wall
     for st in studies:  # the numbers, to compare with a report made before a change
-        errors = st["errors_mean_abs_pct"]
-        starts = [c for key in ("fit_Ex", "fit_FE") for c in st[key]["starts_converged"]]
-        pct = {k: "n/a" if v is None else f"{v:.3f} %" for k, v in errors.items()}
-        print(f"  {st['family']}: mean |error| vs Ex: assumed {pct['assumed_inputs_vs_Ex']}, "
+        starts = [c for fit in (st.fit_ex, st.fit_fe) for c in fit.converged]
+        pct = {k: "n/a" if e.mean_abs_pct is None else f"{e.mean_abs_pct:.3f} %"
+               for k, e in st.errors.items()}
+        print(f"  {st.family}: mean |error| vs Ex: assumed {pct['assumed_inputs_vs_Ex']}, "
               f"calibrated {pct['calibrated_to_Ex_in_sample']}, cross-validated "
               f"{pct['cross_validated_vs_Ex']}; Ex and FE fits: "
               f"{starts.count(False)} of {len(starts)} starts stopped at the evaluation limit")

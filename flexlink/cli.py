@@ -4,7 +4,8 @@ it is imported only when used, so ``flexlink --help`` and light commands stay li
 
 Conventions for every command: ``--json`` prints one JSON document on stdout, ``--out DIR``
 chooses where files go (default ``out/``); human-readable tables otherwise; long work shows a
-progress bar on stderr.
+progress bar on stderr. SIGTERM and SIGINT stop any command with one line and exit status
+128 + the signal's number (``flexlink.stopping``), never a traceback or click's "Aborted!".
 """
 
 from __future__ import annotations
@@ -18,12 +19,26 @@ import click
 from flexlink import commands as _commands_pkg
 from flexlink import logbook
 from flexlink.errors import FlexlinkError
-from flexlink.fileio import Terminated, signals_raise
+from flexlink.stopping import Terminated, stop_on_signals
 
 
 class FlexlinkGroup(click.Group):
     """Finds commands in flexlink/commands/ lazily; turns flexlink's own errors into one clear
-    line on stderr and exit code 2, with no traceback."""
+    line on stderr and exit code 2, with no traceback; a signal into one line and exit code
+    128 + its number."""
+
+    def __call__(self, *args, **kwargs):
+        # the process's own entry point: the signals stay caught (and ignored once the command
+        # has ended) until the interpreter is gone
+        return self.main(*args, restore_signals=False, **kwargs)
+
+    def main(self, *args, restore_signals: bool = True, **kwargs):
+        with stop_on_signals(restore=restore_signals):
+            try:
+                return super().main(*args, **kwargs)
+            except Terminated as exc:  # temporary files are gone by now (fileio's finally clauses)
+                click.echo(f"flexlink: {exc}", err=True)
+                sys.exit(128 + exc.signum)
 
     def list_commands(self, ctx):
         return sorted(m.name.replace("_", "-") for m in pkgutil.iter_modules(_commands_pkg.__path__)
@@ -41,9 +56,6 @@ class FlexlinkGroup(click.Group):
         except FlexlinkError as exc:
             click.echo(f"flexlink: error: {exc}", err=True)
             sys.exit(2)
-        except Terminated as exc:  # temporary files are gone by now (fileio's finally clauses)
-            click.echo(f"flexlink: {exc}", err=True)
-            sys.exit(128 + exc.signum)
 
 
 @click.group(cls=FlexlinkGroup)
@@ -52,7 +64,6 @@ class FlexlinkGroup(click.Group):
 @click.pass_context
 def main(ctx, verbose):
     """flexlink: natural frequencies and mode shapes of planar linkages with flexible links."""
-    signals_raise()
     once = logbook.configure(verbose)
     ctx.call_on_close(lambda: logbook.report_repeats(once))
 

@@ -7,8 +7,8 @@ behind outlives it.
 - Temporary names carry the writing process's id (``.<name>.~<pid>~<random>.tmp``), so a later
   run can tell the leftovers of a dead process from the files of a live one
   (``sweep_stale``).
-- ``signals_raise`` turns SIGTERM (and SIGINT) into an exception, so the ``finally`` clauses
-  here remove their temporary files when a run is stopped.
+- A stopped run (``stopping.stop_on_signals``) raises an exception, so the ``finally`` clauses
+  here remove their temporary files; the swap of a folder is never cut in two.
 - Final files and folders get the permissions of a plain ``open``/``mkdir`` under the user's
   umask (``mkstemp``/``mkdtemp`` would leave them private, 0600/0700).
 """
@@ -21,11 +21,11 @@ import re
 import shutil
 import signal
 import tempfile
-import threading
 from collections.abc import Callable, Iterator
 from pathlib import Path
 
 from flexlink.errors import OutputError
+from flexlink.stopping import signals_deferred
 
 # .<target name>.~<pid>~<random>.tmp for files, .<target name>.~<pid>~<random>.stage for
 # staging folders, .<target name>.~<pid>~<random>.old for a folder being replaced
@@ -33,27 +33,6 @@ _TEMP = re.compile(r"^\.(?P<name>.+)\.~(?P<pid>\d+)~[^.]+\.(?P<kind>tmp|stage|ol
 # temporary files of earlier flexlink versions (no process id): .<target name>.<8 random>.tmp
 _LEGACY_TEMP = re.compile(r"^\..+\.[a-z0-9_]{8}\.tmp$")
 SWEEP_DEPTH = 2  # out/<scene>/<scene>_mode<n>/: the deepest folder flexlink writes into
-
-
-class Terminated(BaseException):
-    """The process received SIGTERM; raised by the handler of ``signals_raise`` so cleanup
-    runs. A BaseException, like KeyboardInterrupt: no ``except Exception`` swallows it."""
-
-    def __init__(self, signum: int):
-        self.signum = signum
-        super().__init__(f"stopped by signal {signal.Signals(signum).name}")
-
-
-def _raise_terminated(signum, frame):
-    raise Terminated(signum)
-
-
-def signals_raise() -> None:
-    """Make SIGTERM raise ``Terminated`` in the main thread (SIGINT already raises
-    KeyboardInterrupt), so temporary files and staging folders are removed on the way out.
-    Does nothing outside the main thread, where Python allows no signal handler."""
-    if threading.current_thread() is threading.main_thread():
-        signal.signal(signal.SIGTERM, _raise_terminated)
 
 
 def _umask() -> int:
@@ -221,14 +200,18 @@ def staged_folder(target: str | Path, keep: Callable[[str], bool] | None = None)
         try:
             if keep is not None and target.is_dir():
                 _carry_over(target, stage, keep)
-            with _signals_held():
-                if target.exists():
-                    os.replace(target, old)
-                os.replace(stage, target)
+            with signals_deferred():  # the swap, its repair and the removal of the old folder
+                try:
+                    with _signals_held():
+                        if target.exists():
+                            os.replace(target, old)
+                        os.replace(stage, target)
+                except OSError:
+                    if old.exists() and not target.exists():
+                        os.replace(old, target)
+                    raise
+                _remove(old)
         except OSError as exc:
-            if old.exists() and not target.exists():
-                os.replace(old, target)
             raise OutputError(f"cannot replace {target}: {exc.strerror or exc}") from None
-        _remove(old)
     finally:
         _remove(stage)

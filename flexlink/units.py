@@ -26,7 +26,11 @@ UNITS: dict[str, dict[str, float]] = {
     "area": {"m^2": 1.0, "mm^2": 1e-6, "cm^2": 1e-4},
     "second moment": {"m^4": 1.0, "mm^4": 1e-12, "cm^4": 1e-8},
     "frequency": {"Hz": 1.0, "kHz": 1e3},
-    "angular speed": {"rad/s": 1.0, "rev/min": 2 * math.pi / 60.0, "rpm": 2 * math.pi / 60.0},
+    "angular speed": {"rad/s": 1.0, "rev/min": 2 * math.pi / 60.0, "rpm": 2 * math.pi / 60.0,
+                      "rev/s": 2 * math.pi, "Hz": 2 * math.pi},  # Hz: turns per second
+    "angular acceleration": {"rad/s^2": 1.0, "rev/s^2": 2 * math.pi},
+    "torque": {"N*m": 1.0, "N m": 1.0, "Nm": 1.0, "N*mm": 1e-3},
+    "force": {"N": 1.0, "kN": 1e3},
 }
 
 _NUMBER = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?"

@@ -35,3 +35,11 @@ def test_calibrate_refuses_a_bad_free_spec(tmp_path):
     result = CliRunner().invoke(main, ["calibrate", str(CASES), "--free", "L1=1:2",
                                        "--out", str(tmp_path)])
     assert result.exit_code == 2 and "--free" in result.output
+
+
+def test_calibrate_refuses_one_scene_in_one_line(tmp_path):
+    """Cross-validation leaves one case out: with one scene there is nothing left to fit."""
+    result = CliRunner().invoke(main, ["calibrate", str(CASES / "case1.toml"), "--starts", "1",
+                                       "--samples", "2", "-e", "2", "--out", str(tmp_path)])
+    assert result.exit_code == 2, result.output
+    assert "at least two scenes" in result.output and "Traceback" not in result.output

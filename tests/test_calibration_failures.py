@@ -11,6 +11,7 @@ from click.testing import CliRunner
 import flexlink.studies.calibration as calibration
 from flexlink.cli import main
 from flexlink.errors import NumericalError
+from flexlink.output.calibration_json import fit_document
 
 CASES = Path(__file__).resolve().parent.parent / "cases"
 FORCED = "forced failure for the test"
@@ -34,7 +35,7 @@ def test_a_failed_case_gives_no_mean_and_is_named(case2_fails):
                                   elements=2)
     [fit] = calibration.fit_many([problem], starts=1, n_jobs=1)
     assert fit.mean_abs_error_pct is None
-    document = fit.as_dict()
+    document = fit_document(fit)
     assert document["mean_abs_error_pct"] is None
     assert [(f["case"], f["mode"]) for f in document["failed"]] == [("case2", k) for k in (1, 2, 3, 4)]
     assert all(f["reason"] == FORCED for f in document["failed"])

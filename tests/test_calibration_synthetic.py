@@ -8,6 +8,7 @@ log-errors e_ik: leakage in the cross-validation, a wrong residual variance or s
 columns each move a number checked here.
 """
 
+import dataclasses
 import math
 from pathlib import Path
 
@@ -18,7 +19,8 @@ import flexlink.studies.calibration as calibration
 import flexlink.studies.uncertainty as uncertainty
 from flexlink.studies.calibration import (FreeParameter, Problem, cross_validation, fit_many,
                                           leave_one_out_problems)
-from flexlink.studies.comparison import StudySettings, run_study
+from flexlink.studies.calibration_study import StudySettings, run_study
+from flexlink.output.calibration_json import study_document
 from flexlink.studies.jacobian import CaseModes
 
 CASES = Path(__file__).resolve().parent.parent / "cases"
@@ -122,20 +124,21 @@ def test_width_override_is_written_in_metres(scenes):
     assert scene.sections["crank"].strip[0] == pytest.approx(0.025, rel=1e-15)
 
 
-def test_comparison_study_errors_are_against_ex(scenes):
+def test_calibration_study_errors_are_against_ex(scenes):
     settings = StudySettings(starts=2, seed=0, samples=3, elements=None, n_jobs=1)
     study = run_study(scenes, "planar", (L1_FREE,), settings)
     ex_all = np.array([ex("s1"), ex("s2")])
     fe_all = np.array([fe("s1"), fe("s2")])
     nominal = np.array([A["s1"], A["s2"]]) / L_NOMINAL**2
-    np.testing.assert_allclose(study["Ex_Hz"], ex_all, rtol=1e-12)
-    np.testing.assert_allclose(study["paper_FE_Hz"], fe_all, rtol=1e-12)
-    np.testing.assert_allclose(study["nominal_errors_pct"], 100 * (nominal / ex_all - 1), rtol=1e-9)
-    errors = study["errors_mean_abs_pct"]
+    np.testing.assert_allclose(study.ex, ex_all, rtol=1e-12)
+    np.testing.assert_allclose(study.paper_fe, fe_all, rtol=1e-12)
+    np.testing.assert_allclose(study.errors["assumed_inputs_vs_Ex"].errors_pct,
+                               100 * (nominal / ex_all - 1), rtol=1e-9)
+    errors = {k: e.mean_abs_pct for k, e in study.errors.items()}
     assert errors["assumed_inputs_vs_Ex"] == pytest.approx(np.mean(np.abs(100 * (nominal / ex_all - 1))))
     # the Ex fit lands on best_l1, the FE fit on L_FE exactly (FE has no noise)
-    assert study["fit_Ex"]["parameters"][0]["value"] == pytest.approx(best_l1(["s1", "s2"]), rel=1e-7)
-    assert study["fit_FE"]["parameters"][0]["value"] == pytest.approx(L_FE, rel=1e-7)
+    assert study.fit_ex.values[0] == pytest.approx(best_l1(["s1", "s2"]), rel=1e-7)
+    assert study.fit_fe.values[0] == pytest.approx(L_FE, rel=1e-7)
     e = np.concatenate([E["s1"], E["s2"]])
     assert errors["calibrated_to_Ex_in_sample"] == pytest.approx(np.mean(np.abs(100 * np.expm1(e.mean() - e))), abs=1e-5)
     assert errors["calibrated_to_FE_vs_FE"] == pytest.approx(0.0, abs=1e-5)
@@ -144,3 +147,34 @@ def test_comparison_study_errors_are_against_ex(scenes):
     assert errors["paper_FE_vs_Ex"] == pytest.approx(fe_vs_ex, rel=1e-12)
     cv = [100 * np.expm1(E["s2"].mean() - E["s1"]), 100 * np.expm1(E["s1"].mean() - E["s2"])]
     assert errors["cross_validated_vs_Ex"] == pytest.approx(np.mean(np.abs(cv)), abs=1e-4)
+    # each case's own fit lands on that case's best L1; the document says the same by name
+    for fit, name in zip(study.per_case, ("s1", "s2")):
+        assert fit.values[0] == pytest.approx(best_l1([name]), rel=1e-7)
+    # the JSON document names the same numbers: each field checked against the closed form
+    document = study_document(study)
+    np.testing.assert_allclose(document["Ex_Hz"], ex_all, rtol=1e-12)
+    np.testing.assert_allclose(document["paper_FE_Hz"], fe_all, rtol=1e-12)
+    np.testing.assert_allclose(document["nominal_Hz"], nominal, rtol=1e-12)
+    fitted = document["fit_Ex"]["parameters"][0]["value"]
+    assert fitted == pytest.approx(best_l1(["s1", "s2"]), rel=1e-7)
+    assert document["fit_FE"]["parameters"][0]["value"] == pytest.approx(L_FE, rel=1e-7)
+    assert document["errors_mean_abs_pct"] == pytest.approx(errors)
+    np.testing.assert_allclose(document["cross_validation"]["errors_pct"], cv, atol=1e-4)
+    assert [c["case"] for c in document["per_case_fits"]] == ["s1", "s2"]
+    assert [c["values"][0] for c in document["per_case_fits"]] == pytest.approx(
+        [best_l1(["s1"]), best_l1(["s2"])], rel=1e-7)
+    # ratios of A / L1^2 do not depend on L1: the model's ratios are A's at any L1
+    np.testing.assert_allclose(document["ratios"]["best_model"],
+                               [A[n] / A[n][0] for n in ("s1", "s2")], rtol=1e-12)
+
+
+def test_the_result_type_refuses_arrays_of_the_wrong_shape(scenes):
+    settings = StudySettings(starts=1, seed=0, samples=2, elements=None, n_jobs=1)
+    study = run_study(scenes, "planar", (L1_FREE,), settings)
+    shape = r"CalibrationStudy.ex has shape \(1, 4\), expected \(2, 4\)"
+    with pytest.raises(ValueError, match=shape):
+        dataclasses.replace(study, ex=study.ex[:1])
+    with pytest.raises(ValueError, match="per_case has 1 fits, expected 2"):
+        dataclasses.replace(study, per_case=study.per_case[:1])
+    with pytest.raises(ValueError, match=r"FitResult.values has shape \(2,\), expected \(1,\)"):
+        dataclasses.replace(study.fit_ex, values=np.ones(2))

@@ -137,16 +137,19 @@ def test_pvd_animation_references_its_frames(case3, modes, tmp_path):
     frames = [meshio.read(pvd.parent / e.get("file")) for e in entries]
     assert [pvd.parent / e.get("file") for e in entries] == written[:-1]
     # frame 0 is the largest deflection, FRACTION of the mechanism size; half a period later
-    # the shape is reversed; the points are the deformed positions themselves
-    pivots = [j.position for j in modes.joints if j.ground]
-    rest = np.vstack([modes.sampled.points, pivots])
-    base = np.column_stack([rest, np.zeros(len(rest))])
-    peak = np.linalg.norm(frames[0].point_data["displacement"], axis=1).max()
-    assert peak == pytest.approx(FRACTION * modes.size, rel=1e-12)
-    np.testing.assert_allclose(frames[0].points, base + frames[0].point_data["displacement"],
-                               atol=1e-15)
-    np.testing.assert_allclose(frames[3].point_data["displacement"],
-                               -frames[0].point_data["displacement"], atol=1e-15)
+    # the shape is reversed; the points are the deformed positions themselves: the .vtu's
+    # undeformed points warped by its mode2_displacement times warp_scale, ParaView's Warp By
+    # Vector, exactly
+    grid = modes_mesh(case3, modes, FRACTION)
+    warped = grid.points + grid.field_data["warp_scale"][1] * grid.point_data["mode2_displacement"]
+    np.testing.assert_allclose(frames[0].points, warped, rtol=0, atol=1e-15)  # [m], round-off
+    moved = frames[0].points - grid.points
+    assert np.linalg.norm(moved, axis=1).max() == pytest.approx(FRACTION * modes.size, rel=1e-12)
+    np.testing.assert_allclose(frames[3].points - grid.points, -moved, rtol=0, atol=1e-15)
+    np.testing.assert_allclose(frames[0].point_data["applied_displacement_magnitude"],
+                               np.linalg.norm(moved, axis=1), rtol=0, atol=1e-15)
+    # no vector a second Warp By Vector could apply on top of the applied deformation
+    assert all(np.ndim(a) == 1 for a in frames[0].point_data.values())
 
 
 def test_common_phase_puts_every_mode_on_one_normalised_period(modes, tmp_path):
@@ -359,8 +362,11 @@ def test_export_command_writes_and_lists_everything(tmp_path):
     result = CliRunner().invoke(main, args)
     assert result.exit_code == 0, result.output
     doc = json.loads(result.stdout)
-    assert json.loads((tmp_path / "export.json").read_text()) == doc
+    # one scene: its folder holds the record (listing itself); no combined file, as for modes
+    assert json.loads((tmp_path / "case3" / "export.json").read_text()) == {**doc, "complete": True}
+    assert not (tmp_path / "export.json").exists()
     (case,) = doc["cases"]
+    assert case["files"]["record"] == [str(tmp_path / "case3" / "export.json")]
     files = case["files"]
     assert [Path(p).name for p in files["vtu"]] == ["case3.vtu"]
     assert [Path(p).name for p in files["pvd"]] == ["case3_mode1.pvd", "case3_mode2.pvd"]
@@ -371,7 +377,8 @@ def test_export_command_writes_and_lists_everything(tmp_path):
     for pvd in files["pvd"]:  # --common-phase: time is the fraction of the period
         entries = ET.parse(pvd).getroot().find("Collection").findall("DataSet")
         assert [float(e.get("timestep")) for e in entries] == pytest.approx([0, 1 / 3, 2 / 3])
-    every = [p for kind in ("vtu", "pvd", "frames", "pictures", "plot") for p in files[kind]]
+    every = [p for kind in ("vtu", "pvd", "frames", "pictures", "plot", "record")
+             for p in files[kind]]
     assert all(Path(p).is_file() and Path(p).stat().st_size > 0 for p in every)
     assert sorted(str(p) for p in (tmp_path / "case3").rglob("*") if p.is_file()) == sorted(every)
     grid = meshio.read(files["vtu"][0])
@@ -394,6 +401,28 @@ def test_unwritable_out_fails_before_any_solve(tmp_path, monkeypatch):
     blocker.write_text("x")
     result = CliRunner().invoke(main, ["export", str(CASE3), "--out", str(blocker / "o")])
     assert result.exit_code == 2 and "not writable" in result.output
+
+
+def test_the_combined_record_lists_a_multi_scene_run_and_each_folder_its_own(tmp_path):
+    """As modes.json: OUT/<scene>/export.json for each scene, OUT/export.json with all of a
+    run over several scenes; a later one-scene run leaves the other folders' records whole.
+    Counts read "1 mode", "1 plot" (not "1 modes")."""
+    quick = ["-e", "2", "-n", "1", "--phases", "2", "--no-pictures", "--out", str(tmp_path)]
+    case1 = ROOT / "cases" / "case1.toml"
+    both = CliRunner().invoke(main, ["export", str(case1), str(CASE3), *quick])
+    assert both.exit_code == 0, both.output
+    combined = json.loads((tmp_path / "export.json").read_text())
+    assert [Path(c["file"]).stem for c in combined["cases"]] == ["case1", "case3"]
+    assert combined["complete"] is True
+    again = CliRunner().invoke(main, ["export", str(CASE3), *quick])
+    assert again.exit_code == 0, again.output
+    assert "Table II case 3: 1 mode -> " in again.stdout and "1 .pvd with 2 frames" in again.stdout
+    assert "0 pictures, 1 plot)" in again.stdout
+    for stem in ("case1", "case3"):
+        own = json.loads((tmp_path / stem / "export.json").read_text())
+        assert [Path(c["file"]).stem for c in own["cases"]] == [stem]
+        assert all(Path(p).is_file() for kind, paths in own["cases"][0]["files"].items()
+                   if kind != "folder" for p in paths)
 
 
 def test_failed_write_keeps_the_old_file(tmp_path):

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from flexlink.studies import calibration as cal
-from flexlink.studies.comparison import default_free
+from flexlink.studies.calibration_study import default_free
 
 CASES = Path(__file__).resolve().parent.parent / "cases"
 SCENES = tuple(str(CASES / f"case{i}.toml") for i in (1, 3))

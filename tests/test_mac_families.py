@@ -15,7 +15,7 @@ from flexlink.cli import main
 from flexlink.errors import InputError
 from flexlink.fe.strip import StripProperties
 from flexlink.scene import load_scene
-from flexlink.studies.shapes import mac_family
+from flexlink.studies.mac_comparison import mac_family
 
 from helpers import single_beam
 

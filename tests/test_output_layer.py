@@ -36,6 +36,7 @@ ARGS = {
     "report": [CASE1, "-e", "2", "-n", "2", "--cycle-poses", "0"],
     "schema": [],
     "stability": [CASE1],
+    "torque": [CASE1, "--speed", "600 rev/min", "--poses", "8"],
 }
 
 
@@ -43,7 +44,7 @@ ARGS = {
 def studies_once():
     """The two heavy studies (calibration, the stability checks) are computed once and
     reused by every run here: what is under test is how their results are written."""
-    import flexlink.studies.comparison
+    import flexlink.studies.calibration_study
     import flexlink.studies.stability
 
     def once(function, key):
@@ -57,8 +58,8 @@ def studies_once():
         return cached
 
     with pytest.MonkeyPatch.context() as mp:
-        mp.setattr(flexlink.studies.comparison, "run_study", once(
-            flexlink.studies.comparison.run_study, lambda files, family, *a, **k: (
+        mp.setattr(flexlink.studies.calibration_study, "run_study", once(
+            flexlink.studies.calibration_study.run_study, lambda files, family, *a, **k: (
                 tuple(files), family)))
         mp.setattr(flexlink.studies.stability, "run_checks", once(
             flexlink.studies.stability.run_checks, lambda scene, **k: (scene.path,

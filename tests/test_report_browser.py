@@ -181,3 +181,35 @@ def test_blank_picture_is_caught():
     """The blank check itself can fail: a white screenshot does not pass it."""
     with pytest.raises(AssertionError):
         not_blank(np.full((800, 1280, 3), 255))
+
+
+def test_tables_read_as_text_and_fit_the_page(browser, report):
+    """No table cell shows a raw Python dict, no table is wider than the desktop page, energy
+    shares name their two largest parts (all of them in the tooltip), effective masses are in
+    g, the mode selector and the cycle map's legend carry mode labels, and the top of the page
+    has one line per scene with its mean |error| against each reference."""
+    visit = Visit(browser, report, DESKTOP)
+    page = visit.page
+    cells = page.evaluate("Array.from(document.querySelectorAll('td, th')).map(c => c.innerText)")
+    assert cells and not [c for c in cells if "{" in c]
+    # each table within the page's column (its scroll box never has to scroll at 1280 px)
+    overflow = page.evaluate("Array.from(document.querySelectorAll('table'))"
+                             ".map(t => t.scrollWidth - t.parentElement.clientWidth)")
+    assert overflow and max(overflow) <= 0, overflow
+    headers = page.evaluate("Array.from(document.querySelectorAll('#scene-case3 th'))"
+                            ".map(c => c.innerText)")
+    assert "mx [g]" in headers and "my [g]" in headers and "strain energy" in headers
+    shares = page.locator("#scene-case3 .shares").first
+    shown, tooltip = shares.inner_text(), shares.get_attribute("title")
+    assert shown.count("%") == 2 and tooltip.count("%") > 2, (shown, tooltip)
+    options = page.evaluate("Array.from(document.querySelectorAll('#player-case3 option'))"
+                            ".map(o => o.innerText)")
+    assert all("bending" in o or "spring" in o or "axial" in o for o in options), options
+    legend = page.evaluate("Array.from(document.querySelectorAll('#fig-case3-cycle .legendtext'))"
+                           ".map(t => t.textContent)")
+    assert legend and all("at the pose" in t for t in legend), legend
+    lines = page.evaluate("Array.from(document.querySelectorAll('header nav li'))"
+                          ".map(l => l.innerText)")
+    assert len(lines) == 2 and all("mean |error| vs Ex" in x and "vs FE" in x for x in lines)
+    assert visit.errors == []
+    page.close()

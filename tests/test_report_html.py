@@ -222,3 +222,20 @@ def test_sensitivity_section_shows_end_points_and_the_interval():
                  "yes (27)", "no (171)", "bench-top sizes", "20 samples, seed 1"):
         assert text in html, text
     assert sensitivity_section({"summary": {"modes": []}}, []) == ""
+
+
+def test_energy_shares_and_counts_read_as_text():
+    from flexlink.output.counts import counted
+    from flexlink.output.html_report import _shares
+
+    # case 3 mode 2's strain energy, as case_summary gives it (fractions summing to 1)
+    cell = _shares({"crank": 0.8478, "coupler": 0.0918, "rocker": 0.0571, "O2": 0.0016,
+                    "A": 0.0017})
+    shown = re.sub(r"<[^>]+>", "", cell.split(">", 1)[1])
+    assert shown == "crank 85 %, coupler 9 %"
+    tooltip = re.search(r'title="([^"]*)"', cell)[1]
+    assert tooltip == "crank 84.8 %, coupler 9.18 %, rocker 5.71 %, A 0.17 %, O2 0.16 %"
+    assert "99.9 %" in _shares({"coupler": 0.99995, "crank": 0.00005})  # not all of it
+    assert "0.36 %" in _shares({"coupler": 0.9964, "crank": 0.0036})
+    assert [counted(n, "scene") for n in (0, 1, 2)] == ["0 scenes", "1 scene", "2 scenes"]
+    assert counted(1, "elastic frequency", "elastic frequencies") == "1 elastic frequency"

@@ -100,7 +100,8 @@ def test_shipped_scenes_load_unchanged():
     assert kinds == {"case1.toml": "four-bar", "case2.toml": "four-bar", "case3.toml": "four-bar",
                      "case4.toml": "four-bar", "compliant_wiper.toml": "general",
                      "extended_rocker.toml": "general", "kineto_aluminium.toml": "general",
-                     "wiper.toml": "general"}
+                     "rotor.toml": "general", "wiper.toml": "general",
+                     "change_point.toml": "four-bar"}
 
 
 def test_both_kinds_give_one_contract():

@@ -54,6 +54,11 @@ def _bases() -> dict[str, dict]:
     isotropic = copy.deepcopy(bases["kineto_aluminium"])
     isotropic["material"] = {"isotropic": "steel"}
     bases["isotropic"] = isotropic
+    loaded = copy.deepcopy(bases["case1"])  # no shipped scene has loads yet
+    loaded["loads"] = [{"kind": "force", "link": "coupler", "force": ["10 N", "0 N"],
+                        "at": ["50 mm", "0 mm"], "frame": "body"}]
+    loaded["operation"] = {"crank_speed": "600 rev/min", "crank_acceleration": "1 rad/s^2"}
+    bases["loads"] = loaded
     return bases
 
 
@@ -547,6 +552,20 @@ RULES = {
     ],
     ("ReferenceTable", "_columns"): [
         _rule("case1", ["reference"], {"FE_Hz": []}, "reference", "FE_Hz is empty"),
+    ],
+    ("OperationTable", "_speed_first"): [
+        _rule("loads", ["operation"], {"crank_speed": DELETE}, "operation.crank_speed",
+              "missing"),
+    ],
+    ("LoadTable", "_one_value"): [
+        _rule("loads", ["loads", 0], {"torque": "1 N*m"}, "loads[0]", "not 'torque'"),
+        _rule("loads", ["loads", 0], {"force": DELETE}, "loads[0].force", "missing"),
+        _rule("loads", ["loads", 0], {"csv": "t.csv"}, "loads[0].force", "exactly one"),
+        _rule("loads", ["loads", 0], {"force": DELETE, "csv": "t.csv"}, "loads[0].unit",
+              "go together"),
+        _rule("loads", ["loads", 0], {"at": DELETE}, "loads[0].at", "needs the point"),
+        _rule("loads", ["loads", 0], {"kind": "torque", "torque": "1 N*m", "force": DELETE},
+              "loads[0]", "belong to a force"),
     ],
     ("SceneFile", "_kind_tables"): [
         _rule("case1", [], {"pose": DELETE}, "scene", "needs a [pose] table"),

@@ -30,7 +30,11 @@ CASES = [
     ("9 cm^4", "second moment", 9e-8),
     ("50 Hz", "frequency", 50.0), ("1.5 kHz", "frequency", 1500.0),
     ("3 rad/s", "angular speed", 3.0), ("60 rev/min", "angular speed", 2 * math.pi),
-    ("30 rpm", "angular speed", math.pi),
+    ("30 rpm", "angular speed", math.pi), ("2 rev/s", "angular speed", 4 * math.pi),
+    ("2 Hz", "angular speed", 4 * math.pi),
+    ("3 rad/s^2", "angular acceleration", 3.0), ("3 rev/s^2", "angular acceleration", 6 * math.pi),
+    ("4 N*m", "torque", 4.0), ("4 N m", "torque", 4.0), ("4 Nm", "torque", 4.0),
+    ("4 N*mm", "torque", 4e-3), ("5 N", "force", 5.0), ("5 kN", "force", 5e3),
 ]
 
 

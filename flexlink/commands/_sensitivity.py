@@ -39,11 +39,8 @@ def sensitivity_scheduler(sensitivity: bool, scheduler: str | None):
 
 def scene_sensitivity(scene, n_modes: int, samples: int, seed: int, jobs: int,
                       quiet: bool) -> dict:
-    """JSON-ready end points and interval of ``scene`` (``output.sensitivity_report``)."""
-    from flexlink.output.sensitivity_report import sensitivity_dict
-    from flexlink.studies.sensitivity import STUDY_ELEMENTS, end_points, interval
+    """The sensitivity study of ``scene`` as its JSON document (``output.sensitivity_report``)."""
+    from flexlink.output.sensitivity_report import sensitivity_document
+    from flexlink.studies.sensitivity import sensitivity_study
 
-    points = end_points(scene.path, n_modes, STUDY_ELEMENTS, jobs, not quiet)
-    spread = interval(scene.path, samples, seed, n_modes, STUDY_ELEMENTS, jobs, not quiet)
-    reference = dict(scene.reference.columns) if scene.reference else {}
-    return sensitivity_dict(points, spread, reference, STUDY_ELEMENTS)
+    return sensitivity_document(sensitivity_study(scene, n_modes, samples, seed, jobs, not quiet))

@@ -59,7 +59,9 @@ def command(scene_path, speeds, n_modes, poses, elements, tol, margin, harmonics
     from flexlink.scene import load_scene
     from flexlink.studies.campbell import (RPM, bands, campbell_json, critical_csv,
                                            critical_speeds, nearest_margin, plot_campbell)
-    from flexlink.studies.tracking import events_json, tracked_map
+    from flexlink.studies.tracking import (events_json, periodicity_json, reseeds_json,
+                                           tracked_map, unsampled_json, unsampled_note,
+                                           vanishing_lines)
     from ._progress import progress_bar
     from ._written import announce, scene_folders, write_drawn
 
@@ -70,7 +72,7 @@ def command(scene_path, speeds, n_modes, poses, elements, tol, margin, harmonics
     with use_scheduler(scheduler):
         result = tracked_map(scene, poses, n_modes, mesh.elements,
                              progress=progress_bar("tracked modes", as_json), n_jobs=jobs)
-    found = bands(result.frequencies)
+    found = bands(result.frequencies, vanishing_lines(result))
     critical = critical_speeds(found, window, margin, harmonics)
     nearest = nearest_margin(found, window, harmonics)
     labels = dict(enumerate(result.labels, start=1))
@@ -83,6 +85,10 @@ def command(scene_path, speeds, n_modes, poses, elements, tol, margin, harmonics
                 "harmonics": harmonics, "poses": poses, "mesh": mesh.as_dict(),
                 **campbell_json(found, critical, nearest, labels),
                 "tracking_events": events_json(result),
+                "tracking_reseeds": reseeds_json(result),
+                "periodicity": periodicity_json(result),
+                "unsampled_dead_centres_deg": unsampled_json(result),
+                "unsampled_note": unsampled_note(result),
                 "files": [str(p) for p in paths]}
     write_atomic(paths[2], dumps(document))
     if as_json:
@@ -95,6 +101,13 @@ def command(scene_path, speeds, n_modes, poses, elements, tol, margin, harmonics
     click.echo(f"{'mode':>4} {'band [Hz]':>19}  label")
     for b in document["bands"]:
         click.echo(f"{b['mode']:>4} {b['min_Hz']:>9.2f}-{b['max_Hz']:<9.2f}  {b['label'] or ''}")
+    for r in document["tracking_reseeds"]:
+        click.echo(f"re-seeded line{'s' if len(r['lines']) > 1 else ''} "
+                   f"{', '.join(map(str, r['lines']))} at crank "
+                   f"{r['crank_deg']:.1f} deg: {r['reason']}")
+    if document["unsampled_note"]:
+        click.echo(f"warning: {document['unsampled_note']}")
+    click.echo(f"periodicity: {document['periodicity']['note']}")
     if critical:
         click.echo(f"critical speeds:\n{'mode':>4} {'harmonic':>8} {'from [rev/min]':>15} "
                    f"{'to [rev/min]':>13}")

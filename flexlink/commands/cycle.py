@@ -46,7 +46,9 @@ def command(scene_path, n_modes, poses, elements, tol, speed, margin, harmonics,
     from flexlink.studies.cycle import (modal_map, modal_map_csv, plot_map, resonance_speed,
                                         resonances, runs)
     from flexlink.studies.campbell import nearest_harmonic
-    from flexlink.studies.tracking import events_json, plot_tracked, tracked_csv, tracked_map
+    from flexlink.studies.tracking import (events_json, periodicity_json, plot_tracked,
+                                           reseeds_json, tracked_csv, tracked_map,
+                                           unsampled_json, unsampled_note)
     from flexlink.analysis.mesh import choose_mesh
     from flexlink.fileio import prepare_out_dir, write_atomic
     from flexlink.parallel import use_scheduler
@@ -68,7 +70,8 @@ def command(scene_path, n_modes, poses, elements, tol, speed, margin, harmonics,
         else:
             result = modal_map(scene, poses, n_modes, mesh.elements,
                                progress=progress_bar("modal map", as_json))
-    hits = resonances(result, check_speed, margin, harmonics) if check_speed else []
+    to_zero = [(j, r.pose) for r in result.tracks.reseeds for j in r.vanishing] if track else []
+    hits = resonances(result, check_speed, margin, harmonics, to_zero) if check_speed else []
     paths = [folder / "cycle.csv", folder / "cycle.png", folder / "cycle.json"]
     write_atomic(paths[0], tracked_csv(result) if track else modal_map_csv(result))
     if track:
@@ -98,7 +101,11 @@ def command(scene_path, n_modes, poses, elements, tol, speed, margin, harmonics,
                                              for a, b in runs(h.angles, 2 * math.pi / poses)]}
                        for h in hits],
         "tracking": {"by": "MAC", "labels": list(result.labels),
-                     "events": events_json(result)} if track else {"by": "frequency order"},
+                     "events": events_json(result), "reseeds": reseeds_json(result),
+                     "periodicity": periodicity_json(result),
+                     "unsampled_dead_centres_deg": unsampled_json(result),
+                     "unsampled_note": unsampled_note(result)} if track
+        else {"by": "frequency order"},
         "nearest_harmonic": None if not check_speed else dict(zip(
             ("relative_gap", "mode", "harmonic"),
             nearest_harmonic(result.frequencies, check_speed, harmonics))),
@@ -134,6 +141,14 @@ def command(scene_path, n_modes, poses, elements, tol, speed, margin, harmonics,
     for e in document.get("tracking", {}).get("events", []):
         click.echo(f"{e['kind']} of modes {e['lines'][0]} and {e['lines'][1]} at crank "
                    f"{e['crank_deg']:.1f} deg (gap {100 * e['gap']:.1f} %)")
+    for r in document.get("tracking", {}).get("reseeds", []):
+        click.echo(f"re-seeded line{'s' if len(r['lines']) > 1 else ''} "
+                   f"{', '.join(map(str, r['lines']))} at crank "
+                   f"{r['crank_deg']:.1f} deg: {r['reason']}")
+    if document.get("tracking", {}).get("unsampled_note"):
+        click.echo(f"warning: {document['tracking']['unsampled_note']}")
+    if document.get("tracking", {}).get("periodicity"):
+        click.echo(f"periodicity: {document['tracking']['periodicity']['note']}")
     for h in document["resonances"]:
         ranges = ", ".join(f"{a:.1f}-{b:.1f}" for a, b in h["crank_deg_ranges"])
         click.echo(f"resonance: harmonic {h['harmonic']} ({h['harmonic_Hz']:.2f} Hz) within "

@@ -36,29 +36,29 @@ def command(scenes, n_modes, elements, tol, method, subdivide, phases, amplitude
             common_phase, as_json, out_dir):
     """Write, for each SCENE (a scene file or a folder of them), the first modes as a .vtu, a
     .pvd animation per mode, a PNG per mode, an overview sheet and a frequency plot, into
-    OUT/<scene file name>/ (each folder replaced as a whole), and a list of everything in
-    OUT/export.json."""
+    OUT/<scene file name>/ (each folder replaced as a whole, with its own list of files,
+    export.json), and with several scenes the combined list in OUT/export.json."""
     from tqdm import tqdm
 
     from flexlink.analysis.mesh import choose_mesh
     from flexlink.analysis.modal import analyze
-    from flexlink.errors import FlexlinkError, InputError
-    from ._failures import finish, scene_failure
-    from flexlink.output.export import ExportSettings, export_case
+    from flexlink.errors import FlexlinkError
     from flexlink.fileio import prepare_out_dir, write_atomic
+    from flexlink.output.counts import counted
+    from flexlink.output.export import ExportSettings, export_case
     from flexlink.output.report import case_summary
     from flexlink.scene import load_scene, scene_files
+
+    from ._failures import finish, scene_failure
+    from ._written import scene_folders
 
     settings = ExportSettings(n_modes=n_modes, subdivisions=subdivide, phases=phases,
                               amplitude=amplitude, pictures=pictures, plot=True,
                               common_phase=common_phase)
     out = prepare_out_dir(out_dir)
     files = scene_files(scenes)
-    stems = [f.stem for f in files]
-    clash = sorted({s for s in stems if stems.count(s) > 1})
-    if clash:
-        raise InputError(f"two scene files would write to the same folder {clash[0]!r}",
-                         source="command line", expected="scene files with different names")
+    scene_folders(out, files)  # each OUT/<scene>/ writable before any solve, as for modes
+    combined = out / "export.json" if len(files) > 1 else None  # as modes.json: several scenes
     cases, meshes, failures = [], [], []
     document = {"command": "export", "out": str(out), "complete": False, "cases": cases,
                 "failures": failures}
@@ -70,27 +70,40 @@ def command(scenes, n_modes, elements, tol, method, subdivide, phases, amplitude
             mesh = choose_mesh(scene, n_modes, elements, tol)
             result = analyze(scene, n_modes, mesh.elements, method)
             summary = case_summary(result, n_modes)
-            written = export_case(result, summary, out, settings)
+            case = {"scene": scene.name, "file": str(path), "mesh": mesh.as_dict(),
+                    "frequencies_Hz": [row["computed_Hz"] for row in summary["modes"]]}
+            case["files"] = export_case(result, summary, out, settings,
+                                        record=_scene_record(document, case))
         except FlexlinkError as exc:  # the other scenes go on
             failures.append(scene_failure(path, exc))
             continue
-        cases.append({"scene": scene.name, "file": str(path), "mesh": mesh.as_dict(),
-                      "frequencies_Hz": [row["computed_Hz"] for row in summary["modes"]],
-                      "files": written})
+        cases.append(case)
         meshes.append(mesh)
-        # rewritten after every scene folder is swapped in, so export.json lists exactly the
-        # folders this run has completed, even when the run is stopped half-way
         document["complete"] = len(cases) == len(files)
-        write_atomic(out / "export.json", dumps(document))
+        if combined:
+            # rewritten after every scene folder is swapped in, so it lists exactly the folders
+            # this run has completed, even when the run is stopped half-way
+            write_atomic(combined, dumps(document))
     if as_json:
         click.echo(dumps(document))
         finish(failures, len(files))
         return
     for case, mesh in zip(cases, meshes):
         f = case["files"]
-        click.echo(f"{case['scene']}: {len(case['frequencies_Hz'])} modes -> {f['folder']}/  "
-                   f"({len(f['vtu'])} .vtu, {len(f['pvd'])} .pvd with {len(f['frames'])} frames, "
-                   f"{len(f['pictures'])} pictures, {len(f['plot'])} plot)\n  {mesh.describe()}")
+        click.echo(f"{case['scene']}: {counted(len(case['frequencies_Hz']), 'mode')} -> "
+                   f"{f['folder']}/  ({len(f['vtu'])} .vtu, {len(f['pvd'])} .pvd with "
+                   f"{counted(len(f['frames']), 'frame')}, {counted(len(f['pictures']), 'picture')}"
+                   f", {counted(len(f['plot']), 'plot')})\n  {mesh.describe()}")
     if cases:
-        click.echo(f"written: {out / 'export.json'}")
+        click.echo("written: " + ", ".join([*(c["files"]["record"][0] for c in cases),
+                                            *([str(combined)] if combined else [])]))
     finish(failures, len(files))
+
+
+def _scene_record(document: dict, case: dict):
+    """The text of OUT/<scene>/export.json: the run's document with only this scene, written
+    into the scene's folder with the files it lists."""
+    def record(written: dict) -> str:
+        return dumps({**document, "complete": True, "cases": [{**case, "files": written}],
+                      "failures": []})
+    return record

@@ -26,8 +26,7 @@ def command(scene_path, poses, speed, as_json, out_dir):
     limit positions, torque ratio 1/K; for a scene with [[family]] tables, every member too.
     Writes kinematics.csv and kinematics.json to OUT/<scene>/."""
     from flexlink.fileio import prepare_out_dir, write_atomic
-    from flexlink.kinematics.motion import motion_csv
-    from flexlink.output.kinematics_report import family_text, motion_text
+    from flexlink.output.kinematics_report import family_text, motion_csv, motion_text
     from flexlink.scene import load_scene
     from flexlink.studies.kinematics import family_studies, motion_study
     from flexlink.units import parse_quantity

@@ -33,7 +33,8 @@ def command(scene_a, scene_b, n_modes, elements, elements_b, family, as_json, ou
     from flexlink.analysis.mesh import DEFAULT_TOL, choose_mesh
     from flexlink.fileio import prepare_out_dir, write_atomic
     from flexlink.scene import load_scene
-    from flexlink.studies.shapes import comparison_json, compare_scenes, mac_csv, mac_family
+    from flexlink.output.mac import comparison_json, mac_csv, mac_text
+    from flexlink.studies.mac_comparison import compare_scenes, mac_family
     from ._written import announce, run_folder
 
     folder = run_folder(prepare_out_dir(out_dir), [scene_a, scene_b])
@@ -50,18 +51,5 @@ def command(scene_a, scene_b, n_modes, elements, elements_b, family, as_json, ou
     if as_json:
         click.echo(dumps(document))
         return
-    click.echo(f"{family} modes")
-    for side in ("a", "b"):
-        s = document[side]
-        click.echo(f"{side.upper()}: {s['scene']} ({s['file']}), {s['elements_per_link']} "
-                   "elements/link: " + ", ".join(f"{m['mode']}) {m['Hz']:.2f} Hz {m['label']}"
-                                                for m in s["modes"]))
-    n_b = result.mac.shape[1]
-    click.echo("MAC  " + "".join(f"{'B' + str(j + 1):>7}" for j in range(n_b)))
-    for i, row in enumerate(result.mac):
-        click.echo(f"A{i + 1:<4}" + "".join(f"{v:>7.3f}" for v in row))
-    click.echo("pairs:")
-    for p in document["pairs"]:
-        click.echo(f"  A{p['a']} - B{p['b']}: MAC {p['mac']:.3f}, frequency "
-                   f"{p['difference_pct']:+.2f} %")
+    click.echo(mac_text(document, result.mac))
     announce(paths, as_json)

@@ -6,6 +6,7 @@ import logging
 
 import click
 
+from flexlink.commands._operating import operating_given, operating_options, run_operating
 from flexlink.commands._options import dumps, json_option, mesh_options, out_option
 from flexlink.commands._sensitivity import (scene_sensitivity, sensitivity_options,
                                            sensitivity_scheduler)
@@ -19,12 +20,14 @@ from flexlink.commands._sensitivity import (scene_sensitivity, sensitivity_optio
 @sensitivity_options
 @json_option
 @out_option
+@operating_options
 def command(scenes, n_modes, elements, method, tol, sensitivity, samples, seed, jobs, scheduler,
-            as_json, out_dir):
+            as_json, out_dir, **at_speed):
     """Natural frequencies of each SCENE (a scene file or a folder of them) at its pose,
     compared with the scene's reference columns (measured Ex, published FE). Writes
     OUT/<scene>/modes.json and modes.csv per scene, and OUT/modes.json and modes.csv with
-    every scene when there are several."""
+    every scene when there are several. With --speed: the modes about the rigid motion at that
+    crank speed beside the static ones, in OUT/<scene>/modes_at_speed.json and .csv."""
     from flexlink.analysis.families import elastic_modes, scene_family
     from flexlink.fileio import prepare_out_dir, write_atomic
     from flexlink.output.report import case_summary, comparison_csv, format_case
@@ -39,6 +42,8 @@ def command(scenes, n_modes, elements, method, tol, sensitivity, samples, seed, 
     logging.getLogger("flexlink.analysis.modal").setLevel(logging.ERROR)
     out = prepare_out_dir(out_dir)
     files = scene_files(scenes)
+    if operating_given(static_only=sensitivity or method != "auto", **at_speed):
+        return run_operating(files, n_modes, elements, tol, **at_speed, as_json=as_json, out=out)
     all_folders = dict(zip(files, scene_folders(out, files)))
     summaries, meshes, folders, failures = [], [], [], []
     with sensitivity_scheduler(sensitivity, scheduler):  # one cluster for every scene

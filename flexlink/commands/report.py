@@ -40,6 +40,7 @@ def command(scenes, n_modes, elements, tol, method, cycle_poses, sensitivity, sa
 
     from flexlink.errors import FlexlinkError
     from flexlink.fileio import prepare_out_dir, write_atomic
+    from flexlink.output.counts import counted
     from flexlink.output.export import ExportSettings, export_case
     from flexlink.output.export_vtk import mode_set
     from flexlink.output.html_report import render_page
@@ -88,8 +89,8 @@ def command(scenes, n_modes, elements, tol, method, cycle_poses, sensitivity, sa
         finish(failures, len(files))
     stamp = datetime.datetime.now().astimezone().strftime("%Y-%m-%d %H:%M %Z")
     version = importlib.metadata.version("flexlink")
-    subtitle = (f"flexlink {version}, {stamp}: {len(pages)} scene"
-                f"{'s' if len(pages) != 1 else ''}, first {n_modes} elastic modes")
+    subtitle = (f"flexlink {version}, {stamp}: {counted(len(pages), 'scene')}, first "
+                f"{counted(n_modes, 'elastic mode')}")
     page = render_page(pages, plotly.offline.get_plotlyjs(), subtitle=subtitle,
                        failures=[f["error"] for f in failures])
     report = write_atomic(out / "report.html", page)
@@ -104,6 +105,7 @@ def command(scenes, n_modes, elements, tol, method, cycle_poses, sensitivity, sa
         click.echo(dumps(document))
         finish(failures, len(files))
         return
-    click.echo(f"report: {len(pages)} scenes, {document['bytes'] / 1e6:.1f} MB -> {report}")
+    click.echo(f"report: {counted(len(pages), 'scene')}, {document['bytes'] / 1e6:.1f} MB -> "
+               f"{report}")
     announce([report], as_json)
     finish(failures, len(files))

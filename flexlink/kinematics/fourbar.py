@@ -23,6 +23,7 @@ import numpy as np
 from flexlink.errors import InputError, KinematicsError
 
 BRANCHES = ("open", "crossed")
+CLOSE_TOL = 1e-12  # relative: a toggle closing within this is round-off, not a gap in the loop
 
 
 @dataclasses.dataclass(frozen=True)
@@ -85,6 +86,42 @@ class FourBar:
         shortest = lengths.index(s)
         return {0: "double-crank", 1: "crank-rocker", 2: "double-rocker", 3: "double-rocker"}[shortest]
 
+    def crank_turns_fully(self) -> bool:
+        """Grashof's criterion with its equality: the crank turns a full revolution when
+        s + l <= p + q and the shortest link is the crank or the ground. A change-point linkage
+        (s + l = p + q) turns fully too, passing flat poses where every link lies on the ground
+        line and the assembly branch can change."""
+        lengths = self.lengths
+        s, l = min(lengths), max(lengths)
+        grashof = self.grashof_class() == "change-point" or s + l < sum(lengths) - s - l
+        return grashof and min(self.ground, self.crank) == s
+
+    def flat_poses(self) -> tuple[float, ...]:
+        """Crank angles [rad] in [0, 2 pi) of a change-point linkage's flat poses, where all
+        four joints lie on the ground line (crank along it at 0 or 180 deg and the loop
+        closing there); none for other linkages."""
+        if self.grashof_class() != "change-point":
+            return ()
+        return tuple(t for t in (0.0, math.pi) if self._closes_flat(t))
+
+    def dead_centres(self) -> tuple[float, ...]:
+        """Crank angles [rad] in [0, 2 pi) where coupler and rocker are collinear (mu = 0 or
+        180 deg): from cos mu = +-1 in the closed form of ``cos_mu``. None for a crank-rocker
+        or a double-crank, whose transmission angle stays clear of both."""
+        L1, L2, L3, L4 = self.lengths
+        out = set()
+        for c in (1.0, -1.0):
+            cos_t = (2 * L3 * L4 * c - L4**2 - L3**2 + L2**2 + L1**2) / (2 * L1 * L2)
+            if abs(cos_t) <= 1.0 + CLOSE_TOL:
+                t = math.acos(min(1.0, max(-1.0, cos_t)))
+                out |= {t, (2 * math.pi - t) % (2 * math.pi)}
+        return tuple(sorted(out))
+
+    def _closes_flat(self, theta2: float) -> bool:
+        L1, L2, L3, L4 = self.lengths
+        diag = abs(L1 - L2) if theta2 == 0.0 else L1 + L2
+        return any(math.isclose(diag, d, rel_tol=1e-12) for d in (L3 + L4, abs(L3 - L4)))
+
     # -- transmission angle ------------------------------------------------------------------
     def cos_mu(self, theta2):
         L1, L2, L3, L4 = self.lengths
@@ -121,17 +158,20 @@ class FourBar:
         return float(np.nanmin(mu)), float(np.nanmax(mu))
 
     def _require_full_crank(self, what: str):
-        if self.grashof_class() not in ("crank-rocker", "double-crank"):
+        if not self.crank_turns_fully():
             raise KinematicsError(
                 f"{what} need a crank that turns fully; this linkage is {self.grashof_class()} "
                 f"(lengths {self.lengths} m)")
 
     # -- positions ---------------------------------------------------------------------------
-    def pose(self, theta2: float, branch: str = "open", *, toggle_tol: float = 1e-6) -> Pose:
+    def pose(self, theta2: float, branch: str = "open") -> Pose:
         """Joint positions at crank angle ``theta2`` [rad] on the chosen assembly branch.
 
-        Raises KinematicsError where the loop cannot close; a pose within ``toggle_tol`` of a
-        dead centre (sin mu ~ 0) is refused too, since the pose there is not unique.
+        Raises KinematicsError where the loop cannot close: the diagonal O4-A longer than
+        coupler + rocker or shorter than |coupler - rocker| by more than ``CLOSE_TOL``
+        (relative). A toggle that closes within it (a dead centre, mu = 0 or 180 deg; a
+        change-point linkage's flat pose) is a pose like any other: both branches meet there,
+        and the callers warn about it (``scene.plausibility.pose_warnings``).
         """
         if branch not in BRANCHES:
             raise InputError(f"unknown assembly branch {branch!r}", field="branch",
@@ -141,17 +181,21 @@ class FourBar:
         O4 = np.array([L1, 0.0])
         d = A - O4
         diag = math.hypot(*d)
-        cos_psi3 = (L4**2 + diag**2 - L3**2) / (2 * L4 * diag) if diag > 0 else 2.0
-        if abs(cos_psi3) > 1.0:
+        if diag == 0.0:
             raise KinematicsError(
-                f"the loop cannot close at theta2 = {math.degrees(theta2):.4f} deg: the diagonal "
-                f"O4-A is {diag:.6g} m, coupler + rocker must span it")
-        mu = float(self.transmission_angle(theta2))
-        if abs(math.sin(mu)) < toggle_tol:
-            raise KinematicsError(
-                f"theta2 = {math.degrees(theta2):.4f} deg is a dead centre (mu = "
-                f"{math.degrees(mu):.4f} deg): coupler and rocker are collinear")
-        psi3 = math.acos(cos_psi3)
+                f"at theta2 = {math.degrees(theta2):.4f} deg the crank pin A lies on the ground "
+                "pivot O4: the rocker's angle is not determined there")
+        longest, shortest = L3 + L4, abs(L3 - L4)
+        for bound, too, what in ((longest, diag - longest, "longer than coupler + rocker"),
+                                 (shortest, shortest - diag, "shorter than |coupler - rocker|")):
+            if too > CLOSE_TOL * max(longest, L1 + L2):
+                raise KinematicsError(
+                    f"the loop cannot close at theta2 = {math.degrees(theta2):.4f} deg: the "
+                    f"diagonal O4-A is {diag:.9g} m, {what} ({bound:.9g} m) by more than the "
+                    f"round-off tolerance ({CLOSE_TOL:g} relative)")
+        cos_psi3 = (L4**2 + diag**2 - L3**2) / (2 * L4 * diag)
+        mu = float(np.arccos(np.clip(self.cos_mu(theta2), -1.0, 1.0)))
+        psi3 = math.acos(min(1.0, max(-1.0, cos_psi3)))
         sign = -1.0 if branch == "open" else 1.0
         theta4 = math.atan2(d[1], d[0]) + sign * psi3
         B = O4 + L4 * np.array([math.cos(theta4), math.sin(theta4)])

@@ -68,22 +68,3 @@ def body_summary(cycle: Cycle, body: str, crank_speed: float | None, output: boo
         out["peak_abs_alpha"] = {"value_rad_s2": float(abs(L[peak]) * crank_speed**2),
                                  "at_deg": math.degrees(cycle.q[peak]) % 360.0}
     return out
-
-
-def motion_csv(cycle: Cycle, crank_speed: float | None = None) -> str:
-    """One row per pose: crank angle [deg], then per body angle [deg], K, L (and omega,
-    alpha at the crank speed)."""
-    cols = ["crank_angle_deg"]
-    for b in cycle.body_names:
-        cols += [f"{b}_angle_deg", f"{b}_K", f"{b}_L"]
-        if crank_speed:
-            cols += [f"{b}_omega_rad_s", f"{b}_alpha_rad_s2"]
-    lines = [",".join(cols)]
-    for i, q in enumerate(cycle.q):
-        row = [math.degrees(q)]
-        for j in range(len(cycle.body_names)):
-            row += [math.degrees(cycle.angles[i, j]), cycle.K[i, j], cycle.L[i, j]]
-            if crank_speed:
-                row += [cycle.K[i, j] * crank_speed, cycle.L[i, j] * crank_speed**2]
-        lines.append(",".join(f"{v:.10g}" for v in row))
-    return "\n".join(lines) + "\n"

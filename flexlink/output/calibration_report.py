@@ -1,13 +1,19 @@
-"""Markdown report (with PNG plots) of ``comparison.run_study`` documents, one per model family.
+"""Markdown report, PNG plots and printed summary of calibration studies
+(``studies.calibration_study.run_study``), one per model family.
 
-The text is a pure function of the study documents; the plots import matplotlib inside the
-functions that draw, and return PNG bytes so that the caller writes them atomically."""
+Everything here reads a study through its JSON document (``output.calibration_json``), so a
+field the report shows has one name. The text is a pure function of the studies; the plots
+import matplotlib inside the functions that draw and return PNG bytes; ``report_files`` hands
+the caller every file's content to write atomically."""
 
 from __future__ import annotations
 
 import io
 
 import numpy as np
+
+from flexlink.output.calibration_json import study_document
+from flexlink.studies.calibration_study import CalibrationStudy, best_family
 
 
 def _f(x, fmt="{:.1f}"):
@@ -45,15 +51,9 @@ def _se_text(p):
     return f"×/÷ {np.exp(se):.3g}" if se < 5 else "not determined"
 
 
-def best_family(studies: list[dict]) -> dict | None:
-    """The family with the lowest cross-validated mean |error| vs Ex, among those whose every
-    case and mode was evaluated (None if no family was)."""
-    complete = [s for s in studies if s["errors_mean_abs_pct"]["cross_validated_vs_Ex"] is not None]
-    return min(complete, key=lambda s: s["errors_mean_abs_pct"]["cross_validated_vs_Ex"],
-               default=None)
-
-
-def summary_lines(studies: list[dict]) -> list[str]:
+def summary_lines(studies: list[dict], best: str | None) -> list[str]:
+    """The summary table of mean |errors|; ``best``: the family with the lowest cross-validated
+    error (``calibration_study.best_family``), named when several are compared."""
     rows = []
     keys = ("assumed_inputs_vs_Ex", "calibrated_to_Ex_in_sample", "cross_validated_vs_Ex",
             "per_case_fit_in_sample", "calibrated_to_FE_vs_FE", "paper_FE_vs_Ex")
@@ -62,8 +62,8 @@ def summary_lines(studies: list[dict]) -> list[str]:
     lines = [_table(["family", "assumed inputs vs Ex", "calibrated to Ex (in sample)",
                      "cross-validated vs Ex", "each case fitted alone", "calibrated to FE vs FE",
                      "paper FE vs Ex"], rows)]
-    best = best_family(studies)
     if len(studies) > 1 and best is not None:
+        best = next(s for s in studies if s["family"] == best)
         lines.append(f"\nBy the cross-validated error the **{best['family']}** family explains "
                      f"Table III best ({best['errors_mean_abs_pct']['cross_validated_vs_Ex']:.1f} % "
                      "mean |error| predicting a case it was not fitted to).")
@@ -214,7 +214,11 @@ def family_section(s: dict, plots: dict[str, str]) -> str:
     return "\n".join(out)
 
 
-def report_markdown(studies: list[dict], plots: dict[str, dict[str, str]], command: str) -> str:
+def report_markdown(studies: list[CalibrationStudy], plots: dict[str, dict[str, str]],
+                    command: str) -> str:
+    """report.md; ``plots``: family -> plot name -> its file name beside the report."""
+    best = best_family(studies)
+    studies = [study_document(s) for s in studies]
     s0 = studies[0]
     st = s0["settings"]
     head = ["# flexlink calibration report: model vs Table III", "",
@@ -225,7 +229,7 @@ def report_markdown(studies: list[dict], plots: dict[str, dict[str, str]], comma
             "says 'each case alone'). Errors are (model / reference - 1) in %, paired by mode "
             "order only; no per-mode or per-case factors.", "",
             "## Summary: mean |error| in %", ""]
-    head += summary_lines(studies)
+    head += summary_lines(studies, best and best.family)
     return "\n".join(head + [""] + [family_section(s, plots[s["family"]]) for s in studies]) + "\n"
 
 
@@ -317,3 +321,36 @@ def plot_intervals(s: dict) -> bytes:
 
 PLOTS = {"frequencies": plot_frequencies, "cross_validation": plot_cross_validation,
          "ratios": plot_ratios, "intervals": plot_intervals}
+
+
+def report_files(studies: list[CalibrationStudy], command: str) -> dict[str, bytes | str]:
+    """File name -> content of every plot (``<plot>-<family>.png``) and of report.md."""
+    files, plots = {}, {}
+    for study in studies:
+        doc = study_document(study)
+        plots[study.family] = {name: f"{name}-{study.family}.png" for name in PLOTS}
+        for name, draw in PLOTS.items():
+            files[plots[study.family][name]] = draw(doc)
+    files["report.md"] = report_markdown(studies, plots, command)
+    return files
+
+
+def summary_text(studies: list[CalibrationStudy]) -> str:
+    """What ``flexlink calibrate`` prints without --json: per family the mean |errors|, the
+    inputs fitted to Ex and how many Ex values the Monte Carlo interval holds."""
+    lines = []
+    for s in map(study_document, studies):
+        lines.append(f"family {s['family']}: mean |error| vs Ex: assumed inputs "
+                     f"{mean_text(s, 'assumed_inputs_vs_Ex')} %, calibrated "
+                     f"{mean_text(s, 'calibrated_to_Ex_in_sample')} % (in sample), cross-validated "
+                     f"{mean_text(s, 'cross_validated_vs_Ex')} %; paper FE vs Ex "
+                     f"{mean_text(s, 'paper_FE_vs_Ex')} %")
+        lines.append("  fitted to Ex: " + ", ".join(
+            f"{p['name']} = {p['value']:.4g} {p['unit']}" for p in s["fit_Ex"]["parameters"]))
+        u = s["uncertainty_calibrated"]
+        lines.append(f"  Ex inside the 95 % Monte Carlo interval (calibrated inputs): "
+                     f"{u['Ex_inside_count']} of {u['count']} modes")
+    if len(studies) > 1:
+        best = best_family(studies)
+        lines.append(f"best family by cross-validated error: {best and best.family}")
+    return "\n".join(lines)

@@ -5,6 +5,7 @@
     <stem>_mode<n>.png            picture of mode n (pyvista, off screen)
     <stem>_modes.png              overview sheet of all modes
     <stem>_frequencies.png        computed vs reference frequencies (matplotlib)
+    export.json                   the list of these files (``flexlink export``, not ``report``)
 
 ``<stem>`` is the scene file's name without ``.toml``. The folder is written as a whole: into a
 staging folder that then replaces ``<stem>/`` (``fileio.staged_folder``), so an interrupted
@@ -16,12 +17,14 @@ from __future__ import annotations
 
 import dataclasses
 import re
+from collections.abc import Callable
 from pathlib import Path
 
 from flexlink.analysis.modal import CaseResult
 from flexlink.errors import InputError
-from flexlink.output.export_vtk import mode_set, modes_mesh, write_animation, write_vtu
 from flexlink.fileio import staged_folder, write_atomic
+from flexlink.output.export_vtk import mode_set, modes_mesh, write_animation, write_vtu
+from flexlink.stopping import signals_deferred
 
 
 @dataclasses.dataclass(frozen=True)
@@ -54,17 +57,27 @@ def case_stem(result: CaseResult) -> str:
     return Path(result.scene.path).stem
 
 
-def export_case(result: CaseResult, summary: dict, out: Path, settings: ExportSettings) -> dict:
+RECORD = "export.json"  # the scene folder's own list of what its export wrote
+
+
+def export_case(result: CaseResult, summary: dict, out: Path, settings: ExportSettings,
+                record: Callable[[dict], str] | None = None) -> dict:
     """Write the files of one case into ``out/<stem>/``, replacing that folder as a whole;
     ``summary`` is its ``report.case_summary``. Returns {"folder": ..., kind: [paths]} with
-    kinds vtu, pvd, frames, pictures, plot (paths as strings, in the final folder)."""
+    kinds vtu, pvd, frames, pictures, plot (paths as strings, in the final folder), and with
+    ``record`` also "record": the folder's ``export.json``, holding ``record(those files)``, so
+    it is swapped in with the files it lists."""
     stem = case_stem(result)
     folder = out / stem
     with staged_folder(folder, keep=lambda name: not _is_export_file(stem, name, settings)) \
             as stage:
         files = _write_case(result, summary, stage, stem, settings)
-    return {"folder": str(folder),
-            **{k: [str(folder / p.relative_to(stage)) for p in v] for k, v in files.items()}}
+        written = {"folder": str(folder),
+                   **{k: [str(folder / p.relative_to(stage)) for p in v] for k, v in files.items()}}
+        if record is not None:
+            written["record"] = [str(folder / RECORD)]
+            write_atomic(stage / RECORD, record(written))
+    return written
 
 
 def _is_export_file(stem: str, name: str, settings: ExportSettings) -> bool:
@@ -96,13 +109,16 @@ def _write_case(result: CaseResult, summary: dict, folder: Path, stem: str,
 
         name = result.scene.name
         for i, (n, f) in enumerate(zip(modes.numbers, modes.frequencies)):
-            png = mode_picture(f"{name}: mode {n}, {f:.1f} Hz", modes, i, settings.amplitude)
+            with signals_deferred():  # VTK renders in native code that a signal must not cut
+                png = mode_picture(f"{name}: mode {n}, {f:.1f} Hz", modes, i, settings.amplitude)
             files["pictures"].append(write_atomic(folder / f"{stem}_mode{n}.png", png))
-        files["pictures"].append(write_atomic(
-            folder / f"{stem}_modes.png", overview_sheet(name, modes, settings.amplitude)))
+        with signals_deferred():
+            sheet = overview_sheet(name, modes, settings.amplitude)
+        files["pictures"].append(write_atomic(folder / f"{stem}_modes.png", sheet))
     if settings.plot:
         from flexlink.output.plots import frequency_plot
 
-        files["plot"].append(write_atomic(folder / f"{stem}_frequencies.png",
-                                          frequency_plot(summary)))
+        with signals_deferred():  # matplotlib, likewise
+            plot = frequency_plot(summary)
+        files["plot"].append(write_atomic(folder / f"{stem}_frequencies.png", plot))
     return files

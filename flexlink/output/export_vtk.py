@@ -27,8 +27,11 @@ Arrays of the ``.vtu`` (2D model padded with z = 0, as VTK wants 3D points):
   ``link_<name>`` = [link_id] for every link, ``joint_<name>`` = [joint_id] for every joint and
   ``part_<name>`` = [code] (meshio writes numeric arrays only, so names travel as array names).
 Animation frames hold the deformed positions themselves (ParaView plays them as they are) with
-the scaled ``displacement`` and ``rotation`` as point data and the same cells; the ``.pvd`` time
-is in seconds, or the fraction of the period with ``common_phase``.
+the same cells and, as point data, ``applied_displacement_magnitude`` [m] and
+``applied_rotation`` [rad]: scalars, no displacement vector, so Warp By Vector cannot apply the
+deformation twice (it is for the ``.vtu``: ``mode<n>_displacement`` times ``warp_scale`` gives
+frame 0 exactly). The ``.pvd`` time is in seconds, or the fraction of the period with
+``common_phase``.
 """
 
 from __future__ import annotations
@@ -206,13 +209,16 @@ def modes_mesh(result: CaseResult, modes: ModeSet, fraction: float) -> meshio.Me
 
 
 def frame_mesh(modes: ModeSet, i: int, factor: float) -> meshio.Mesh:
-    """Mode i deformed by ``factor`` times its shape: one animation frame."""
+    """Mode i deformed by ``factor`` times its shape: one animation frame. The points are the
+    deformed positions; the frame carries no displacement vector, only its length and the
+    rotation as applied, so ParaView's Warp By Vector has nothing to add a second time."""
     s = modes.sampled
     cells = _cells(modes)
     displacement = _with_pivots(factor * s.displacement[:, :, i], cells)
     return meshio.Mesh(_pad(np.vstack([s.points, cells.pivots]) + displacement), cells.blocks,
-                       point_data={"displacement": _pad(displacement),
-                                   "rotation": _with_pivots(factor * s.rotation[:, i], cells)},
+                       point_data={"applied_displacement_magnitude":
+                                       np.linalg.norm(displacement, axis=1),
+                                   "applied_rotation": _with_pivots(factor * s.rotation[:, i], cells)},
                        cell_data=cells.cell_data,
                        field_data={"frequency_Hz": np.array([modes.frequencies[i]]),
                                    "mode_number": np.array([modes.numbers[i]]),

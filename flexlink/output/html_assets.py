@@ -13,7 +13,11 @@ body{margin:0;font-family:"DejaVu Sans",Arial,sans-serif;color:#1b1b1b;backgroun
 header{background:#23395d;color:#fff;padding:14px 20px}
 header h1{margin:0 0 4px;font-size:1.5em}
 header p{margin:0 0 8px;opacity:.85}
-nav a{color:#fff;margin-right:14px;white-space:nowrap;display:inline-block}
+nav ul{margin:0;padding:0;list-style:none}
+nav li{margin:2px 0}
+nav a{color:#fff;font-weight:bold}
+.shares{white-space:normal;cursor:help}
+.share{white-space:nowrap;border-bottom:1px dotted #888}
 main{max-width:1100px;margin:0 auto;padding:10px}
 .scene{background:#fff;border-radius:6px;padding:8px 18px 14px;margin:14px 0;
   box-shadow:0 1px 3px rgba(0,0,0,.12)}

@@ -21,6 +21,7 @@ import json
 import math
 import re
 
+from flexlink.output.counts import counted
 from flexlink.output.html_assets import SCRIPT, STYLE
 
 LINK_COLOURS = ("#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#17becf")
@@ -98,6 +99,51 @@ def pose_section(page: dict, figures: list) -> str:
 
 
 KNOWN_ROW_KEYS = {"mode", "computed_Hz"}
+SHOWN_PARTS = 2  # parts named in an energy cell; all of them are in its tooltip
+
+
+def _percent(fraction: float) -> str:
+    """A share as a person reads it: whole percent, finer only below 1 % (and where rounding
+    would claim all of it)."""
+    pct = 100 * fraction
+    if pct == 0:
+        return "0 %"
+    if pct < 1:
+        return f"{pct:.2g} %"
+    if round(pct) == 100 and pct < 100:  # not all of it: 99.9 %, never 100 %
+        return f"{math.floor(10 * pct) / 10:.1f} %"
+    return f"{pct:.0f} %"
+
+
+def _shares(parts: dict) -> str:
+    """An energy distribution ({part: fraction}) as its two largest parts, e.g. "crank 85 %,
+    coupler 9 %", with every part in the tooltip."""
+    ranked = sorted(parts.items(), key=lambda kv: -kv[1])
+    shown = ", ".join(f'<span class="share">{_e(k)} {_percent(v)}</span>'
+                      for k, v in ranked[:SHOWN_PARTS])
+    everything = ", ".join(f"{k} {100 * v:.3g} %" for k, v in ranked)
+    return f'<span class="shares" title="{_e(everything)}">{shown}</span>'
+
+
+def _cell(value) -> str:
+    """An extra column's value: distributions as shares, lists joined, text escaped."""
+    if isinstance(value, dict):
+        return _shares(value)
+    if isinstance(value, (list, tuple)):
+        return ", ".join(_e(v) for v in value)
+    return _e(value)
+
+
+def _mode_labels(summary: dict) -> dict[int, str]:
+    return {row["mode"]: row["label"] for row in summary.get("modes", []) if row.get("label")}
+
+
+def headline(summary: dict) -> str:
+    """One line for the top of the page: the scene's mean |error| against each reference."""
+    errors = summary.get("mean_abs_error_pct") or {}
+    if not errors:
+        return "no reference frequencies"
+    return "mean |error| " + ", ".join(f"vs {_e(k)} {v:.1f} %" for k, v in sorted(errors.items()))
 
 
 def frequency_section(page: dict, figures: list) -> str:
@@ -108,7 +154,10 @@ def frequency_section(page: dict, figures: list) -> str:
     refs = [k[:-3] for k in rows[0] if k.endswith("_Hz") and k != "computed_Hz"]
     known = KNOWN_ROW_KEYS | {f"{r}_Hz" for r in refs} | {f"error_vs_{r}_pct" for r in refs}
     extra = [k for k in rows[0] if k not in known]  # e.g. "kind", or a later label/interval
+    masses = "effective_mass_kg" in extra
+    extra = [k for k in extra if k != "effective_mass_kg"]
     header = ["mode", "computed [Hz]"] + [h for r in refs for h in (f"{_e(r)} [Hz]", "error")] \
+        + (["m<sub>x</sub> [g]", "m<sub>y</sub> [g]"] if masses else []) \
         + [_e(k.replace("_", " ")) for k in extra]
     body = []
     for row in rows:
@@ -118,7 +167,10 @@ def frequency_section(page: dict, figures: list) -> str:
                 cells += [_number(row[f"{r}_Hz"], 1), f"{row[f'error_vs_{r}_pct']:+.1f} %"]
             else:
                 cells += ["-", "-"]
-        cells += [_e(row.get(k, "")) for k in extra]
+        if masses:
+            mass = row.get("effective_mass_kg") or {}
+            cells += [_number(1e3 * mass[a], 3) if a in mass else "-" for a in ("x", "y")]
+        cells += [_cell(row.get(k, "")) for k in extra]
         body.append(cells)
     parts = [f"<h3>Natural frequencies</h3><p>{_e(summary.get('family', 'planar'))} model, "
              f"{summary['elements_per_link']} elements/link, {summary['dofs']} DOFs, "
@@ -194,8 +246,10 @@ def modes_section(page: dict, figures: list) -> str:
     if not shapes["modes"]:
         return ""
     pid = _e(page["id"])
-    options = "".join(f'<option value="{i}">mode {m["number"]}: {m["frequency_Hz"]:.1f} Hz</option>'
-                      for i, m in enumerate(shapes["modes"]))
+    labels = _mode_labels(page["summary"])
+    options = "".join(f'<option value="{i}">mode {m["number"]}: {m["frequency_Hz"]:.1f} Hz'
+                      + (f", {_e(labels[m['number']])}" if m["number"] in labels else "")
+                      + "</option>" for i, m in enumerate(shapes["modes"]))
     return (f'<h3>Mode shapes</h3><div class="player" id="player-{pid}" data-scene="{pid}">'
             f'<div class="controls"><label>Mode <select aria-label="mode">{options}</select></label>'
             '<button type="button" class="play" aria-label="pause">Pause</button>'
@@ -213,8 +267,13 @@ def cycle_section(page: dict, figures: list) -> str:
         return ""
     if "unavailable" in cycle:
         return f"<h3>Cycle map</h3><p>Not available: {_e(cycle['unavailable'])}</p>"
+    # the map lists the j-th lowest frequency at each pose, so a label holds at the analysed
+    # pose and is named as such
+    labels = _mode_labels(page["summary"])
     data = [{"type": "scatter", "mode": "lines", "x": cycle["crank_deg"], "y": f,
-             "name": f"mode {j + 1}", "hovertemplate": "%{x:.1f} deg: %{y:.1f} Hz<extra></extra>"}
+             "name": f"mode {j + 1}" + (f" ({labels[j + 1]} at the pose)" if j + 1 in labels
+                                         else ""),
+             "hovertemplate": "%{x:.1f} deg: %{y:.1f} Hz<extra></extra>"}
             for j, f in enumerate(cycle["frequencies_Hz"])]
     shapes = [{"type": "line", "x0": cycle["pose_deg"], "x1": cycle["pose_deg"], "yref": "paper",
                "y0": 0, "y1": 1, "line": {"color": "#444", "dash": "dash", "width": 1}}]
@@ -225,9 +284,10 @@ def cycle_section(page: dict, figures: list) -> str:
               "yaxis": {"title": {"text": "natural frequency [Hz]"}},
               "legend": {"orientation": "h", "y": -0.25}, "shapes": shapes, "height": 380}
     return ("<h3>Cycle map</h3>" + _figure(page, figures, "cycle", data, layout)
-            + f'<p class="note">The first {len(data)} elastic frequencies over one crank '
-              f"revolution ({len(cycle['crank_deg'])} poses); dashed: the analysed pose, dotted: "
-              "transmission angle 90 deg.</p>")
+            + f'<p class="note">The first '
+              f"{counted(len(data), 'elastic frequency', 'elastic frequencies')} over one crank "
+              f"revolution ({counted(len(cycle['crank_deg']), 'pose')}); dashed: the analysed "
+              "pose, dotted: transmission angle 90 deg.</p>")
 
 
 def files_section(page: dict, figures: list) -> str:
@@ -266,7 +326,8 @@ def render_page(pages: list[dict], plotly_js: str, title: str = "flexlink report
                       f'<h2>{_e(summary["scene"])}</h2><p class="file">{_e(summary["file"])}</p>'
                       + "".join(f'<div class="part">{p}</div>' for p in parts if p)
                       + "</section>")
-    nav = "".join(f'<a href="#scene-{_e(p["id"])}">{_e(p["summary"]["scene"])}</a>' for p in pages)
+    nav = "".join(f'<li><a href="#scene-{_e(p["id"])}">{_e(p["summary"]["scene"])}</a>: '
+                  f'{headline(p["summary"])}</li>' for p in pages)
     data = {"figures": figures,
             "animations": {p["id"]: p["shapes"] for p in pages if p["shapes"]["modes"]}}
     # "</script" inside a script would end it early; "<\/" means "</" in JSON and in
@@ -276,7 +337,7 @@ def render_page(pages: list[dict], plotly_js: str, title: str = "flexlink report
     return ("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
             "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">"
             f"<title>{_e(title)}</title><style>{STYLE}</style></head><body>"
-            f"<header><h1>{_e(title)}</h1><p>{_e(subtitle)}</p><nav>{nav}</nav></header>"
+            f"<header><h1>{_e(title)}</h1><p>{_e(subtitle)}</p><nav><ul>{nav}</ul></nav></header>"
             f"<main>{_failures(failures)}{''.join(scenes)}</main>"
             f'<script type="application/json" id="flexlink-data">{payload}</script>'
             f"<script>{plotly_js}</script><script>{SCRIPT}</script></body></html>\n")

@@ -114,7 +114,8 @@ def format_case(summary: dict) -> str:
     head = f"{summary['scene']}  ({summary['file']})"
     pose = summary["pose"]
     lines = [head, "-" * len(head),
-             f"pose: theta2 = {pose['theta2_deg']:.3f} deg, mu = {pose['mu_deg']:.3f} deg, "
+             f"pose: theta2 = {pose['theta2_deg']:.3f} deg, "
+             + ("" if pose["mu_deg"] is None else f"mu = {pose['mu_deg']:.3f} deg, ") +
              f"{pose['branch']} branch; {summary.get('family', 'planar')} model; "
              f"{summary['elements_per_link']} elements/link, "
              f"{summary['dofs']} DOFs, {summary['solver']} solver, "

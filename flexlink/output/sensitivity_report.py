@@ -5,6 +5,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from flexlink.studies.sensitivity import SceneSensitivity
+
 
 def alternative_line(label: str, alt: dict) -> str:
     """One line: what the other value of a modelling choice gives."""
@@ -15,11 +17,11 @@ def alternative_line(label: str, alt: dict) -> str:
         f"; mean |error| {errors}" if errors else "")
 
 
-def sensitivity_dict(points, interval, reference: dict, elements: int) -> dict:
-    """JSON-ready end points and 95 % interval; ``reference``: column name -> values [Hz];
-    ``elements`` per link of the study's mesh."""
+def sensitivity_document(study: SceneSensitivity) -> dict:
+    """JSON-ready end points and 95 % interval of one scene's sensitivity study."""
+    points, interval = study.points, study.interval
     return {
-        "elements_per_link": elements,
+        "elements_per_link": study.elements,
         "nominal_Hz": points.nominal.tolist(),
         "inputs": [{"field": s.field, "value": s.value, "low": s.low, "high": s.high,
                     "reason": s.reason, "low_Hz": ends[0].tolist(), "high_Hz": ends[1].tolist()}
@@ -27,7 +29,8 @@ def sensitivity_dict(points, interval, reference: dict, elements: int) -> dict:
         "monte_carlo": {"samples": int(interval.samples.shape[0]), "seed": interval.seed,
                         "failed": interval.failed, "low_Hz": interval.low.tolist(),
                         "high_Hz": interval.high.tolist(),
-                        "inside": {k: interval.contains(v).tolist() for k, v in reference.items()}},
+                        "inside": {k: interval.contains(v).tolist()
+                                   for k, v in study.reference.items()}},
     }
 
 

@@ -15,10 +15,11 @@ import numpy as np
 
 from flexlink.errors import InputError
 from flexlink.fe.model import DriveSpec, JointSpec, LinkSpec, Section, Topology
-from flexlink.kinematics import FourBar, Linkage
+from flexlink.kinematics import FourBar, Linkage, State
 from flexlink.scene.source import Assumption
 
 FALLBACK_ELEMENTS = 16  # per link, for library calls that name no mesh; commands use the mesh rule
+CONTINUATION_STEP = math.radians(5.0)  # [rad] between poses continued along a general scene's input
 
 
 @dataclasses.dataclass(frozen=True)
@@ -64,10 +65,40 @@ class Options:
 
     family: str = "planar"  # model family
     crank_speed: float | None = None  # [rad/s]
+    crank_acceleration: float | None = None  # [rad/s^2], only with crank_speed
     plausibility: str = "error"
     prb: PrbOptions | None = None
     variants: tuple[Variant, ...] = ()
     tilt: dict[str, float] = dataclasses.field(default_factory=dict)  # joint -> Ktilt [N m/rad]
+
+
+@dataclasses.dataclass(frozen=True)
+class LoadSpec:
+    """An external load on body ``body`` (see schema ``LoadTable``): ``kind`` "torque" [N m,
+    counter-clockwise positive] or "force" [N] acting at ``at`` [m] in the body's frame with
+    components along ``frame`` ("global" or "body"). ``angles`` [rad] (increasing, one turn,
+    evenly spaced) and ``values`` (one row per angle: (T,) or (Fx, Fy)) sample it over the
+    crank angle; a constant load has a single row and no angles. ``field`` names where it was
+    declared, e.g. "loads[0]"."""
+
+    kind: str
+    body: str
+    values: np.ndarray
+    angles: np.ndarray | None = None
+    at: tuple[float, float] = (0.0, 0.0)
+    frame: str = "global"
+    field: str = "loads"
+
+    def value_at(self, q: float) -> np.ndarray:
+        """The load's components at crank angle ``q`` [rad], linear between samples and
+        periodic over the turn."""
+        if self.angles is None:
+            return self.values[0]
+        period = 2 * math.pi
+        x = self.angles[0] + np.remainder(q - self.angles[0], period)
+        xs = np.append(self.angles, self.angles[0] + period)
+        ys = np.vstack([self.values, self.values[:1]])
+        return np.array([np.interp(x, xs, ys[:, k]) for k in range(ys.shape[1])])
 
 
 @dataclasses.dataclass(frozen=True)
@@ -111,6 +142,7 @@ class Scene:
     options: Options
     synthesis: dict | None = None  # method, inputs and the synthesised lengths [m]
     composite: Composite | None = None  # the shared material, where it is a composite
+    loads: tuple[LoadSpec, ...] = ()  # external loads for the driving torque
     origin: dict[str, str] = dataclasses.field(default_factory=dict, repr=False, compare=False)
 
     @property
@@ -156,6 +188,19 @@ class Scene:
             points = dict(self.linkage.solve(q, self.guess).points)
         return RigidPose(crank_angle=q, joints=points, branch=self.branch,
                          transmission=pose_transmission_angles(self.linkage, self.transmission, points))
+
+
+    def rigid_state(self, crank_angle: float | None = None) -> State:
+        """The rigid pose at ``crank_angle`` [rad] (default: the analysed pose) with its
+        velocity and acceleration coefficients, on the scene's assembly: a four-bar's from its
+        closed form, a general scene's continued from its start pose in steps of at most
+        ``CONTINUATION_STEP``."""
+        q = self.start if crank_angle is None else float(crank_angle)
+        if self.four_bar is not None and set(self.guess) <= {"A", "B"}:
+            joints = self.four_bar.pose(q, self.branch).joints
+            return self.linkage.solve(q, {k: joints[k] for k in self.guess})
+        steps = max(1, math.ceil(abs(q - self.start) / CONTINUATION_STEP))
+        return self.linkage.cycle(np.linspace(self.start, q, steps + 1), self.guess).states[-1]
 
 
 def pose_transmission_angles(linkage: Linkage, pairs, points) -> dict[str, float]:

@@ -12,6 +12,7 @@ end joints.
 
 from __future__ import annotations
 
+import logging
 import math
 
 import numpy as np
@@ -25,6 +26,8 @@ from flexlink.scene.contract import FALLBACK_ELEMENTS, Scene
 from flexlink.scene.source import SceneSource
 
 FOUR_BAR_BODIES = (("crank", "O2", "A"), ("coupler", "A", "B"), ("rocker", "O4", "B"))
+
+log = logging.getLogger(__name__)
 
 
 def _synthesised(s) -> tuple[FourBar, dict]:
@@ -115,6 +118,57 @@ def _link_length(linkage: Linkage, start: str, end: str) -> float | None:
     return None
 
 
+def _across_bodies(src: SceneSource, linkage: Linkage, name: str, start: str,
+                   end: str) -> InputError:
+    """The error for a beam whose two joints lie on no one rigid body."""
+    def holders(joint):
+        names = [b.name for b in linkage.bodies if joint in b.joints]
+        return ", ".join(names) or "the ground"
+
+    return InputError(
+        f"beam {name!r} joins {start} (on {holders(start)}) and {end} (on {holders(end)}), "
+        "which lie on no one body: a beam is part of one rigid body of the linkage (only "
+        "a compliant strip named in [prb] strip may span a pin)",
+        source=src.file_of(f"links.{name}"), field=f"links.{name}",
+        expected="start and end joints of one body in [linkage.bodies] (or of a four-bar's "
+                 "crank, coupler or rocker)")
+
+
+def structure_warnings(linkage: Linkage, links, joints) -> list[str]:
+    """What the beams make of the linkage that the scene does not say:
+      - a body of three or more joints meshed as beams that meet on pins without forming a
+        triangle: they do not make the rigid body, and add a mechanism mode (near 0 Hz) under
+        a rigid drive, unless the joint where they meet is welded (a ground joint) or rigid in
+        rotation (Kr = 'rigid');
+      - Kt = 0 at a ground bearing or where beams meet: the links are not connected there
+        (free-free beams, rigid-body modes)."""
+    out = []
+    spec = {j.name: j for j in joints}
+    for body in linkage.bodies:
+        if len(body.joints) < 3:
+            continue
+        beams = [l for l in links if l.start in body.joints and l.end in body.joints]
+        ends = {j for l in beams for j in (l.start, l.end)}
+        if len(beams) < 2 or len(beams) >= len(ends):  # one beam, or a closed (rigid) truss
+            continue
+        meets = sorted(j for j in ends if sum(j in (l.start, l.end) for l in beams) > 1)
+        loose = [j for j in meets if j in spec and not (spec[j].welded or math.isinf(spec[j].Kr))]
+        if loose:
+            names = ", ".join(l.name for l in beams)
+            out.append(
+                f"body {body.name}: beams {names} meet on a pin at {', '.join(loose)}, so they "
+                f"do not form the rigid body {body.name}: they add a mechanism mode (near 0 Hz). "
+                "Weld them: [joints.NAME] welded = true at a ground joint, Kr = 'rigid' at a "
+                "moving one")
+    beams_at = {j.name: sum(j.name in (l.start, l.end) for l in links) for j in joints}
+    free = [j.name for j in joints if j.Kt == 0 and (j.ground or beams_at[j.name] > 1)]
+    if free:
+        out.append(f"Kt = 0 N/m at {', '.join(free)}: the links are disconnected there (each "
+                   "beam free-free, with its own rigid-body modes), not a linkage; give the "
+                   "bearings and pins a stiffness")
+    return out
+
+
 def build_general(src: SceneSource, sf: schema.SceneFile) -> Scene:
     lk: schema.GeneralLinkage = sf.linkage
     ground, bodies, driver, guess, transmission, fb, synthesis, start = _kinematics(src, lk)
@@ -131,15 +185,21 @@ def build_general(src: SceneSource, sf: schema.SceneFile) -> Scene:
                                  field=f"links.{name}.{key}", expected=f"a joint, one of {known}")
             if joint not in known:
                 raise parts.unknown_name(src, f"links.{name}.{key}", "joint", joint, known)
+        length = _link_length(linkage, table.start, table.end)
+        compliant = sf.prb is not None and sf.prb.strip == name  # its bending is the pin
+        if length is None and not compliant and not {table.start, table.end} <= set(ground):
+            raise _across_bodies(src, linkage, name, table.start, table.end)
         n = table.elements or sf.mesh.elements_per_link or FALLBACK_ELEMENTS
-        section = parts.section(src, sf, name, parts.material(src, sf, name, assumptions),
-                                _link_length(linkage, table.start, table.end))
+        section = parts.section(src, sf, name, parts.material(src, sf, name, assumptions), length)
         links.append(LinkSpec(name, table.start, table.end, section, n))
         used += [j for j in (table.start, table.end) if j not in used]
+    joints = parts.joints(src, sf, used, set(ground)) if links else ()
+    for warning in structure_warnings(linkage, tuple(links), joints):
+        log.warning("%s: %s", src.path, warning)
     return Scene(
         name=sf.name or src.path.stem, path=str(src.path), kind="general", linkage=linkage,
         four_bar=fb, start=start, branch=lk.branch, guess=guess, transmission=transmission,
-        links=tuple(links), joints=parts.joints(src, sf, used, set(ground)) if links else (),
+        links=tuple(links), joints=joints,
         drive=parts.drive(src, sf, {l.name: (l.start, l.end) for l in links}, set(ground)),
         elements_per_link=sf.mesh.elements_per_link, reference=parts.reference(sf),
         assumptions=parts.unique(assumptions + parts.default_assumptions(src, sf, used)), options=parts.options(src, sf, used),

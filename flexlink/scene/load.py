@@ -5,6 +5,7 @@ accepted; a key or table the schema does not declare is an error with the neares
 
 from __future__ import annotations
 
+import dataclasses
 import types
 import typing
 from pathlib import Path
@@ -15,6 +16,7 @@ from pydantic import BaseModel
 from flexlink.errors import InputError
 from flexlink.scene import fourbar, general, parts, schema
 from flexlink.scene.contract import Scene
+from flexlink.scene.loads import build_loads
 from flexlink.scene.plausibility import check_scene
 from flexlink.scene.source import SceneSource, overridden, read_scene_source
 
@@ -188,6 +190,8 @@ def load_overridden(src: SceneSource, overrides: dict | None = None) -> Scene:
     src = overridden(src, overrides or {})
     sf = validate(src)
     scene = BUILDERS[sf.linkage.type](src, sf)
+    if sf.loads:
+        scene = dataclasses.replace(scene, loads=build_loads(src, sf, scene.linkage))
     check_scene(scene)  # unit slips such as "300 m" for "300 mm" (plausibility.py)
     return scene
 

@@ -236,6 +236,7 @@ def options(src: SceneSource, sf: schema.SceneFile, joint_names: list[str]) -> O
         prb = PrbOptions(p.strip, p.pivot, p.link, p.clamp, p.gamma, p.K_theta)
     variants = tuple(Variant(v.name or v.field, v.field, tuple(v.values)) for v in sf.family)
     return Options(family=sf.model.family, crank_speed=sf.operation.crank_speed,
+                   crank_acceleration=sf.operation.crank_acceleration,
                    plausibility=sf.checks.plausibility, prb=prb, variants=variants,
                    tilt=tilt(sf, joint_names))
 

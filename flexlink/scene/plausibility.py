@@ -155,10 +155,14 @@ def pose_warnings(four_bar, pose) -> list[str]:
     """Poses near a dead centre (a transmission angle near 0 or 180 deg) and four-bars
     (``four_bar``, None for other linkages) whose crank cannot turn."""
     out = []
-    grashof = four_bar.grashof_class() if four_bar is not None else None
-    if grashof is not None and grashof not in ("crank-rocker", "double-crank"):
-        out.append(f"the linkage is {grashof}: its input link cannot turn fully; the pose is one "
-                   "of a limited range")
+    if four_bar is not None and not four_bar.crank_turns_fully():
+        out.append(f"the linkage is {four_bar.grashof_class()}: its input link cannot turn "
+                   "fully; the pose is one of a limited range")
+    elif four_bar is not None and four_bar.flat_poses():
+        flat = ", ".join(f"{math.degrees(t):g}" for t in four_bar.flat_poses())
+        out.append("the linkage is change-point: its crank turns fully, but at crank "
+                   f"{flat} deg every link lies on the ground line (a flat pose), where the "
+                   "linkage can change assembly branch and has a mechanism mode")
     for pair, mu_rad in pose.transmission.items():
         mu = math.degrees(mu_rad)
         distance = min(mu, 180.0 - mu)

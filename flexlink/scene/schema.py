@@ -471,7 +471,58 @@ class ChecksTable(Table):
 
 class OperationTable(Table):
     crank_speed: quantity("angular speed", 0.0, shown="> 0") | None = doc(
-        "Crank speed for the resonance check and the kinematics (magnitude).", default=None)
+        "Crank speed for the resonance check, the kinematics and the driving torque "
+        "(magnitude; the crank turns counter-clockwise).", default=None)
+    crank_acceleration: quantity("angular acceleration", shown="any") | None = doc(
+        "Crank angular acceleration for the driving torque (with crank_speed; default 0: "
+        "constant speed).", default=None)
+
+    @model_validator(mode="after")
+    def _speed_first(self):
+        if self.crank_acceleration is not None and self.crank_speed is None:
+            raise MissingKey("crank_speed", "a crank acceleration needs the speed it acts at")
+        return self
+
+
+class LoadTable(Table):
+    """An external load on one body of the linkage, for the driving torque: a torque, or a
+    force at a point of the body; constant, or over the crank angle from a CSV file."""
+
+    kind: Literal["torque", "force"] = doc("What the load is: a torque (counter-clockwise "
+                                           "positive) or a force at point 'at'.")
+    link: str = doc("The body it acts on: a four-bar's crank, coupler or rocker; a general "
+                    "scene's [linkage.bodies] name.")
+    torque: quantity("torque", shown="any") | None = doc("A constant torque (kind 'torque').",
+                                                         default=None)
+    force: tuple[quantity("force", shown="any"), quantity("force", shown="any")] | None = doc(
+        "A constant force [Fx, Fy] (kind 'force').", default=None)
+    at: Point | None = doc("Where the force acts, [x, y] in the body's frame: origin at the "
+                           "body's first joint, x towards its second (kind 'force').",
+                           default=None)
+    frame: Literal["global", "body"] = doc(
+        "Force components along the fixed axes ('global') or along the body's frame, turning "
+        "with it ('body').", default="global")
+    csv: str | None = doc(
+        "Instead of a constant: a CSV file (path relative to the scene file) with a header row, "
+        "the crank angle in degrees in its first column, evenly spaced over one full turn, and "
+        "the torque (one column) or Fx, Fy (two columns) in 'unit'; interpolated linearly and "
+        "periodically.", default=None)
+    unit: str | None = doc("Unit of the CSV's values, e.g. 'N*m' or 'N'.", default=None)
+
+    @model_validator(mode="after")
+    def _one_value(self):
+        own, other = ("torque", "force") if self.kind == "torque" else ("force", "torque")
+        if getattr(self, other) is not None:
+            raise ValueError(f"a {self.kind} load takes '{own}' (or csv), not '{other}'")
+        if (getattr(self, own) is None) == (self.csv is None):
+            raise MissingKey(own, "give a constant value or a csv file, exactly one")
+        if (self.csv is None) != (self.unit is None):
+            raise MissingKey("unit" if self.csv else "csv", "a csv file and its unit go together")
+        if self.kind == "force" and self.at is None:
+            raise MissingKey("at", "a force needs the point it acts at")
+        if self.kind == "torque" and (self.at is not None or self.frame != "global"):
+            raise ValueError("'at' and 'frame' belong to a force")
+        return self
 
 
 class PrbTable(Table):
@@ -536,6 +587,8 @@ class SceneFile(Table):
                                            default=None)
     checks: ChecksTable = doc("Input checks.", default=ChecksTable())
     operation: OperationTable = doc("Operating conditions.", default=OperationTable())
+    loads: list[LoadTable] = doc("External loads on the bodies, for the driving torque "
+                                 "(``flexlink torque``).", default=[])
     prb: PrbTable | None = doc("Pseudo-rigid-body comparison.", default=None)
     family: list[VariantTable] = doc("Variants of the scene: one key over several values "
                                 "(``flexlink kinematics``).", default=[])

@@ -1,2 +1,3 @@
-"""Studies built on the analysis: the crank cycle, convergence, stability, calibration,
-uncertainty, the comparison with a reference table, and the pseudo-rigid-body check."""
+"""Studies built on the analysis: the crank cycle, convergence, stability, calibration against a
+reference table (the fitting machinery and the whole calibration study), uncertainty and
+sensitivities, and the pseudo-rigid-body check."""

@@ -24,6 +24,7 @@ import numpy as np
 
 from flexlink.errors import FlexlinkError, InputError
 from flexlink.analysis.families import elastic_modes
+from flexlink.studies.array_shapes import check_shape
 from flexlink.studies.jacobian import case_modes, log_frequency_sensitivities
 from flexlink.parallel import run_tasks
 from flexlink.scene import Scene, load_scene
@@ -175,16 +176,6 @@ def mean_abs(errors) -> float | None:
     return None if np.isnan(e).any() else float(e.mean())
 
 
-def failures(errors, labels, reasons: dict | None = None) -> list[dict]:
-    """Every case and mode (1-based) whose error is NaN, with why when known: the error the
-    case raised, else that the model found fewer elastic modes than the table has."""
-    e = np.asarray(errors, dtype=float)
-    return [{"case": labels[i], "mode": k + 1,
-             "reason": (reasons or {}).get(i, "no elastic mode of this number (the model found "
-                                              "fewer, or the reference is missing)")}
-            for i, k in zip(*np.nonzero(np.isnan(e)))]
-
-
 def measured(problem: Problem, scenes=None) -> np.ndarray:
     """The reference column, shape (cases, n_modes)."""
     rows = []
@@ -282,9 +273,6 @@ class _PredictionErrors:
     def mean_abs_error_pct(self) -> float | None:
         return mean_abs(self.errors_pct)
 
-    def failures(self, labels) -> list[dict]:
-        return failures(self.errors_pct, labels, dict(self.reasons))
-
 
 @dataclasses.dataclass(frozen=True)
 class FitResult(_PredictionErrors):
@@ -305,37 +293,19 @@ class FitResult(_PredictionErrors):
     converged: tuple[bool, ...] = ()  # per start: False = stopped at the evaluation limit
     best: int = 0  # the start whose result this is
 
-    def as_dict(self) -> dict:
-        """JSON-ready (NaN and inf become None)."""
-        return json_ready({
-            "scenes": list(self.problem.scenes), "reference": self.problem.reference,
-            "target": self.problem.target,
-            "parameters": [{"name": p.name, "unit": p.unit, "low": p.low, "high": p.high,
-                            "value": float(v), "at_bound": bool(b),
-                            "relative_se": None if self.rel_se is None else float(s)}
-                           for p, v, b, s in zip(self.problem.parameters, self.values,
-                                                 self.at_bound,
-                                                 self.rel_se if self.rel_se is not None
-                                                 else [None] * len(self.values))],
-            "correlation": self.correlation, "cost": self.cost,
-            "start_costs": self.start_costs, "evaluations": self.evaluations,
-            "starts_converged": list(self.converged), "best_start": self.best,
-            "predicted_Hz": self.predicted, "reference_Hz": self.reference,
-            "errors_pct": self.errors_pct, "mean_abs_error_pct": self.mean_abs_error_pct,
-            "failed": self.failures([case_label(p) for p in self.problem.scenes]),
-        })
-
-
-def json_ready(value):
-    if isinstance(value, dict):
-        return {k: json_ready(v) for k, v in value.items()}
-    if isinstance(value, (list, tuple)):
-        return [json_ready(v) for v in value]
-    if isinstance(value, np.ndarray):
-        return json_ready(value.tolist())
-    if isinstance(value, (float, np.floating)):
-        return float(value) if math.isfinite(value) else None
-    return value
+    def __post_init__(self):
+        p = (len(self.problem.parameters),)
+        cases = np.shape(self.reference)
+        check_shape("FitResult", "reference", self.reference,
+                    (len(self.problem.scenes), self.problem.n_modes))
+        check_shape("FitResult", "predicted", self.predicted, cases)
+        for name in ("values", "at_bound"):
+            check_shape("FitResult", name, getattr(self, name), p)
+        if self.rel_se is not None:
+            check_shape("FitResult", "rel_se", self.rel_se, p)
+        if self.correlation is not None:
+            check_shape("FitResult", "correlation", self.correlation, p * 2)
+        check_shape("FitResult", "start_costs", self.start_costs, (None,))
 
 
 def start_points(problem: Problem, starts: int, rng: np.random.Generator) -> list[np.ndarray]:
@@ -401,6 +371,14 @@ class CrossValidation(_PredictionErrors):
     predicted: np.ndarray  # (cases, n_modes) [Hz], each row from the fold that left it out
     reference: np.ndarray
     reasons: tuple[tuple[int, str], ...] = ()
+
+    def __post_init__(self):
+        cases = np.shape(self.reference)
+        check_shape("CrossValidation", "reference", self.reference, (len(self.folds), None))
+        check_shape("CrossValidation", "predicted", self.predicted, cases)
+        if len(self.held_out) != len(self.folds):
+            raise ValueError(f"CrossValidation.held_out has {len(self.held_out)} cases, expected "
+                             f"{len(self.folds)} (one per fold)")
 
 
 def leave_one_out_problems(problem: Problem) -> list[Problem]:

@@ -55,13 +55,16 @@ class NearestMargin:
     speed: float
 
 
-def bands(frequencies: np.ndarray) -> list[Band]:
-    """One band per column of ``frequencies`` (poses, lines) [Hz]."""
+def bands(frequencies: np.ndarray, to_zero=()) -> list[Band]:
+    """One band per column of ``frequencies`` (poses, lines) [Hz]. Lines ``to_zero`` (1-based)
+    turn into a mechanism mode at a singular pose (``tracking.vanishing_lines``): near it their
+    frequency falls to 0 Hz between the sampled poses, so their band starts at 0."""
     f = np.asarray(frequencies, dtype=float)
     if not np.isfinite(f).all():
         raise InputError("a tracked mode is missing at some pose: its band is not known",
                          field="modes", expected="fewer modes (-n) or a finer mesh")
-    return [Band(j + 1, float(f[:, j].min()), float(f[:, j].max())) for j in range(f.shape[1])]
+    return [Band(j + 1, 0.0 if j + 1 in to_zero else float(f[:, j].min()), float(f[:, j].max()))
+            for j in range(f.shape[1])]
 
 
 def _check_speeds(speeds: tuple[float, float]) -> tuple[float, float]:

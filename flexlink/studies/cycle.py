@@ -109,11 +109,13 @@ def resonance_speed(crank_speed: float | None) -> tuple[float | None, str | None
 
 
 def resonances(result: ModalMap, crank_speed: float, margin: float = 0.05,
-               harmonics: int = 10) -> list[Resonance]:
+               harmonics: int = 10, to_zero=()) -> list[Resonance]:
     """Harmonics n = 1 ... ``harmonics`` of the crank frequency (``crank_speed`` [rad/s], > 0:
     see ``resonance_speed``) that come within ``margin`` (relative) of an elastic frequency
     anywhere in the cycle. Besides the sampled poses, a mode curve that crosses the harmonic
-    between two poses counts there."""
+    between two poses counts there. ``to_zero``: (mode, pose) pairs (1-based mode) where a
+    mode turns into a mechanism (``tracking.Reseed.vanishing``): its frequency falls to 0 Hz
+    there, so every harmonic below its neighbouring values crosses it at that pose."""
     if not crank_speed > 0:
         raise InputError(f"resonance check needs a positive crank speed, got {crank_speed} rad/s",
                          field="crank_speed", expected="a positive angular speed (see "
@@ -127,6 +129,9 @@ def resonances(result: ModalMap, crank_speed: float, margin: float = 0.05,
             gap = np.abs(f - f_n) / f
             near = np.remainder(result.q[gap <= margin], 2 * math.pi)  # as crossings are
             crossed = crossings(result.q, f, f_n)
+            falls = [np.remainder(result.q[i], 2 * math.pi) for mode, i in to_zero
+                     if mode == j + 1 and f_n < np.nanmin(f[[i - 1, (i + 1) % len(f)]])]
+            crossed = np.concatenate([crossed, falls])
             angles = np.unique(np.concatenate([near, crossed]))
             if angles.size:
                 closest = 0.0 if crossed.size else float(np.nanmin(gap))

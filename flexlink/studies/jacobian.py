@@ -33,7 +33,6 @@ from __future__ import annotations
 
 import dataclasses
 import logging
-import math
 
 import numpy as np
 
@@ -43,6 +42,7 @@ from flexlink.analysis.outofplane import tilt_stiffnesses
 from flexlink.errors import FlexlinkError
 from flexlink.fe.model import GROUND, FrameModel, build_model, layout
 from flexlink.fe.strip import out_of_plane_springs
+from flexlink.studies.derivatives import log_slope
 
 log = logging.getLogger(__name__)
 
@@ -208,7 +208,7 @@ def _differenced(load, i: int, case: CaseModes, forms, x: np.ndarray, upper: np.
     out = []
     for part, model, (q, m) in zip(case.parts, models, forms):
         q1, m1 = quadratic_forms(part.part, model, part.shapes)
-        out.append(0.5 * (np.log(q1 / m1) - np.log(q / m)) / h)
+        out.append(0.5 * log_slope(q1 / m1, q / m, h))  # f^2 is the Rayleigh quotient
     return out
 
 
@@ -218,5 +218,5 @@ def _evaluated(scene, case: CaseModes, h: float, elements: int | None):
     stepped = elastic_modes(scene, n_modes, elements)[0]
     out = [np.zeros(len(p.frequencies)) for p in case.parts]
     for (p, k), f0, f1 in zip(case.pairs, case.frequencies, stepped):
-        out[p][k] = (math.log(f1) - math.log(f0)) / h if np.isfinite(f1) else 0.0
+        out[p][k] = log_slope(f1, f0, h) if np.isfinite(f1) else 0.0
     return out

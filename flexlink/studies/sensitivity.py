@@ -28,6 +28,7 @@ from flexlink.analysis.families import elastic_modes
 from flexlink.errors import FlexlinkError, InputError
 from flexlink.parallel import run_tasks
 from flexlink.scene import load_scene
+from flexlink.studies.array_shapes import check_shape
 from flexlink.studies.uncertainty import draw_samples, material_overrides, scene_inputs
 
 log = logging.getLogger(__name__)
@@ -108,6 +109,15 @@ class EndPoints:
     spans: tuple[Span, ...]
     ends: tuple[np.ndarray, ...]
 
+    def __post_init__(self):
+        n = np.shape(self.nominal)
+        check_shape("EndPoints", "nominal", self.nominal, (None,))
+        if len(self.ends) != len(self.spans):
+            raise ValueError(f"EndPoints.ends has {len(self.ends)} entries, expected "
+                             f"{len(self.spans)} (one per span)")
+        for k, ends in enumerate(self.ends):
+            check_shape("EndPoints", f"ends[{k}]", ends, (2, *n))
+
 
 def end_points(path, n_modes: int = 4, elements: int | None = None, n_jobs: int = 1,
                progress: bool = False) -> EndPoints:
@@ -129,6 +139,9 @@ class Interval:
     path: str
     samples: np.ndarray
     seed: int
+
+    def __post_init__(self):
+        check_shape("Interval", "samples", self.samples, (None, None))
 
     @property
     def low(self) -> np.ndarray:
@@ -181,3 +194,29 @@ def relative_change(points: EndPoints) -> list[tuple[str, float]]:
             change = np.nanmax(np.abs(ends / points.nominal - 1.0)) if np.isfinite(ends).any() else math.nan
         rows.append((s.field, float(change)))
     return sorted(rows, key=lambda r: -r[1] if math.isfinite(r[1]) else 0.0)
+
+
+@dataclasses.dataclass(frozen=True)
+class SceneSensitivity:
+    """The sensitivity study of one scene: each ranged input at both ends (``points``), the
+    95 % interval over all of them (``interval``), the scene's reference columns they are read
+    against ({column: values [Hz]}) and the study's mesh [elements per link]."""
+
+    points: EndPoints
+    interval: Interval
+    reference: dict[str, tuple[float, ...]]
+    elements: int
+
+    def __post_init__(self):
+        check_shape("SceneSensitivity", "interval.samples", self.interval.samples,
+                    (None, len(self.points.nominal)))
+
+
+def sensitivity_study(scene, n_modes: int = 4, samples: int = 200, seed: int = 1,
+                      n_jobs: int = 1, progress: bool = False) -> SceneSensitivity:
+    """End points and the Monte Carlo interval of ``scene`` on the study's mesh
+    (``STUDY_ELEMENTS``), with its reference columns."""
+    points = end_points(scene.path, n_modes, STUDY_ELEMENTS, n_jobs, progress)
+    spread = interval(scene.path, samples, seed, n_modes, STUDY_ELEMENTS, n_jobs, progress)
+    reference = dict(scene.reference.columns) if scene.reference else {}
+    return SceneSensitivity(points, spread, reference, STUDY_ELEMENTS)

@@ -258,18 +258,24 @@ def kinematics(scene: Scene) -> list[Check]:
     near = triple.pose(limit - 1e-4)
     warnings = pose_warnings(triple, RigidPose(near.theta2, near.joints,
                                               {"coupler/rocker": near.mu}, near.branch))
-    at = _raises(lambda: triple.pose(limit), KinematicsError)
+    toggle = triple.pose(limit)  # closes to round-off: a pose, warned about as a dead centre
+    at = pose_warnings(triple, RigidPose(toggle.theta2, toggle.joints,
+                                         {"coupler/rocker": toggle.mu}, toggle.branch))
     checks.append(Check("4b", "non-Grashof linkage (R = 0.6, 0.7, 0.8)",
                         "errors for mu limits and for a crank angle where the loop cannot close; "
                         "a warning that the input cannot turn fully",
                         f"{(msg or 'no error')[:70]}...; theta2 = 180: {(beyond or 'no error')[:60]}...",
                         bool(msg and beyond and any("cannot turn" in w for w in warnings))))
     checks.append(Check("4c", "pose at and near a dead centre (mu -> 180 deg)",
-                        "at the dead centre a KinematicsError; 1e-4 rad before it a warning with "
-                        "the distance in degrees",
-                        f"at: {(at or 'no error')[:60]}...; near (mu = {math.degrees(near.mu):.2f} "
-                        f"deg): {[w for w in warnings if 'dead centre' in w][:1]}",
-                        bool(at and any("dead centre" in w for w in warnings))))
+                        "at the dead centre the pose (mu = 180 deg) with a dead-centre warning; "
+                        "1e-4 rad before it a warning with the distance in degrees",
+                        f"at: mu = {math.degrees(toggle.mu):.4f} deg, "
+                        f"{[w for w in at if 'dead centre' in w][:1]}; near (mu = "
+                        f"{math.degrees(near.mu):.2f} deg): "
+                        f"{[w for w in warnings if 'dead centre' in w][:1]}",
+                        bool(math.isclose(toggle.mu, math.pi, abs_tol=1e-6)
+                             and any("dead centre" in w for w in at)
+                             and any("dead centre" in w for w in warnings))))
     return checks
 
 
@@ -484,8 +490,65 @@ def units(scene: Scene) -> list[Check]:
     return out
 
 
+# -- 9 --------------------------------------------------------------------------------------
+def _change_point(scene: Scene) -> Scene:
+    """The scene with the lengths of scenes/change_point.toml, 300, 100, 250, 150 mm (s + l =
+    p + q), by ratios or by lengths, whichever the scene gives."""
+    by_ratio = {"linkage.ground": "300 mm", "linkage.R2": 1 / 3, "linkage.R3": 2.5 / 3,
+                "linkage.R4": 0.5}
+    try:
+        return load_scene(scene.path, overrides=by_ratio)
+    except InputError:
+        return load_scene(scene.path, overrides={
+            "linkage.ground": "300 mm", "linkage.crank": "100 mm", "linkage.coupler": "250 mm",
+            "linkage.rocker": "150 mm"})
+
+
+def singular_poses(scene: Scene) -> list[Check]:
+    """The scene made a change-point four-bar (``_change_point``): its crank turns fully, its
+    flat pose at crank 180 deg (a dead centre where a mechanism mode appears and the branch
+    can change) is a pose, and the tracked modal map keeps the lowest mode through it; the
+    scene's own map closes after one turn."""
+    from flexlink.studies.cycle import modal_map
+    from flexlink.studies.tracking import tracked_map
+
+    cp = _change_point(scene)
+    flat = cp.four_bar.pose(math.pi)
+    warnings = pose_warnings(cp.four_bar, cp.rigid_pose())
+    tracked, ordered = tracked_map(cp, 72, 3, 4), modal_map(cp, 72, 3, 4, reduction=None)
+    same = float(np.max(np.abs(np.sort(tracked.frequencies, axis=1) - ordered.frequencies)
+                        / ordered.frequencies))
+    flagged = [round(math.degrees(tracked.q[r.pose]), 1) for r in tracked.tracks.reseeds
+               if r.reason.startswith("singular")]
+    flat_flagged = any(round(math.degrees(tracked.q[r.pose]), 1) == 180.0
+                       and "mechanism" in r.reason for r in tracked.tracks.reseeds)
+    own = tracked_map(scene, 36, 3, 4).periodicity
+    own_flat = bool(scene.four_bar.flat_poses())  # a change point itself: says why not
+    return [
+        Check("9a", "change-point four-bar: crank and flat pose",
+              "crank turns fully, no 'cannot turn fully' warning; the flat pose at 180 deg "
+              "is a pose with mu = 180 deg",
+              f"turns fully: {cp.four_bar.crank_turns_fully()}; flat pose mu = "
+              f"{math.degrees(flat.mu):.4f} deg; warnings: {[w[:60] for w in warnings]}",
+              cp.four_bar.crank_turns_fully() and abs(flat.mu - math.pi) < 1e-6
+              and not any("cannot turn fully" in w for w in warnings)),
+        Check("9b", "change-point four-bar: tracked map through the flat pose (72 poses)",
+              "tracked lines hold the sorted frequencies at every pose (within 1e-8); the "
+              "flat pose flagged as singular, with its mechanism mode; the map says why it "
+              "does not close",
+              f"largest relative difference {same:.1e}; singular poses {flagged} deg; "
+              f"{tracked.periodicity.note[:90]}...",
+              same < 1e-8 and flat_flagged and not tracked.periodicity.closes
+              and "start pose" in tracked.periodicity.note),
+        Check("9c", "the scene's tracked map over one turn (36 poses)",
+              "the start pose does not come back: a note saying so" if own_flat else
+              "closes: every line comes back to its own start shape",
+              own.note, ("start pose" in own.note and not own.closes) if own_flat else own.closes),
+    ]
+
+
 FAST = (bearing_sweep, free_crank, slenderness, kinematics, contrast, dense_refused, repeated,
-        massless, sparse_mechanism, units)
+        massless, sparse_mechanism, units, singular_poses)
 SLOW = (large_sparse,)
 
 

@@ -3,8 +3,23 @@
 At each pose the modes are paired with the previous pose's tracked shapes by the MAC
 (``analysis.mac``, in link frames with the pose-independent link-frame mass), so a tracked line
 follows one shape as the poses change: where two modes' frequencies cross, the lines cross
-instead of swapping shapes. A few modes more than the lines asked for are solved at every
-pose, so a shape that climbs past a higher one can still be followed.
+instead of swapping shapes.
+
+The lines at every pose are the lowest ``n`` elastic modes there, in some order: no line ever
+leaves them, so the lowest mode is never lost and the tracked map holds at each pose the same
+frequencies as the sorted one. A few spare modes are solved at every pose to see a shape
+climb out of the lowest ``n``: that line is handed the mode that comes down into them, and
+the pose is flagged.
+
+Singular poses (a dead centre, a change point's flat pose, where mechanism modes appear or the
+assembly branch can change) are where the shapes change too fast to pair: a line whose best
+MAC is below ``PAIR_MAC`` (with mass-orthonormal modes, MAC >= 0.5 makes the pairing unique), or
+a pose whose count of mechanism modes differs. There the lines are re-seeded by frequency
+order (the line that was k-th lowest takes the k-th lowest mode), the pose is flagged, and the
+next poses are paired with the last clear pose before it, so the tracking goes through.
+
+After a full turn the map should come back to its start (``periodicity``): the lines of the
+last pose paired with those of the first one by the MAC.
 
 Events along a pair of tracked lines:
   - crossing: their frequencies change order between two poses;
@@ -21,7 +36,7 @@ import math
 
 import numpy as np
 
-from flexlink.errors import InputError
+from flexlink.errors import InputError, KinematicsError, NumericalError
 
 from flexlink.analysis.identity import mode_identity
 from flexlink.analysis.mac import link_frame, link_frame_mass, mac_matrix, pair_modes
@@ -35,6 +50,8 @@ from flexlink.studies.cycle import cycle_axes, kinematic_cycle, transmission_ang
 SPARE = 2  # modes solved beyond the tracked lines at every pose
 VEER_GAP = 0.1
 VEER_MAC = 0.5
+PAIR_MAC = 0.5  # a line paired below this is ambiguous: the pose is singular
+THROUGH = 3  # poses paired with the last clear one before a fresh start is taken
 
 
 @dataclasses.dataclass(frozen=True)
@@ -49,41 +66,158 @@ class Event:
 
 
 @dataclasses.dataclass(frozen=True)
+class Reseed:
+    """Tracked lines ``lines`` (1-based) re-seeded at pose ``pose``: ``reason`` says why (a
+    singular pose, or a shape leaving the lowest modes); ``vanishing``: the lines whose mode
+    turns into a mechanism mode there, so that their frequency falls to 0 Hz near the pose."""
+
+    pose: int
+    lines: tuple[int, ...]
+    reason: str
+    vanishing: tuple[int, ...] = ()  # lines whose mode becomes a mechanism (0 Hz) here
+
+
+@dataclasses.dataclass(frozen=True)
+class Periodicity:
+    """How the map closes after a full turn: ``permutation[j]``, the line (0-based) whose start
+    shape line j's end shape pairs with, ``mac[j]`` of that pair, ``step[j]`` the relative
+    frequency step of line j from the last pose to the first; ``closes`` when every line comes
+    back to itself with MAC >= ``PAIR_MAC``; ``note`` says why not."""
+
+    closes: bool
+    permutation: tuple[int, ...]
+    mac: np.ndarray
+    step: np.ndarray
+    note: str
+
+
+@dataclasses.dataclass(frozen=True)
 class Tracks:
     """frequencies[i, j] [Hz] and shapes[i][:, j] of tracked line j at pose i; mac[i, j]: MAC of
-    that shape with the line's shape at pose i - 1 (1 at pose 0); rank[i, j]: its place in
-    frequency order at pose i (0 = lowest elastic mode)."""
+    that shape with the line's shape at the pose it was paired with (1 at pose 0); rank[i, j]:
+    its place in frequency order at pose i (0 = lowest elastic mode); ``reseeds``: the poses
+    where lines were re-seeded."""
 
     frequencies: np.ndarray
     shapes: tuple[np.ndarray, ...]
     mac: np.ndarray
     rank: np.ndarray
     events: tuple[Event, ...]
+    reseeds: tuple[Reseed, ...] = ()
 
 
-def track(frequencies: np.ndarray, shapes, n_lines: int, W=None) -> Tracks:
+def track(frequencies: np.ndarray, shapes, n_lines: int, W=None, mechanism=None) -> Tracks:
     """Follow ``n_lines`` mode shapes through a sequence of poses.
 
     ``frequencies`` (P, m) [Hz], ascending per pose, NaN for modes not found; ``shapes``: P
-    arrays (n, m) in coordinates comparable from pose to pose, weighted by ``W`` in the MAC.
-    The lines start as the lowest ``n_lines`` modes of pose 0."""
+    arrays (n, m) in coordinates comparable from pose to pose, weighted by ``W`` in the MAC;
+    ``mechanism`` (P,): rigid-body/mechanism modes found per pose (a change marks a singular
+    pose). The lines start as the lowest ``n_lines`` modes of pose 0 and hold the lowest
+    ``n_lines`` modes at every pose (see the module docstring)."""
     P, m = frequencies.shape
     if n_lines > m:
         raise ValueError(f"{n_lines} lines asked for from {m} modes per pose")
+    mechanism = np.zeros(P, dtype=int) if mechanism is None else np.asarray(mechanism)
     index = np.zeros((P, n_lines), dtype=int)
     mac = np.ones((P, n_lines))
     index[0] = np.arange(n_lines)
+    reseeds, clear = [], 0  # clear: the last pose paired without ambiguity
     for i in range(1, P):
         found = np.flatnonzero(np.isfinite(frequencies[i]))
-        previous = shapes[i - 1][:, index[i - 1]]
-        pairs = pair_modes(np.nan_to_num(mac_matrix(previous, shapes[i][:, found], W)))
-        index[i, pairs.a] = found[pairs.b]
-        mac[i, pairs.a] = pairs.mac
+        if len(found) < n_lines:
+            raise NumericalError(f"{n_lines} modes tracked, but pose {i} has only {len(found)}: "
+                                 "ask for fewer modes or use more elements per link")
+        reasons = []
+        for r in [clear] if clear == i - 1 else [clear, i - 1]:
+            M = np.nan_to_num(mac_matrix(shapes[r][:, index[r]], shapes[i][:, found], W))
+            pairs = pair_modes(M)
+            reasons.append(_ambiguous(pairs.mac, mechanism[r], mechanism[i]))
+            if reasons[-1] is None:
+                break
+        why = reasons[0] if reasons[-1] is not None else None
+        if why is None:
+            index[i], mac[i], left = _kept(pairs, M, found, n_lines)
+            clear = i
+            if left:
+                reseeds.append(Reseed(i, left, (
+                    f"the shape of line{'s' if len(left) > 1 else ''} "
+                    f"{', '.join(map(str, left))} leaves the lowest {n_lines} modes: handed the "
+                    "mode that comes down into them")))
+        else:  # re-seed by frequency order, from the last clear pose
+            r = clear
+            order = np.argsort(frequencies[r, index[r]], kind="stable")
+            index[i, order] = found[:n_lines]
+            mac[i] = np.diag(np.nan_to_num(mac_matrix(shapes[r][:, index[r]],
+                                                      shapes[i][:, index[i]], W)))
+            new = max(0, int(mechanism[i]) - int(mechanism[r]))
+            vanishing = tuple(sorted(int(j) + 1 for j in order[:new]))
+            if vanishing:  # the near-mechanism modes are the lowest before the pose
+                why += (f" (line {', '.join(map(str, vanishing))} turns into it: its frequency "
+                        "falls to 0 Hz approaching this pose, below every sampled value)")
+            reseeds.append(Reseed(i, tuple(range(1, n_lines + 1)),
+                                  why + "; lines re-seeded by frequency order", vanishing))
+            if i - clear >= THROUGH:  # the singular stretch is long: start afresh from here
+                clear = i
     rows = np.arange(P)[:, None]
     f = frequencies[rows, index]
     kept = tuple(s[:, idx] for s, idx in zip(shapes, index))
     return Tracks(frequencies=f, shapes=kept, mac=mac, rank=index,
-                  events=tuple(_events(f, kept, W)))
+                  events=tuple(_events(f, kept, W)), reseeds=tuple(reseeds))
+
+
+def _ambiguous(paired: np.ndarray, mechanism_before: int, mechanism_now: int) -> str | None:
+    """Why a pairing cannot be trusted (None if it can)."""
+    if mechanism_now != mechanism_before:
+        return (f"singular pose: {mechanism_now} rigid-body/mechanism mode"
+                f"{'s' if mechanism_now != 1 else ''} where the pose before had "
+                f"{mechanism_before}")
+    if paired.min() < PAIR_MAC:
+        j = int(np.argmin(paired))
+        return (f"singular pose: the shapes change too fast to pair (line {j + 1}'s best MAC "
+                f"{paired[j]:.3f} < {PAIR_MAC})")
+    return None
+
+
+def _kept(pairs, M: np.ndarray, found: np.ndarray, n_lines: int):
+    """(mode index per line, MAC per line, lines handed over): lines paired with a spare mode
+    (beyond the lowest ``n_lines``) take the lowest modes left unpaired, in frequency order.
+    ``M``: the lines' MAC with the ``found`` modes."""
+    column = np.array(pairs.b)
+    out = [int(j) for j in np.flatnonzero(column >= n_lines)]
+    free = [k for k in range(n_lines) if k not in set(column)]
+    for j, k in zip(out, free):
+        column[j] = k
+    return found[column], M[np.arange(len(column)), column], tuple(j + 1 for j in out)
+
+
+def periodicity(tracks: Tracks, W=None, closed_pose: bool = True, why_open: str = "") -> Periodicity:
+    """Pair the lines' shapes at the last pose with those at the first (the step that closes a
+    full turn). ``closed_pose``: whether the linkage itself comes back to its start pose;
+    ``why_open`` says why not."""
+    first, last = tracks.shapes[0], tracks.shapes[-1]
+    pairs = pair_modes(np.nan_to_num(mac_matrix(last, first, W)))
+    perm = tuple(int(b) for b in pairs.b)
+    f0, f1 = tracks.frequencies[0], tracks.frequencies[-1]
+    step = np.abs(f1 - f0) / f0
+    closes = closed_pose and perm == tuple(range(len(perm))) and pairs.mac.min() >= PAIR_MAC
+    if closes:
+        note = (f"the tracked map closes after one turn: every line's shape at the last pose "
+                f"pairs with its own at the first (MAC >= {pairs.mac.min():.3f}); largest "
+                f"frequency step {100 * step.max():.2g} %")
+    elif not closed_pose:
+        note = (f"the tracked map does not close after one turn: {why_open}; the frequencies "
+                f"step by at most {100 * step.max():.2g} % from the last pose to the first, the "
+                f"shapes pair with MAC down to {pairs.mac.min():.2f}")
+    elif perm != tuple(range(len(perm))):
+        moved = ", ".join(f"line {j + 1} ends as line {b + 1} began" for j, b in enumerate(perm)
+                          if b != j)
+        note = f"the tracked map closes only up to a permutation of its lines: {moved}"
+    else:
+        j = int(np.argmin(pairs.mac))
+        note = (f"the tracked map does not close after one turn: line {j + 1}'s shape at the "
+                f"last pose pairs with its start shape with MAC {pairs.mac[j]:.2f} only "
+                "(too few poses for the shapes' changes?)")
+    return Periodicity(closes, perm, pairs.mac, step, note)
 
 
 def _events(f: np.ndarray, shapes, W) -> list[Event]:
@@ -126,6 +260,8 @@ class TrackedMap:
     mu90: dict[str, np.ndarray]
     labels: tuple[str, ...] = ()  # each line's identity label at the first pose
     mechanism_counts: np.ndarray | None = None  # rigid-body/mechanism modes found per pose
+    periodicity: Periodicity | None = None
+    unsampled: tuple[float, ...] = ()  # dead centres [rad] between the sampled poses
 
 
 def tracked_map(scene: Scene, n_poses: int = 360, n_modes: int = 3,
@@ -158,12 +294,81 @@ def tracked_map(scene: Scene, n_poses: int = 360, n_modes: int = 3,
     shapes = [U for p in parts for U in p[1]]
     mechanism = np.concatenate([p[2] for p in parts])
     W, labels = parts[0][3]
-    tracks = track(freqs, shapes, n_modes, W)
-    mu90 = {key: crossings(cycle.q, mu, math.pi / 2)
-            for key, mu in transmission_angles(scene, cycle).items()}
+    mu = transmission_angles(scene, cycle)
+    tracks = track(freqs, shapes, n_modes, W, mechanism)
+    tracks = dataclasses.replace(tracks, reseeds=tuple(
+        dataclasses.replace(r, reason=r.reason.replace("singular pose", "singular pose"
+                                                       + _dead_centres(mu, r.pose), 1))
+        for r in tracks.reseeds))
+    mu90 = {key: crossings(cycle.q, values, math.pi / 2) for key, values in mu.items()}
+    back, why = _back_at_start(scene, cycle, tracks)
     return TrackedMap(scene=scene.name, q=cycle.q, frequencies=tracks.frequencies,
                       tracks=tracks, mu90=mu90, labels=labels,
-                      mechanism_counts=mechanism)
+                      mechanism_counts=mechanism,
+                      periodicity=periodicity(tracks, W, back, why),
+                      unsampled=_unsampled_dead_centres(scene, cycle.q))
+
+
+def _unsampled_dead_centres(scene: Scene, q: np.ndarray) -> tuple[float, ...]:
+    """A four-bar's dead centres (``FourBar.dead_centres``) that no sampled pose lands on: a
+    mode may fall towards 0 Hz there without any pose showing it."""
+    if scene.four_bar is None:
+        return ()
+    sampled = np.remainder(q, 2 * math.pi)
+    step = 2 * math.pi / len(q)
+    return tuple(a for a in scene.four_bar.dead_centres()
+                 if np.min(np.abs(np.remainder(sampled - a + math.pi, 2 * math.pi) - math.pi))
+                 > 1e-9 * step)
+
+
+def unsampled_note(result: TrackedMap) -> str | None:
+    """A sentence on the dead centres between sampled poses, or None."""
+    if not result.unsampled:
+        return None
+    where = ", ".join(f"{math.degrees(a):.3f}" for a in result.unsampled)
+    return (f"dead centre at crank {where} deg lies between the sampled poses: a mode may fall "
+            "towards 0 Hz there (a mechanism mode at the pose itself) without any pose showing "
+            "it; choose --poses so that a pose lands on it")
+
+
+DEAD_CENTRE_DEG = 1.0  # a transmission angle this close to 0 or 180 deg is named at a reseed
+CLOSED_POSE = 1e-6  # joints back within this fraction of the largest body: the pose closes
+
+
+def _dead_centres(mu: dict[str, np.ndarray], pose: int) -> str:
+    """" (dead centre: mu pair = 180.0 deg)" for the transmission angles near a dead centre at
+    ``pose``, else ""."""
+    near = [f"mu {pair} = {math.degrees(v[pose]):.1f} deg" for pair, v in mu.items()
+            if min(v[pose], math.pi - v[pose]) < math.radians(DEAD_CENTRE_DEG)]
+    return f" (dead centre: {', '.join(near)})" if near else ""
+
+
+def _back_at_start(scene: Scene, cycle, tracks: Tracks) -> tuple[bool, str]:
+    """Whether the linkage comes back to its start pose after one turn, continued from the
+    last pose as the cycle continues every pose, and if not, why (a sentence)."""
+    last = cycle.states[-1]
+    h = cycle.q[0] + 2 * math.pi - last.q
+    moving = scene.linkage.moving
+    guess = {j: np.asarray(last.points[j]) + last.dpoints[j] * h + 0.5 * last.ddpoints[j] * h * h
+             for j in moving}
+    try:
+        end = scene.linkage.solve(cycle.q[0] + 2 * math.pi, guess)
+    except KinematicsError as exc:
+        return False, f"the linkage cannot be continued to the start angle ({exc})"
+    gaps = {j: math.dist(end.points[j], cycle.states[0].points[j]) for j in moving}
+    worst = max(gaps, key=gaps.get)
+    if gaps[worst] <= CLOSED_POSE * scene.linkage.size:
+        return True, ""
+    singular = {round(math.degrees(cycle.q[r.pose]) % 360.0, 1) for r in tracks.reseeds
+                if "mechanism" in r.reason or "dead centre" in r.reason}
+    if scene.four_bar is not None:  # sampled or not
+        singular |= {round(math.degrees(a), 1) for a in scene.four_bar.dead_centres()}
+    singular = sorted(singular)
+    where = (f"; it passed {'a singular pose' if len(singular) == 1 else 'singular poses'} "
+             f"at crank {', '.join(f'{a:g}' for a in singular)} deg, where the assembly branch "
+             "can change") if singular else ""
+    return False, (f"the linkage does not come back to its start pose after one turn (joint "
+                   f"{worst} ends {1e3 * gaps[worst]:.1f} mm from where it began){where}")
 
 
 CHUNKS_PER_WORKER = 4  # chunks of poses per worker: a slow chunk holds up less of the map
@@ -198,20 +403,56 @@ def events_json(result: TrackedMap) -> list[dict]:
             for e in result.tracks.events]
 
 
+def reseeds_json(result: TrackedMap) -> list[dict]:
+    """JSON-ready re-seeded poses: crank angle [deg], lines (1-based), reason."""
+    return [{"crank_deg": round(math.degrees(result.q[r.pose]) % 360.0, 3),
+             "lines": list(r.lines), "to_zero_Hz": list(r.vanishing), "reason": r.reason}
+            for r in result.tracks.reseeds]
+
+
+def vanishing_lines(result: TrackedMap) -> tuple[int, ...]:
+    """Lines (1-based) whose mode turns into a mechanism mode at some singular pose: their
+    frequency reaches 0 Hz in the cycle, whatever the sampled poses show."""
+    return tuple(sorted({j for r in result.tracks.reseeds for j in r.vanishing}))
+
+
+def unsampled_json(result: TrackedMap) -> list[float]:
+    """Dead centres between the sampled poses, crank angles [deg]."""
+    return [round(math.degrees(a), 3) for a in result.unsampled]
+
+
+def periodicity_json(result: TrackedMap) -> dict | None:
+    """JSON-ready periodicity check: closes, the end-to-start line pairing (1-based), its MAC,
+    each line's relative frequency step from the last pose to the first, and the note."""
+    p = result.periodicity
+    if p is None:
+        return None
+    return {"closes": p.closes, "end_pairs_with_start_line": [b + 1 for b in p.permutation],
+            "mac": [float(v) for v in p.mac], "relative_step": [float(v) for v in p.step],
+            "note": p.note}
+
+
 def tracked_csv(result: TrackedMap) -> str:
     """One row per pose: input angle [deg], tracked f1 ... fN [Hz], each line's MAC with the
-    previous pose, and the events at that pose ("crossing 1-2; veering 2-3")."""
+    pose it was paired with, and the events at that pose ("crossing 1-2; veering 2-3;
+    re-seeded 1 2 3: singular pose ...")."""
     n = result.frequencies.shape[1]
     at: dict[int, list[str]] = {}
     for e in result.tracks.events:
         at.setdefault(e.pose, []).append(f"{e.kind} {e.lines[0]}-{e.lines[1]}")
+    for r in result.tracks.reseeds:  # the reason has commas: quoted below
+        at.setdefault(r.pose, []).append(f"re-seeded {' '.join(map(str, r.lines))}: {r.reason}")
     lines = ["crank_angle_deg," + ",".join(f"f{j + 1}_Hz" for j in range(n)) + ","
              + ",".join(f"mac{j + 1}" for j in range(n)) + ",events"]
     for i, (q, row) in enumerate(zip(result.q, result.frequencies)):
         lines.append(f"{math.degrees(q):.6g}," + ",".join(f"{v:.8g}" for v in row) + ","
                      + ",".join(f"{v:.6f}" for v in result.tracks.mac[i]) + ","
-                     + "; ".join(at.get(i, [])))
+                     + _csv_field("; ".join(at.get(i, []))))
     return "\n".join(lines) + "\n"
+
+
+def _csv_field(text: str) -> str:
+    return f'"{text.replace(chr(34), chr(34) * 2)}"' if any(c in text for c in ',"') else text
 
 
 def plot_tracked(result: TrackedMap, path, crank_speed: float | None = None, hits=()) -> None:

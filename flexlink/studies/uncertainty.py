@@ -9,7 +9,8 @@ parent process from one seed, so the result does not depend on the number of wor
 Normal draws are truncated at 1 % of the mean (a modulus or density cannot be <= 0).
 
 Sensitivities are normalised, S = d ln f / d ln p, by central differences of +-1 % in p; the
-first-order standard deviation of ln f is sqrt(sum (S sd_p / p)^2).
+first-order standard deviation of ln f is sqrt(sum (S sd_p / p)^2) (both from
+``studies.derivatives``, the formulas the calibration Jacobian uses too).
 """
 
 from __future__ import annotations
@@ -24,9 +25,10 @@ from flexlink.analysis.families import elastic_modes
 from flexlink.materials.mixtures import Constituent, load_constituent, woven_composite
 from flexlink.parallel import run_tasks
 from flexlink.scene import load_scene
+from flexlink.studies.array_shapes import check_shape
+from flexlink.studies.derivatives import central_log_slopes, central_points, first_order_sd
 
 PROPERTIES = ("E", "G", "density")
-REL_STEP = 0.01
 
 log = logging.getLogger(__name__)
 
@@ -71,9 +73,10 @@ def material_overrides(inputs: Inputs, values: dict[str, float]) -> dict:
         k: dataclasses.replace(c, **{p: values[f"{k}.{p}"] for p in PROPERTIES})
         for k, c in base.items()}
     beam = woven_composite(parts["fiber"], parts["matrix"], values["vf"])
-    return {"material": {"E": f"{beam.E!r} Pa", "G": f"{beam.G!r} Pa",
-                         "density": f"{beam.density!r} kg/m^3"},
-            "section.thickness": f"{values['thickness']!r} m"}
+    # float(): a NumPy scalar's repr is "np.float64(...)", which no scene file can read
+    return {"material": {"E": f"{float(beam.E)!r} Pa", "G": f"{float(beam.G)!r} Pa",
+                         "density": f"{float(beam.density)!r} kg/m^3"},
+            "section.thickness": f"{float(values['thickness'])!r} m"}
 
 
 def evaluate(paths, base_overrides: dict, inputs: Inputs, values: dict[str, float],
@@ -109,6 +112,9 @@ class MonteCarlo:
     samples: np.ndarray
     seed: int
 
+    def __post_init__(self):
+        check_shape("MonteCarlo", "samples", self.samples, (None, None, None))
+
     @property
     def mean(self):
         return np.nanmean(self.samples, axis=0)
@@ -142,6 +148,14 @@ class Sensitivities:
     values: dict[str, np.ndarray]
     sd_ln_f: np.ndarray
 
+    def __post_init__(self):
+        if set(self.values) != set(self.names):
+            raise ValueError(f"Sensitivities.values has {sorted(self.values)}, expected "
+                             f"{sorted(self.names)}")
+        for name in self.names:
+            check_shape("Sensitivities", f"values[{name!r}]", self.values[name],
+                        np.shape(self.sd_ln_f))
+
     def ranked(self) -> list[tuple[str, float]]:
         """(name, max |S| over cases and modes), largest first."""
         return sorted(((n, float(np.nanmax(np.abs(self.values[n])))) for n in self.names),
@@ -151,16 +165,12 @@ class Sensitivities:
 def sensitivities(paths, base_overrides: dict, inputs: Inputs, n_modes: int = 4,
                   elements: int | None = None, n_jobs: int = -1,
                   progress: bool = False) -> Sensitivities:
+    """Central differences of ``studies.derivatives`` at the nominal inputs, every evaluation
+    in one parallel pool, and the first-order sd of ln f they give."""
     names = tuple(sorted(inputs.nominal))
-    tasks = []
-    for name in names:
-        for sign in (1.0, -1.0):
-            values = dict(inputs.nominal)
-            values[name] = float(inputs.nominal[name] * (1.0 + sign * REL_STEP))
-            tasks.append((tuple(paths), base_overrides, inputs, values, n_modes, elements))
+    tasks = [(tuple(paths), base_overrides, inputs, values, n_modes, elements)
+             for values in central_points(inputs.nominal, names)]
     results = run_tasks(evaluate, tasks, n_jobs=n_jobs, progress=progress, label="sensitivity evaluations")
-    step = np.log1p(REL_STEP) - np.log1p(-REL_STEP)
-    values = {n: (np.log(results[2 * k]) - np.log(results[2 * k + 1])) / step
-              for k, n in enumerate(names)}
-    variance = sum((values[n] * inputs.sd[n] / inputs.nominal[n]) ** 2 for n in names)
-    return Sensitivities(names=names, values=values, sd_ln_f=np.sqrt(variance))
+    values = central_log_slopes(results, names)
+    return Sensitivities(names=names, values=values,
+                         sd_ln_f=first_order_sd(values, inputs.nominal, inputs.sd))

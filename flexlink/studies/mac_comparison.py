@@ -111,27 +111,3 @@ def compare_scenes(scene_a: Scene, scene_b: Scene, n_modes: int, elements_a: int
     p = pair_modes(mac)
     return ShapeComparison(a, b, mac, tuple((int(i), int(j), float(m))
                                             for i, j, m in zip(p.a, p.b, p.mac)), family)
-
-
-def comparison_json(c: ShapeComparison, n_modes: int) -> dict:
-    """JSON-ready: the family, each side's frequencies [Hz] and labels, the MAC matrix and the
-    pairs (1-based modes) with their frequency difference [%] (b vs a)."""
-    sides = {}
-    for name, s in (("a", c.a), ("b", c.b)):
-        sides[name] = {"scene": s.scene.name, "file": s.scene.path,
-                       "elements_per_link": s.elements_per_link,
-                       "modes": [{"mode": i + 1, "Hz": float(f), "label": l}
-                                 for i, (f, l) in enumerate(zip(s.frequencies, s.labels))]}
-    fa, fb = c.a.frequencies, c.b.frequencies
-    return {"family": c.family, **sides, "mac": c.mac.tolist(),
-            "pairs": [{"a": i + 1, "b": j + 1, "mac": m,
-                       "difference_pct": 100.0 * (fb[j] - fa[i]) / fa[i]}
-                      for i, j, m in c.pairs]}
-
-
-def mac_csv(c: ShapeComparison) -> str:
-    """The MAC matrix: rows the modes of a, columns those of b."""
-    n_b = c.mac.shape[1]
-    lines = ["mode_a," + ",".join(f"b{j + 1}" for j in range(n_b))]
-    lines += [f"{i + 1}," + ",".join(f"{v:.6f}" for v in row) for i, row in enumerate(c.mac)]
-    return "\n".join(lines) + "\n"
