@@ -418,7 +418,13 @@ def unit_cases(place: Place) -> list[Case]:
             bad, words = f"5 {_si(wrong)}", (f"unit of {wrong}", unit.kind)
         out.append(Case(place.base, place.path, {key: [bad] if shape == "list" else bad},
                         _dotted(place.path, key), words))
-    # a pair of unit strings ([x, y]) gets the wrong kind in its first part
+    # a pair of unit strings ([x, y], [Fx, Fy]) gets the wrong kind in its first part
+    for key, field in place.model.model_fields.items():
+        pair = _pair_unit(field.annotation)
+        if pair is not None and isinstance(node.get(key), list) and len(node[key]) == 2:
+            wrong = "mass" if pair.kind != "mass" else "length"
+            out.append(Case(place.base, place.path, {key: [f"5 {_si(wrong)}", node[key][1]]},
+                            _dotted(place.path, key), (f"unit of {wrong}",)))
     for key, field in place.model.model_fields.items():
         if "[x, y]" in str(field.annotation) or _pair_kind(field.annotation):
             value = node.get(key)
@@ -427,6 +433,17 @@ def unit_cases(place: Place) -> list[Case]:
                 out.append(Case(place.base, (*place.path, key), {name: ["5 kg", pair[1]]},
                                 _dotted((*place.path, key), name), ("unit of mass",)))
     return out
+
+
+def _pair_unit(tp) -> schema.Unit | None:
+    """The Unit of the parts of a pair of unit strings (a tuple field), else None."""
+    for alt in _alternatives(tp):
+        bare = _bare(alt)
+        if typing.get_origin(bare) is tuple and typing.get_args(bare):
+            unit = _unit(typing.get_args(bare)[0])
+            if unit is not None and unit.kind != "-":
+                return unit
+    return None
 
 
 def _pair_kind(tp) -> str | None:
