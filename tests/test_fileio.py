@@ -213,36 +213,6 @@ def test_a_swap_failing_after_the_old_folder_moved_aside_puts_it_back(tmp_path, 
     assert sorted(p.name for p in tmp_path.iterdir()) == ["scene"]
 
 
-def test_a_signal_between_the_two_renames_of_a_swap_waits_for_the_second(tmp_path, monkeypatch):
-    """SIGTERM arriving just after the old folder moved aside is held until the new one is in
-    place: the target is never missing when the run stops."""
-    import signal
-
-    from flexlink.fileio import Terminated, signals_raise
-
-    previous = signal.getsignal(signal.SIGTERM)
-    signals_raise()
-    try:
-        target = tmp_path / "scene"
-        target.mkdir()
-        (target / "modes.json").write_text("old")
-        real = os.replace
-
-        def replace(source, destination):
-            real(source, destination)
-            if str(destination).endswith(".old"):
-                os.kill(os.getpid(), signal.SIGTERM)
-
-        monkeypatch.setattr(os, "replace", replace)
-        with pytest.raises(Terminated):
-            with staged_folder(target) as stage:
-                (stage / "modes.json").write_text("new")
-        monkeypatch.undo()
-        assert (target / "modes.json").read_text() == "new"
-    finally:
-        signal.signal(signal.SIGTERM, previous)
-
-
 def test_a_staged_folder_keeps_the_files_other_commands_wrote(tmp_path):
     target = tmp_path / "case1"
     target.mkdir()
@@ -254,29 +224,6 @@ def test_a_staged_folder_keeps_the_files_other_commands_wrote(tmp_path):
     assert sorted(p.name for p in target.iterdir()) == ["case1_modes.vtu", "modes.json"]
     assert (target / "modes.json").read_text() == "from modes"
     assert (target / "case1_modes.vtu").read_text() == "new export"
-
-
-def test_signals_raise_outside_the_main_thread_does_nothing(monkeypatch):
-    """Python allows signal handlers only in the main thread: from a worker thread (a dask or
-    joblib worker running a command's code) the call must neither raise nor install one."""
-    import signal
-    import threading
-
-    from flexlink.fileio import signals_raise
-
-    before = signal.getsignal(signal.SIGTERM)
-    errors = []
-
-    def call():
-        try:
-            signals_raise()
-        except Exception as exc:  # noqa: BLE001 - any exception is the failure
-            errors.append(exc)
-
-    worker = threading.Thread(target=call)
-    worker.start()
-    worker.join()
-    assert errors == [] and signal.getsignal(signal.SIGTERM) == before
 
 
 def test_leftovers_of_another_users_live_process_are_kept(tmp_path, monkeypatch):
