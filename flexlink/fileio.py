@@ -195,9 +195,9 @@ def staged_folder(target: str | Path, keep: Callable[[str], bool] | None = None)
         raise OutputError(f"cannot create a folder beside {target}: {exc.strerror or exc}") from None
     try:
         yield stage
-        _publish_mode(stage, directory=True)
         old = stage.with_name(stage.name[:-len(".stage")] + ".old")
         try:
+            _publish_mode(stage, directory=True)
             if keep is not None and target.is_dir():
                 _carry_over(target, stage, keep)
             with signals_deferred():  # the swap, its repair and the removal of the old folder

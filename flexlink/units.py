@@ -98,3 +98,15 @@ def rev_per_min(omega: float) -> float:
 def percent_error(computed, reference):
     """100 (computed - reference) / reference [%]: scalars or arrays (element by element)."""
     return 100.0 * (computed - reference) / reference
+
+
+def quantity_pattern(dimension: str, *, signed: bool = True, words: tuple[str, ...] = ()) -> str:
+    """A regular expression for text ``parse_quantity`` reads as ``dimension``: a number then
+    one of the dimension's units (for editors' JSON Schema). ``signed=False`` refuses a minus
+    sign (a quantity that must not be negative); ``words`` are whole-value alternatives such
+    as "rigid"."""
+    number = _NUMBER if signed else _NUMBER.replace("[-+]?", r"\+?", 1)
+    units = "|".join(re.escape(u).replace(r"\ ", " ")
+                     for u in sorted(UNITS[dimension], key=len, reverse=True))
+    alternatives = [rf"\s*{number}\s*(?:{units})\s*"] + [rf"\s*{w}\s*" for w in words]
+    return "^(?:" + "|".join(alternatives) + ")$"

@@ -174,3 +174,67 @@ def test_a_write_that_cannot_start_names_the_file_and_the_reason(tmp_path):
         write_atomic(blocker / "modes.json", "{}")
     with pytest.raises(OutputError, match=r"file/out"):
         prepare_out_dir(blocker / "out")
+
+
+def test_an_existing_folder_that_refuses_files_is_refused_before_any_work(tmp_path, monkeypatch):
+    """The probe file is what finds a folder that exists but takes no files (read-only, or a
+    folder of another user): mkdir(exist_ok=True) alone succeeds there. Root may write
+    anywhere, so the refusal is simulated at the probe."""
+    import tempfile
+
+    def refuse(*args, **kwargs):
+        raise PermissionError(13, "Permission denied")
+
+    monkeypatch.setattr(tempfile, "NamedTemporaryFile", refuse)
+    with pytest.raises(OutputError, match=rf"output folder {tmp_path} is not writable: "
+                                          "Permission denied"):
+        prepare_out_dir(tmp_path)
+
+
+def test_a_swap_failing_after_the_old_folder_moved_aside_puts_it_back(tmp_path, monkeypatch):
+    """The swap is two renames: target -> .old, stage -> target. If the second fails, the old
+    folder goes back under its name and nothing is left beside it."""
+    target = tmp_path / "scene"
+    target.mkdir()
+    (target / "modes.json").write_text("old")
+    real = os.replace
+
+    def replace(source, destination):
+        if str(source).endswith(".stage"):
+            raise OSError(18, "Invalid cross-device link")
+        return real(source, destination)
+
+    monkeypatch.setattr(os, "replace", replace)
+    with pytest.raises(OutputError, match="cannot replace .*Invalid cross-device link"):
+        with staged_folder(target) as stage:
+            (stage / "modes.json").write_text("new")
+    monkeypatch.undo()
+    assert (target / "modes.json").read_text() == "old"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["scene"]
+
+
+def test_a_staged_folder_keeps_the_files_other_commands_wrote(tmp_path):
+    target = tmp_path / "case1"
+    target.mkdir()
+    (target / "modes.json").write_text("from modes")
+    (target / "case1_modes.vtu").write_text("old export")
+    (target / "case1_mode9.png").write_text("old picture this run does not draw")
+    with staged_folder(target, keep=lambda name: not name.startswith("case1_")) as stage:
+        (stage / "case1_modes.vtu").write_text("new export")
+    assert sorted(p.name for p in target.iterdir()) == ["case1_modes.vtu", "modes.json"]
+    assert (target / "modes.json").read_text() == "from modes"
+    assert (target / "case1_modes.vtu").read_text() == "new export"
+
+
+def test_leftovers_of_another_users_live_process_are_kept(tmp_path, monkeypatch):
+    """os.kill(pid, 0) on another user's process raises PermissionError: that process is
+    alive, and its temporary file must stay."""
+    leftover = tmp_path / ".modes.json.~4242~abc.tmp"
+    leftover.write_text("being written by someone else")
+
+    def not_ours(pid, sig):
+        raise PermissionError(1, "Operation not permitted")
+
+    monkeypatch.setattr(os, "kill", not_ours)
+    assert sweep_stale(tmp_path) == []
+    assert leftover.exists()
