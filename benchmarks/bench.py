@@ -186,8 +186,8 @@ def whole_cycle(repeats: int) -> None:
         models = [build_model(scene.topology(), p) for p in cycle_poses(scene, 360)]
         plan = _DensePlan(models[0], reduction(models[0]))
         pencils = [plan.matrices(m) for m in models]
-        bare += median_time(lambda: [la.eigh(K, M, subset_by_index=[0, N_MODES - 1])
-                                     for K, M in pencils], repeats)
+        bare += median_time(lambda pencils=pencils: [la.eigh(K, M, subset_by_index=[0, N_MODES - 1])
+                                                     for K, M in pencils], repeats)
     print(f"  for scale, scipy.linalg.eigh(K, M) alone on the same 1440 pencils: {bare:.3f} s CPU")
     # no target here: the full model cannot beat its own LAPACK calls (over 1 s on this kind of
     # machine); the cycle map's target is section 2b's, through the Craig-Bampton sweep
@@ -339,7 +339,7 @@ def startup(repeats: int) -> None:
                       for _ in range(repeats)]
             heavy = sorted({m for p in probes for m in p["heavy"]})
             inside = statistics.median(p["seconds"] for p in probes)
-            whole = median_time(lambda: subprocess.run([str(flexlink), *args], check=True,
+            whole = median_time(lambda args=args: subprocess.run([str(flexlink), *args], check=True,
                                                        capture_output=True, cwd=ROOT),
                                 repeats, time.perf_counter)
             print(f"  {label}: {whole:.3f} s whole process ({inside:.3f} s after the "

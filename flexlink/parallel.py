@@ -19,6 +19,7 @@ import contextlib
 import os
 from collections.abc import Callable, Iterator, Sequence
 
+from flexlink import logbook
 from flexlink.errors import InputError
 
 _client = None  # the dask.distributed Client of the innermost ``use_scheduler`` block
@@ -74,7 +75,6 @@ def workers(n_jobs: int = -1) -> int:
 
     return effective_n_jobs(n_jobs)
 
-from flexlink import logbook
 
 
 def _collecting_call(function: Callable, task: tuple):

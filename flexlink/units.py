@@ -63,3 +63,15 @@ def parse_quantity(text: object, dimension: str, *, source: str | None = None,
         raise InputError(f"unknown unit {unit!r} in {text!r}{hint}", source=source, field=field,
                          expected=expected)
     return number * table[unit]
+
+
+def quantity_pattern(dimension: str, *, signed: bool = True, words: tuple[str, ...] = ()) -> str:
+    """A regular expression for text ``parse_quantity`` reads as ``dimension``: a number then
+    one of the dimension's units (for editors' JSON Schema). ``signed=False`` refuses a minus
+    sign (a quantity that must not be negative); ``words`` are whole-value alternatives such
+    as "rigid"."""
+    number = _NUMBER if signed else _NUMBER.replace("[-+]?", r"\+?", 1)
+    units = "|".join(re.escape(u).replace(r"\ ", " ")
+                     for u in sorted(UNITS[dimension], key=len, reverse=True))
+    alternatives = [rf"\s*{number}\s*(?:{units})\s*"] + [rf"\s*{w}\s*" for w in words]
+    return "^(?:" + "|".join(alternatives) + ")$"

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Set up (if needed) and run the test suite.
+# Set up (if needed), lint and run the test suite.
 source "$(dirname "$0")/venv.sh"
 bash scripts/browser-deps.sh  # headless Chromium for the report's browser test
+ruff check flexlink tests benchmarks scripts  # the rules and their reasons: pyproject.toml
 python -m pytest -q "$@"

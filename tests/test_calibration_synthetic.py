@@ -16,7 +16,6 @@ import pytest
 
 import flexlink.studies.calibration as calibration
 import flexlink.studies.uncertainty as uncertainty
-from flexlink.scene import load_scene
 from flexlink.studies.calibration import (FreeParameter, Problem, cross_validation, fit_many,
                                           leave_one_out_problems)
 from flexlink.studies.comparison import StudySettings, run_study

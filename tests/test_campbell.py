@@ -2,7 +2,6 @@
 `flexlink campbell` command."""
 
 import json
-import math
 
 import numpy as np
 import pytest

@@ -109,7 +109,7 @@ def test_vtu_round_trip_matches_the_solver(case3, modes, tmp_path):
         for link in model.links:
             c, sn = math.cos(link.angle), math.sin(link.angle)
             h = link.length / link.elements
-            transverse = lambda d: -sn * d[..., 0] + c * d[..., 1]  # noqa: E731
+            transverse = lambda d, c=c, sn=sn: -sn * d[..., 0] + c * d[..., 1]  # noqa: E731
             for a in link.nodes[:-1]:
                 coef = cubic_through(transverse(shapes[a, :2, k]), shapes[a, 2, k],
                                      transverse(shapes[a + 1, :2, k]), shapes[a + 1, 2, k], h)

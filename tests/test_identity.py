@@ -1,7 +1,6 @@
 """Mode identity: energy fractions, labels and effective modal masses (analysis/identity.py)."""
 
 import dataclasses
-import math
 
 import numpy as np
 import pytest

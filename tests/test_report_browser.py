@@ -9,7 +9,6 @@ not blank, and the page is readable at 1280x800 and at a phone's 390 px width.""
 
 import io
 import json
-import shutil
 import subprocess
 from pathlib import Path
 

@@ -77,7 +77,7 @@ def test_a_typo_in_the_base_file_names_the_base_file(tmp_path):
     (RATIOS + '[section]\nwidth = "0 mm"\n', "section.width", "> 0"),
     (RATIOS + '[joints.A]\nmass = "-1 g"\n', "joints.A.mass", ">= 0"),
     (RATIOS + '[joints]\nKr = "-1 N*m/rad"\n', "joints.Kr", ">= 0"),
-    (RATIOS + "[reference]\nEx = [1, 2]\n", "reference", "ends in _Hz"),
+    (RATIOS + "[reference]\nEx = [1, 2]\n", "reference.Ex", "ends in _Hz"),
     ("[linkage]\nR2 = 0.267\nR3 = 0.8\n", "linkage.R4", "missing"),
 ])
 def test_values_out_of_range_name_field_and_range(tmp_path, text, where, words):

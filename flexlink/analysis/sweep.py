@@ -32,7 +32,6 @@ from flexlink.fe.pose import pose_model
 from flexlink.analysis.solve import (DENSE_LIMIT, DENSE_REFUSE, ELASTIC, SPARE_MODES,
                                      lowest_elastic, solve_modes)
 from flexlink.analysis.stacked import stacked_modes
-from flexlink.errors import InputError
 from flexlink.parallel import run_tasks, workers
 
 

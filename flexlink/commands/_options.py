@@ -4,6 +4,7 @@ options and ``--scheduler``."""
 from __future__ import annotations
 
 import json
+import math
 
 import click
 
@@ -25,6 +26,22 @@ out_option = click.option("--out", "out_dir", default="out", show_default=True,
                           type=click.Path(file_okay=False), help="Folder for result files.")
 
 
+class FiniteFloatRange(click.FloatRange):
+    """click's FloatRange that also refuses nan and inf (which compare false with any bound,
+    so FloatRange lets nan through)."""
+
+    name = "finite float range"
+
+    def convert(self, value, param, ctx):
+        number = click.FLOAT.convert(value, param, ctx)
+        if not math.isfinite(number):
+            self.fail(f"{value!r} is not a number", param, ctx)
+        return super().convert(number, param, ctx)
+
+
+TOLERANCE = FiniteFloatRange(0, 1, min_open=True)  # a relative frequency tolerance, in (0, 1]
+
+
 def mesh_options(method: bool = True):
     """-e/--elements and --tol (the mesh rule of ``analysis.mesh.choose_mesh``), and with
     ``method`` the eigen solver's --method: one wording for every command that solves a scene."""
@@ -32,7 +49,7 @@ def mesh_options(method: bool = True):
         click.option("-e", "--elements", default=None, type=click.IntRange(1, 100000),
                      help="Elements per link (default: the scene's mesh.elements_per_link if it "
                           "pins one, else the coarsest mesh meeting --tol)."),
-        click.option("--tol", default=None, type=click.FloatRange(0, 1, min_open=True),
+        click.option("--tol", default=None, type=TOLERANCE,
                      help="Relative frequency tolerance of the default mesh: the coarsest of 8, "
                           "16, 32, ... elements/link whose Richardson error estimate meets it "
                           "[default: 1e-6]."),

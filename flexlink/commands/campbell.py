@@ -5,7 +5,8 @@ from __future__ import annotations
 import click
 
 from flexlink.commands._failures import names_scene
-from flexlink.commands._options import dumps, json_option, map_parallel_options, out_option
+from flexlink.commands._options import (TOLERANCE, dumps, json_option,
+                                       map_parallel_options, out_option)
 
 
 def parse_speeds(text: str) -> tuple[float, float]:
@@ -36,7 +37,7 @@ def parse_speeds(text: str) -> tuple[float, float]:
               help="Crank angles over one revolution for the bands.")
 @click.option("-e", "--elements", default=None, type=click.IntRange(1, 100000),
               help="Elements per link (default: as in `flexlink cycle`).")
-@click.option("--tol", default=None, type=click.FloatRange(0, 1, min_open=True),
+@click.option("--tol", default=None, type=TOLERANCE,
               help="Relative frequency tolerance of the default mesh [default: 1e-6].")
 @click.option("--margin", default=0.05, show_default=True, type=click.FloatRange(0, 1),
               help="Relative distance from a band that counts as critical.")

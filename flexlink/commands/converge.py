@@ -7,7 +7,7 @@ import sys
 import click
 
 from flexlink.commands._failures import names_scene
-from flexlink.commands._options import dumps, json_option, out_option
+from flexlink.commands._options import TOLERANCE, dumps, json_option, out_option
 
 
 @click.command("converge")
@@ -18,7 +18,7 @@ from flexlink.commands._options import dumps, json_option, out_option
               help="Finest level (elements per link; levels are 1, 2, 4, ...).")
 @click.option("--repeats", default=3, show_default=True, type=click.IntRange(1, 50),
               help="Solves per level; the median time is reported.")
-@click.option("--tol", default=None, type=click.FloatRange(0, 1, min_open=True),
+@click.option("--tol", default=None, type=TOLERANCE,
               help="Relative frequency tolerance: name the cheapest setting that meets it "
                    "[default: 1e-6].")
 @json_option
@@ -32,9 +32,10 @@ def command(scene_path, n_modes, max_elements, repeats, tol, as_json, out_dir):
     from tqdm import tqdm
 
     from flexlink.fileio import prepare_out_dir, write_atomic
-    from flexlink.output.convergence_report import convergence_csv, convergence_text
+    from flexlink.output.convergence_report import (convergence_csv, convergence_text,
+                                                   plot_error_time)
     from flexlink.scene import load_scene
-    from flexlink.studies.convergence import DEFAULT_TOL, convergence_study, plot_error_time
+    from flexlink.studies.convergence import DEFAULT_TOL, convergence_study
     from ._written import announce, scene_folders
 
     [folder] = scene_folders(prepare_out_dir(out_dir), [scene_path])

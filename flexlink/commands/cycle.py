@@ -6,7 +6,8 @@ import math
 import click
 
 from flexlink.commands._failures import names_scene
-from flexlink.commands._options import dumps, json_option, map_parallel_options, out_option
+from flexlink.commands._options import (TOLERANCE, dumps, json_option,
+                                       map_parallel_options, out_option)
 
 
 @click.command("cycle")
@@ -18,7 +19,7 @@ from flexlink.commands._options import dumps, json_option, map_parallel_options,
 @click.option("-e", "--elements", default=None, type=click.IntRange(1, 100000),
               help="Elements per link (default: the scene's mesh.elements_per_link if it pins "
                    "one, else the coarsest mesh meeting --tol at the start pose).")
-@click.option("--tol", default=None, type=click.FloatRange(0, 1, min_open=True),
+@click.option("--tol", default=None, type=TOLERANCE,
               help="Relative frequency tolerance of the default mesh (as in `flexlink modes`) "
                    "[default: 1e-6].")
 @click.option("--speed", default=None,

@@ -29,5 +29,6 @@ def command(markdown, as_json, out_dir):
         click.echo(text)
         return
     click.echo(f"written: {path}")
-    click.echo("Point your TOML editor at it, e.g. a first line '#:schema ./" + SCHEMA_FILE
-               + "' in a scene file, or a [[rule]] in .taplo.toml (see README).")
+    click.echo(f"Point your TOML editor at it: a first line '#:schema {path.resolve()}' in a "
+               "scene file (or that path relative to the scene's folder), or the [[rule]] of "
+               "the repository's .taplo.toml, which uses the committed docs/" + SCHEMA_FILE + ".")

@@ -56,7 +56,7 @@ class StripProperties:
     rhoIp: float
 
     @classmethod
-    def of(cls, s: Section) -> "StripProperties":
+    def of(cls, s: Section) -> StripProperties:
         """From a ``Section.rectangle`` (in-plane depth = width b, thickness t = area / b)."""
         b = s.depth
         t = s.area / b

@@ -21,7 +21,6 @@ from __future__ import annotations
 import functools
 
 import numpy as np
-import scipy.sparse as sp
 
 _GAUSS_X, _GAUSS_W = np.polynomial.legendre.leggauss(4)
 XI = (_GAUSS_X + 1.0) / 2.0  # points on [0, 1]

@@ -59,7 +59,7 @@ class FourBar:
                 f"than the sum of the other three ({sum(lengths[:3]):g} m)")
 
     @classmethod
-    def from_ratios(cls, R2: float, R3: float, R4: float, ground: float) -> "FourBar":
+    def from_ratios(cls, R2: float, R3: float, R4: float, ground: float) -> FourBar:
         """Table II style: R2 = L2/L1, R3 = L3/L1, R4 = L4/L1, with L1 = ``ground`` [m]."""
         return cls(ground=ground, crank=R2 * ground, coupler=R3 * ground, rocker=R4 * ground)
 

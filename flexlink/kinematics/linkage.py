@@ -55,12 +55,12 @@ class Body:
                              field=f"bodies.{self.name}")
 
     @classmethod
-    def bar(cls, name: str, start: str, end: str, length: float) -> "Body":
+    def bar(cls, name: str, start: str, end: str, length: float) -> Body:
         return cls(name, (start, end), ((0.0, 0.0), (float(length), 0.0)))
 
     @classmethod
     def polar(cls, name: str, joints: Sequence[str], arms: Sequence[float],
-              angles: Sequence[float]) -> "Body":
+              angles: Sequence[float]) -> Body:
         """Joint k >= 1 at distance arms[k-1] [m] from joints[0], at angles[k-1] [rad]
         (counter-clockwise) from the arm to joints[1]."""
         if len(arms) != len(joints) - 1 or len(angles) != len(arms) or angles[0] != 0.0:

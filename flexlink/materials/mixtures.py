@@ -53,6 +53,13 @@ def shipped_materials() -> Traversable:
     except ModuleNotFoundError:
         return Path(__file__).resolve().parents[2] / "materials"
 
+def shipped_names() -> list[str]:
+    """Names of the shipped materials (``materials/<name>.toml``), sorted."""
+    shipped = shipped_materials()
+    return sorted(p.name.removesuffix(".toml") for p in shipped.iterdir()
+                  if p.name.endswith(".toml")) if shipped.is_dir() else []
+
+
 _FIELDS = {"E": "modulus", "G": "modulus", "density": "density"}
 
 
@@ -106,11 +113,10 @@ def load_constituent(name_or_path: str | Path) -> Constituent:
     if stat is not None and statmode.S_ISREG(stat.st_mode):
         return _cached_constituent(str(path), stat.st_mtime_ns, stat.st_size)
     if not path.is_file():
-        shipped = shipped_materials()
-        known = sorted(p.name.removesuffix(".toml") for p in shipped.iterdir()
-                       if p.name.endswith(".toml")) if shipped.is_dir() else []
-        raise InputError(f"no material file {path}", field="material",
-                         expected=f"one of {known} or a path to a .toml file")
+        what = (f"no material file {path}" if Path(str(name_or_path)).suffix == ".toml"
+                else f"unknown material {str(name_or_path)!r}")
+        raise InputError(f"{what}; shipped materials: {', '.join(shipped_names())}",
+                         expected="a shipped material's name or a path to a material .toml file")
     return _read_constituent(path)  # e.g. inside a zipped package: read it every time
 
 

@@ -1,6 +1,14 @@
-"""The convergence study (``studies.convergence``) as CSV and as a human-readable report."""
+"""The convergence study (``studies.convergence``) as CSV, as a human-readable report and as
+the error-against-time plot."""
 
 from __future__ import annotations
+
+import io
+
+import numpy as np
+
+from flexlink.fileio import write_atomic
+from flexlink.studies.convergence import Level, relative_errors
 
 
 def convergence_csv(document: dict) -> str:
@@ -73,3 +81,32 @@ def convergence_text(doc: dict) -> str:
         lines.append(f"refused by the solver: {r['choice']} at {r['elements_per_link']} "
                      f"elements/link: {r['reason']}")
     return "\n".join(lines)
+
+
+def plot_error_time(levels: list[Level], reference: np.ndarray, path, title: str = "") -> None:
+    """Log-log PNG of max relative discretisation error against median solve time, one line
+    per choice."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    errors = relative_errors(levels, reference).max(axis=1)
+    fig, ax = plt.subplots(figsize=(7, 5))
+    for choice in dict.fromkeys(l.choice for l in levels):
+        pick = [i for i, l in enumerate(levels) if l.choice == choice]
+        t = [levels[i].total_s for i in pick]
+        e = np.maximum(errors[pick], 1e-16)  # an exact match would vanish from a log axis
+        ax.loglog(t, e, "o-", label=choice.label)
+        for i in pick[::2]:
+            ax.annotate(str(levels[i].elements), (levels[i].total_s, max(errors[i], 1e-16)),
+                        fontsize=7, textcoords="offset points", xytext=(3, 3))
+    ax.set_xlabel("median wall time per solve, assembly + eigen solve [s]")
+    ax.set_ylabel("max relative frequency error vs Richardson reference")
+    ax.set_title(title or "error against run time (labels: elements per link)")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend()
+    fig.tight_layout()
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=120)
+    plt.close(fig)
+    write_atomic(path, buf.getvalue())

@@ -102,6 +102,12 @@ def overall_mean_abs(summaries: list[dict]) -> dict[str, float]:
     return {k: float(np.mean(v)) for k, v in pooled.items()}
 
 
+def hz_text(frequency: float) -> str:
+    """A frequency [Hz] for the text table: two decimals from 1 Hz up, four significant digits
+    below (a soft scene's modes at mHz must not all read 0.00)."""
+    return f"{frequency:.2f}" if abs(frequency) >= 1.0 else f"{frequency:.4g}"
+
+
 def format_case(summary: dict) -> str:
     rows = summary["modes"]
     refs = [k[:-3] for k in (rows[0] if rows else {}) if k.endswith("_Hz") and k != "computed_Hz"]
@@ -120,7 +126,7 @@ def format_case(summary: dict) -> str:
         header += f" {'m_x g':>7} {'m_y g':>7}  label"
     lines.append(header)
     for row in rows:
-        line = f"{row['mode']:>4} {row['computed_Hz']:>12.2f}"
+        line = f"{row['mode']:>4} {hz_text(row['computed_Hz']):>12}"
         for r in refs:
             if f"{r}_Hz" in row:
                 line += f" {row[f'{r}_Hz']:>9.1f} {row[f'error_vs_{r}_pct']:>+8.1f}"

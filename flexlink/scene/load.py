@@ -80,10 +80,20 @@ def _declared(path_types: list) -> list[str]:
     return names
 
 
-def _input_error(src: SceneSource, error: dict, count: int) -> InputError:
+def _other_kinds(loc, key: str) -> list[str]:
+    """The tags (``type = ...``) of the other alternatives of the tagged table at ``loc`` that
+    declare ``key``: a key of a general linkage written in a four-bar, say."""
+    if len(loc) < 2:
+        return []
+    _, alternatives = _walk(loc[:-1])
+    models = [t for t in alternatives if isinstance(t, type) and issubclass(t, BaseModel)]
+    return [_tag(m) for m in models if _tag(m) and _tag(m) != loc[-1] and key in m.model_fields]
+
+
+def _problem(src: SceneSource, error: dict) -> tuple[str, str]:
+    """(dotted field, message) of one pydantic error."""
     loc = error["loc"]
     kind = error["type"]
-    more = f" (and {count - 1} more problem{'s' if count > 2 else ''})" if count > 1 else ""
     if kind in ("extra_forbidden", "model_type", "dict_type") and loc:
         parent_path, parent_types = _walk(loc[:-1])
         names = _declared(parent_types)
@@ -92,11 +102,13 @@ def _input_error(src: SceneSource, error: dict, count: int) -> InputError:
             dotted = ".".join(parent_path + [key])
             if isinstance(error.get("input"), dict):
                 prefix = "".join(f"{p}." for p in parent_path)
-                hint = parts.near(key, names, fmt="[" + prefix + "{}]")
-                return InputError(f"unknown table{hint}{more}", source=src.file_of(dotted),
-                                  field=f"[{dotted}]")
-            return InputError(f"unknown key{parts.near(key, names)}{more}",
-                              source=src.file_of(dotted), field=dotted)
+                return f"[{dotted}]", f"unknown table{parts.near(key, names, fmt='[' + prefix + '{}]')}"
+            kinds = _other_kinds(loc[:-1], key)
+            if kinds:
+                tag = loc[-2]
+                return dotted, (f"unknown key for {_tag_name(parent_types)} = {tag!r}: {key!r} "
+                                f"belongs to {_tag_name(parent_types)} = {kinds[0]!r}")
+            return dotted, f"unknown key{parts.near(key, names)}"
     path, _ = _walk(loc)
     dotted = ".".join(path) or "scene"
     message = error["msg"]
@@ -104,6 +116,11 @@ def _input_error(src: SceneSource, error: dict, count: int) -> InputError:
     if isinstance(cause, schema.MissingKey):
         dotted = f"{dotted}.{cause.key}" if dotted != "scene" else cause.key
         message = "missing" + (f" ({cause.hint})" if cause.hint else "")
+    elif isinstance(cause, schema.UnknownKey):
+        dotted = f"{dotted}.{cause.key}"
+        near = parts.near(cause.key, cause.known)
+        message = "unknown key" + (near if near.startswith("; did") else "") + (
+            f" ({cause.hint})" if cause.hint else "")
     elif kind == "value_error":
         message = message.removeprefix("Value error, ")
     elif kind == "missing":
@@ -116,7 +133,30 @@ def _input_error(src: SceneSource, error: dict, count: int) -> InputError:
         message = "missing 'type' (or 'method')"
     else:
         message = f"got {error.get('input')!r}: {message}"
-    return InputError(message + more, source=src.file_of(dotted), field=dotted)
+    return dotted, message
+
+
+def _tag_name(models) -> str:
+    """'type' or 'method': the key that picks an alternative among ``models``."""
+    for m in models:
+        for name in ("type", "method"):
+            if name in getattr(m, "model_fields", {}):
+                return name
+    return "type"
+
+
+def _input_error(src: SceneSource, errors: list[dict]) -> InputError:
+    """One InputError for every problem pydantic found: the first names its file and field,
+    the others follow on the same line, each with its own field and hint; unknown keys come
+    first, as the missing key beside one is usually its misspelling."""
+    problems = list(dict.fromkeys(_problem(src, e) for e in errors))
+    problems.sort(key=lambda p: "unknown" not in p[1])
+    (field, message), rest = problems[0], problems[1:]
+    source = src.file_of(field.strip("[]"))
+    if rest:
+        also = "; ".join(f"{f}: {m}" for f, m in rest)
+        message += f" (and {len(rest)} more problem{'s' if len(rest) > 1 else ''}: {also})"
+    return InputError(message, source=source, field=field)
 
 
 def validate(src: SceneSource) -> schema.SceneFile:
@@ -128,8 +168,7 @@ def validate(src: SceneSource) -> schema.SceneFile:
     try:
         return schema.SceneFile.model_validate(data)
     except pydantic.ValidationError as exc:
-        errors = exc.errors()
-        raise _input_error(src, errors[0], len(errors)) from None
+        raise _input_error(src, exc.errors()) from None
 
 
 def load_scene(path: str | Path, overrides: dict | None = None) -> Scene:
@@ -160,7 +199,12 @@ def scene_files(paths) -> list[Path]:
         if p.is_dir():
             found = sorted(f for f in p.glob("*.toml") if not f.name.startswith("_"))
             if not found:
-                raise InputError("folder holds no scene files (*.toml)", source=str(p))
+                bases = sorted(f.name for f in p.glob("_*.toml"))
+                raise InputError(
+                    f"folder holds only base files ({', '.join(bases)}): a name starting with "
+                    "'_' marks a file other scenes merge underneath (base = '...'), never run "
+                    "alone" if bases else "folder holds no scene files (*.toml)", source=str(p),
+                    expected="a scene file not starting with '_'" if bases else None)
             out.extend(found)
         elif p.is_file():
             out.append(p)

@@ -55,15 +55,22 @@ def material(src: SceneSource, sf: schema.SceneFile, link: str,
         raise InputError("no material given", source=src.file_of(field), field=field,
                          expected="a [material] table: composite, isotropic = 'name', or E and "
                                   "density")
-    try:
-        if m.composite is not None:
-            c = m.composite
-            return woven_composite(load_constituent(c.fiber), load_constituent(c.matrix),
-                                   c.fiber_volume_fraction, shear=c.shear_modulus)
-        if m.isotropic is not None:
-            return isotropic(load_constituent(m.isotropic))
-    except InputError as exc:
-        raise InputError(str(exc), source=src.file_of(field), field=field) from None
+    def constituent(key: str, name: str):
+        try:
+            return load_constituent(name)
+        except InputError as exc:
+            raise InputError(str(exc), source=src.file_of(f"{field}.{key}"),
+                             field=f"{field}.{key}") from None
+
+    if m.composite is not None:
+        c = m.composite
+        fibre, matrix = constituent("composite.fiber", c.fiber), constituent("composite.matrix", c.matrix)
+        try:
+            return woven_composite(fibre, matrix, c.fiber_volume_fraction, shear=c.shear_modulus)
+        except InputError as exc:
+            raise InputError(str(exc), source=src.file_of(field), field=field) from None
+    if m.isotropic is not None:
+        return isotropic(constituent("isotropic", m.isotropic))
     G = m.G
     if G is None:
         G = m.E / DEFAULT_G_RATIO
@@ -134,7 +141,12 @@ def section(src: SceneSource, sf: schema.SceneFile, link: str, mat: BeamMaterial
     else:
         raise InputError("a flat bar needs thickness, plies with ply_thickness, or mass",
                          source=src.file_of(fields["width"]), field=fields["width"])
-    bending = keys.get("bending", "edgewise")
+    if "bending" not in keys:  # I differs by (width / thickness)^2 between the two: no default
+        raise InputError("missing", source=src.file_of(fields["width"]),
+                         field=fields["width"].removesuffix("width") + "bending",
+                         expected="bending = 'flatwise' (thickness in the plane of motion) or "
+                                  "'edgewise' (width in the plane) for a flat bar")
+    bending = keys["bending"]
     return Section.rectangle(*args, width, thickness, bending=bending, beam=beam,
                              name=f"{label}, {width * 1e3:g} x {thickness * 1e3:.4g} mm {bending}")
 

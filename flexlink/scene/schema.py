@@ -16,13 +16,13 @@ from __future__ import annotations
 import dataclasses
 import math
 import typing
-from typing import Annotated, Literal, Union
+from typing import Annotated, Literal
 
 from pydantic import (AfterValidator, BaseModel, BeforeValidator, ConfigDict, Field,
                       WithJsonSchema, model_validator)
 
 from flexlink.errors import InputError
-from flexlink.units import UNITS, parse_quantity
+from flexlink.units import parse_quantity, quantity_pattern
 
 
 @dataclasses.dataclass(frozen=True)
@@ -32,6 +32,10 @@ class Unit:
 
     kind: str
     range: str = ""
+    low: float | None = None  # the range's bounds in SI (None: unbounded), for generated tests
+    high: float | None = None
+    low_open: bool = True
+    high_open: bool = True
 
 
 def _check_range(value: float, low, high, low_open, high_open, shown):
@@ -59,13 +63,12 @@ def quantity(kind: str, low: float | None = None, high: float | None = None, *,
             return value
         return _check_range(value, low, high, low_open, high_open, shown)
 
-    units = sorted(UNITS[kind], key=len, reverse=True)
-    alternatives = "|".join(u.replace("^", r"\^").replace("*", r"\*").replace("/", "/")
-                            for u in units) + ("|rigid" if rigid else "")
-    pattern = rf"^\s*(?:[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?\s*)?(?:{alternatives})\s*$"
+    pattern = quantity_pattern(kind, signed=low is None or low < 0,
+                               words=("rigid",) if rigid else ())
     return Annotated[float, BeforeValidator(parse), AfterValidator(check),
                      WithJsonSchema({"type": "string", "pattern": pattern}),
-                     Unit(kind, shown + (" or 'rigid'" if rigid else ""))]
+                     Unit(kind, shown + (" or 'rigid'" if rigid else ""), low, high, low_open,
+                          high_open)]
 
 
 def number(low: float, high: float, *, integer: bool = False, low_open: bool = False,
@@ -89,7 +92,7 @@ def number(low: float, high: float, *, integer: bool = False, low_open: bool = F
     schema.update({"exclusiveMinimum" if low_open else "minimum": low,
                    "exclusiveMaximum" if high_open else "maximum": high})
     return Annotated[int if integer else float, BeforeValidator(parse), WithJsonSchema(schema),
-                     Unit("-", shown)]
+                     Unit("-", shown, low, high, low_open, high_open)]
 
 
 LENGTH = quantity("length", 0.0, shown="> 0")
@@ -114,6 +117,15 @@ class MissingKey(ValueError):
         super().__init__(f"{key}: missing" + (f" ({hint})" if hint else ""))
 
 
+class UnknownKey(ValueError):
+    """A key a table with free-named keys cannot take; ``key`` names it, ``known`` the declared
+    keys nearest to it are chosen from."""
+
+    def __init__(self, key: str, known: list[str], hint: str = ""):
+        self.key, self.known, self.hint = key, known, hint
+        super().__init__(f"{key}: unknown key" + (f" ({hint})" if hint else ""))
+
+
 class Table(BaseModel):
     """A scene table: unknown keys are errors, values are immutable once read."""
 
@@ -127,8 +139,11 @@ def extra_type(model: type[BaseModel]):
     return typing.get_args(hint)[1] if hint is not None else None
 
 
-def doc(text: str, **kwargs):
-    return Field(description=text, **kwargs)
+def doc(text: str, *, needed: str = "", **kwargs):
+    """A field's doc line; ``needed`` says where a key the schema cannot require is required
+    (e.g. in [joints] or in every [joints.NAME]), shown in the reference's default column."""
+    extra = {"needed": needed} if needed else None
+    return Field(description=text, json_schema_extra=extra, **kwargs)
 
 
 # -- materials and sections ------------------------------------------------------------------
@@ -179,7 +194,10 @@ class SectionTable(Table):
         "How a flat bar lies: 'edgewise' puts the width in the mechanism plane (in-plane "
         "bending uses I = thickness width^3 / 12, the stiff way); 'flatwise' puts the "
         "thickness in the plane (I = width thickness^3 / 12, the flexible way, as in most "
-        "flexible-link rigs). Default 'edgewise'.", default=None)
+        "flexible-link rigs). Required with width: the two differ by (width / thickness)^2 "
+        "in stiffness (16 times for a 12 x 3 mm strip), and real links lie both ways (the "
+        "Table II strips flatwise, the wiper's bars edgewise), so no default is safe.",
+        default=None)
     thickness: LENGTH | None = doc("Out-of-plane thickness of a flat bar.", default=None)
     plies: number(1, 1000, integer=True) | None = doc(
         "Number of plies; thickness = plies x ply_thickness.", default=None)
@@ -196,8 +214,13 @@ class SectionTable(Table):
 
 
 class LinkTable(Table):
-    """A beam link. Four-bar scenes name crank, coupler, rocker (their ends are fixed) and may
-    only override section and material; general scenes give start and end joints."""
+    """A beam link: the elastic part the finite elements mesh, between two joints. Four-bar
+    scenes name crank, coupler, rocker (their ends are fixed) and may only override section
+    and material. In general scenes [linkage.bodies] are the rigid kinematics and [links] the
+    beams laid over them: each link joins two joints of one body (start and end), a bar is
+    usually one link, and a body of three joints is two or more links meeting at a joint
+    (welded there when it is a ground joint; see [joints.NAME] welded). A body without links
+    moves the others but has no elasticity or mass of its own."""
 
     start: str | None = doc("Joint at the link's start (general scenes).", default=None)
     end: str | None = doc("Joint at the link's end (general scenes).", default=None)
@@ -222,8 +245,12 @@ class JointTable(Table):
                                    "families only).", default=None)
     mass: JOINT_MASS | None = doc("Lumped mass of the pin or bearing, on the joint's node.",
                                   default=None)
-    welded: bool = doc("Ground joint only: its links are welded together and turn in one "
-                       "bearing (e.g. a triangular rocker made of two beams).", default=False)
+    welded: bool = doc(
+        "Ground joint only: the beams meeting here are welded to each other and turn together "
+        "in one bearing. Needed where one body is meshed as two or more beams meeting at its "
+        "ground joint (a triangular rocker of two arms): without it each beam turns freely on "
+        "the pin and the body is a mechanism. Beams of one body meeting at a moving joint are "
+        "joined by Kt = Kr = 'rigid' there instead.", default=False)
 
 
 class JointsTable(Table):
@@ -232,15 +259,26 @@ class JointsTable(Table):
     model_config = ConfigDict(extra="allow", frozen=True)
     __pydantic_extra__: dict[str, JointTable]
 
-    Kt: TRANSLATIONAL | None = doc("Translational stiffness of every bearing and pin.",
-                                   default=None)
-    Kr: ROTATIONAL | None = doc("Torsional stiffness of every bearing and pin.", default=None)
+    Kt: TRANSLATIONAL | None = doc(
+        "Translational stiffness of every bearing and pin, in x and y ('rigid': no clearance).",
+        default=None,
+        needed="here or in every [joints.NAME]")
+    Kr: ROTATIONAL | None = doc(
+        "Torsional stiffness of every bearing and pin ('0 N*m/rad': pins turn freely).",
+        default=None,
+        needed="here or in every [joints.NAME]")
     Ktilt: ROTATIONAL | None = doc("Tilt stiffness of every joint (out-of-plane families; "
                                    "default rigid, listed as an assumption where used).",
                                    default=None)
 
 
 class DriveTable(Table):
+    """The drive: a torsional spring between the input link and ground at its ground joint
+    (in parallel with that bearing's Kr), for a motor and its coupling; 'rigid' holds the
+    input angle exactly. Without [drive] the input link turns freely: the linkage keeps one
+    degree of freedom, reported as a mechanism mode near 0 Hz apart from the elastic modes,
+    which are then those of a free-running linkage (rarely what a test rig measures)."""
+
     link: str = doc("The driven link (e.g. 'crank').")
     joint: str = doc("The ground joint where the drive holds it (e.g. 'O2').")
     stiffness: ROTATIONAL = doc("Torsional stiffness of the drive, in parallel with the "
@@ -311,16 +349,18 @@ class ExtendedRocker(Table):
                                                default=1.0)
 
 
-Synthesis = Annotated[Union[BrodellSoni, Minimax, ExtendedRocker], Field(discriminator="method")]
+Synthesis = Annotated[BrodellSoni | Minimax | ExtendedRocker, Field(discriminator="method")]
 
 
 class BodyTable(Table):
     joints: list[str] = doc("Joints the body carries, at least two; the first two define its "
-                            "axis.", min_length=2)
+                            "axis (the first arm).", min_length=2)
     length: LENGTH | None = doc("Distance between the two joints of a bar.", default=None)
-    arms: list[LENGTH] | None = doc("Distances from the first joint to the others "
-                                    "(bodies of three or more joints).", default=None)
-    angles: list[ANGLE] | None = doc("Angles of those arms from the first arm.", default=None)
+    arms: list[LENGTH] | None = doc("Distances from the first joint to each of the others, in "
+                                    "order (bodies of three or more joints).", default=None)
+    angles: list[ANGLE] | None = doc("Angle of each arm, counter-clockwise from the first arm, "
+                                     "one per arm and the first arm included: so the list "
+                                     "starts with '0 deg'.", default=None)
 
     @model_validator(mode="after")
     def _shape(self):
@@ -350,12 +390,20 @@ class GeneralLinkage(Table):
     four_bar: FourBarLengths | None = doc("A four-bar by its lengths.", default=None)
     synthesis: Synthesis | None = doc("A four-bar from a synthesis method.", default=None)
     branch: Branch = doc("Assembly branch of a four-bar source.", default="open")
-    ground: dict[str, Point] | None = doc("Ground pivots by name: [x, y].", default=None)
+    ground: dict[str, Point] | None = doc(
+        "Ground pivots by name, each [x, y] as two unit strings in the ground frame, e.g. "
+        "O1 = ['0 mm', '0 mm']: these joints never move.", default=None)
     bodies: dict[str, BodyTable] | None = doc("Rigid bodies by name.", default=None)
-    guess: dict[str, Point] | None = doc("Rough positions of the moving joints at the start "
-                                         "pose (picks the assembly).", default=None)
+    guess: dict[str, Point] | None = doc(
+        "Rough positions of every moving joint at the start pose, each [x, y] as two unit "
+        "strings in the ground frame, e.g. a = ['41 mm', '0 mm']: the loops are closed from "
+        "there, so the guess picks the assembly (which side of a line each joint lies on); a "
+        "sketch is close enough.", default=None)
     driver: str | None = doc("The input body (its first joint a ground pivot).", default=None)
-    start: ANGLE = doc("Input angle of the analysed pose.", default=0.0)
+    start: ANGLE = doc(
+        "Input angle of the analysed pose: the direction of the driver's axis (its first joint "
+        "to its second), counter-clockwise from the ground frame's +x axis. Four-bar sources: "
+        "the crank angle from the ground line O2->O4.", default=0.0)
     start_transmission_angle: OPEN_ANGLE | None = doc(
         "Four-bar sources: start where the transmission angle has this value.", default=None)
     transmission: list[tuple[str, str]] = doc(
@@ -379,7 +427,7 @@ class GeneralLinkage(Table):
         return self
 
 
-LinkageTable = Annotated[Union[FourBarLinkage, GeneralLinkage], Field(discriminator="type")]
+LinkageTable = Annotated[FourBarLinkage | GeneralLinkage, Field(discriminator="type")]
 
 
 class PoseTable(Table):
@@ -451,11 +499,18 @@ class ReferenceTable(Table):
 
     source: str = doc("Where the reference values come from.", default="")
 
+    @model_validator(mode="before")
+    @classmethod
+    def _column_names(cls, data):
+        for key in data if isinstance(data, dict) else ():
+            if key not in cls.model_fields and not str(key).endswith("_Hz"):
+                raise UnknownKey(key, list(cls.model_fields),
+                                 "a reference column ends in _Hz, e.g. Ex_Hz")
+        return data
+
     @model_validator(mode="after")
     def _columns(self):
         for key, values in (self.__pydantic_extra__ or {}).items():
-            if not key.endswith("_Hz"):
-                raise ValueError(f"unknown key {key!r}: a reference column ends in _Hz, e.g. Ex_Hz")
             if not values:
                 raise ValueError(f"{key} is empty")
         return self

@@ -14,7 +14,6 @@ Model error (against measurement) is kept apart: refining the mesh does not redu
 from __future__ import annotations
 
 import dataclasses
-import io
 import math
 import statistics
 
@@ -23,7 +22,6 @@ import numpy as np
 from flexlink.analysis.mesh import DEFAULT_TOL, ORDER, MeshRule, mesh_for_tolerance  # noqa: F401 (re-exported)
 from flexlink.analysis.modal import analyze
 from flexlink.errors import NumericalError
-from flexlink.fileio import write_atomic
 from flexlink.scene import Scene
 from flexlink.analysis.solve import DENSE_LIMIT
 
@@ -244,32 +242,3 @@ def convergence_study(scene: Scene, n_modes: int, max_elements: int, repeats: in
                     for c, e, msg in refused],
     }
     return ConvergenceStudy(levels=levels, reference=ref, document=document)
-
-
-def plot_error_time(levels: list[Level], reference: np.ndarray, path, title: str = "") -> None:
-    """Log-log PNG of max relative discretisation error against median solve time, one line
-    per choice."""
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    errors = relative_errors(levels, reference).max(axis=1)
-    fig, ax = plt.subplots(figsize=(7, 5))
-    for choice in dict.fromkeys(l.choice for l in levels):
-        pick = [i for i, l in enumerate(levels) if l.choice == choice]
-        t = [levels[i].total_s for i in pick]
-        e = np.maximum(errors[pick], 1e-16)  # an exact match would vanish from a log axis
-        ax.loglog(t, e, "o-", label=choice.label)
-        for i in pick[::2]:
-            ax.annotate(str(levels[i].elements), (levels[i].total_s, max(errors[i], 1e-16)),
-                        fontsize=7, textcoords="offset points", xytext=(3, 3))
-    ax.set_xlabel("median wall time per solve, assembly + eigen solve [s]")
-    ax.set_ylabel("max relative frequency error vs Richardson reference")
-    ax.set_title(title or "error against run time (labels: elements per link)")
-    ax.grid(True, which="both", alpha=0.3)
-    ax.legend()
-    fig.tight_layout()
-    buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=120)
-    plt.close(fig)
-    write_atomic(path, buf.getvalue())

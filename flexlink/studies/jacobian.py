@@ -158,7 +158,7 @@ def log_frequency_sensitivities(load, values: np.ndarray, names: tuple[str, ...]
         for j, name in enumerate(names):
             key = (i, j)
             if name in LINEAR and key not in followers_cache:
-                followers_cache[key] = followers(lambda v: load(i, v), values, j,
+                followers_cache[key] = followers(lambda v, i=i: load(i, v), values, j,
                                                  [p.part for p in case.parts], elements)
             marks = followers_cache.get(key) if name in LINEAR else None
             if marks is not None and not all(

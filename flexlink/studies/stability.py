@@ -476,7 +476,8 @@ def units(scene: Scene) -> list[Check]:
              ("8d", "a bare number", {"section.width": 20}, "without a unit"))
     out = []
     for cid, what, overrides, needle in cases:
-        msg = _raises(lambda: load_scene(scene.path, overrides=overrides), InputError)
+        msg = _raises(lambda overrides=overrides: load_scene(scene.path, overrides=overrides),
+                      InputError)
         out.append(Check(cid, f"unit slip: {what} {overrides}",
                          f"InputError naming the field and '{needle}'", msg or "no error",
                          bool(msg and needle in msg)))
