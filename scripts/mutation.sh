@@ -46,6 +46,7 @@ if [ "${KEEP:-0}" != 1 ] || [ ! -d "$OUT/mutants" ]; then
 fi
 for item in flexlink tests "${extras[@]}" pyproject.toml; do
     # -p keeps the times: mutmut regenerates the mutants of a source newer than they are.
+    rm -rf "${OUT:?}/$item"
     [ -e "$ROOT/$item" ] && cp -rp "$ROOT/$item" "$OUT/"
 done
 # mutmut copies the tests into mutants/ only once; refresh them for a KEEP run.
