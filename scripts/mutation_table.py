@@ -2,6 +2,7 @@
 
     python mutation_table.py pick TARGET N SEED   N mutant names of TARGET drawn at random
     python mutation_table.py table TARGET         per-module counts of the mutants run so far
+    python mutation_table.py run JOBS NAME...     `mutmut run` without its clean test run
 
 TARGET is a package folder (flexlink/fe) or a module (flexlink/units.py). A random sample
 estimates the kill rate without mutmut's fastest-first order, which would favour mutants
@@ -85,9 +86,29 @@ def table(target: str) -> None:
     print(row(f"total {target}", total, total_wall))
 
 
+def run_without_clean_run(jobs: int, names: list[str]) -> None:
+    """`mutmut run --max-children JOBS NAME...` minus its first step, which runs every test
+    the named mutants select on the unmutated code. That step repeats the stats phase, which
+    itself fails unless the whole suite passes (mutmut runs it with -x), so right after a stats
+    phase on the same sources it costs a suite's time for nothing."""
+    import mutmut.__main__ as mutmut_main
+
+    make_runner = mutmut_main.get_mutant_runner
+
+    def runner_without_clean_run(*args, **kwargs):
+        runner = make_runner(*args, **kwargs)
+        runner.run_clean_tests = lambda tests: 0
+        return runner
+
+    mutmut_main.get_mutant_runner = runner_without_clean_run
+    mutmut_main.cli(["run", "--max-children", str(jobs), *names])
+
+
 if __name__ == "__main__":
     command, target, *rest = sys.argv[1:]
-    if command == "pick":
+    if command == "run":
+        run_without_clean_run(int(target), rest)
+    elif command == "pick":
         pick(target, int(rest[0]), int(rest[1]))
     else:
         table(target)
