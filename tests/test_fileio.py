@@ -174,3 +174,40 @@ def test_a_write_that_cannot_start_names_the_file_and_the_reason(tmp_path):
         write_atomic(blocker / "modes.json", "{}")
     with pytest.raises(OutputError, match=r"file/out"):
         prepare_out_dir(blocker / "out")
+
+
+def test_an_existing_folder_that_refuses_files_is_refused_before_any_work(tmp_path, monkeypatch):
+    """The probe file is what finds a folder that exists but takes no files (read-only, or a
+    folder of another user): mkdir(exist_ok=True) alone succeeds there. Root may write
+    anywhere, so the refusal is simulated at the probe."""
+    import tempfile
+
+    def refuse(*args, **kwargs):
+        raise PermissionError(13, "Permission denied")
+
+    monkeypatch.setattr(tempfile, "NamedTemporaryFile", refuse)
+    with pytest.raises(OutputError, match=rf"output folder {tmp_path} is not writable: "
+                                          "Permission denied"):
+        prepare_out_dir(tmp_path)
+
+
+def test_a_swap_failing_after_the_old_folder_moved_aside_puts_it_back(tmp_path, monkeypatch):
+    """The swap is two renames: target -> .old, stage -> target. If the second fails, the old
+    folder goes back under its name and nothing is left beside it."""
+    target = tmp_path / "scene"
+    target.mkdir()
+    (target / "modes.json").write_text("old")
+    real = os.replace
+
+    def replace(source, destination):
+        if str(source).endswith(".stage"):
+            raise OSError(18, "Invalid cross-device link")
+        return real(source, destination)
+
+    monkeypatch.setattr(os, "replace", replace)
+    with pytest.raises(OutputError, match="cannot replace .*Invalid cross-device link"):
+        with staged_folder(target) as stage:
+            (stage / "modes.json").write_text("new")
+    monkeypatch.undo()
+    assert (target / "modes.json").read_text() == "old"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["scene"]

@@ -4,12 +4,13 @@ one line per written file on stderr (the ``--json`` document lists them under ``
 
 from __future__ import annotations
 
+import io
 from pathlib import Path
 
 import click
 
 from flexlink.errors import InputError
-from flexlink.fileio import prepare_out_dir
+from flexlink.fileio import prepare_out_dir, write_atomic
 
 
 def scene_folders(out: Path, scene_paths) -> list[Path]:
@@ -29,6 +30,15 @@ def run_folder(out: Path, arguments) -> Path:
     name = "+".join(Path(a).stem if Path(a).suffix == ".toml" else Path(a).resolve().name
                     for a in arguments)
     return prepare_out_dir(Path(out) / name)
+
+
+def write_drawn(path: Path, draw) -> Path:
+    """Write the picture ``draw(file)`` renders (a matplotlib figure saved to a file object)
+    atomically: drawn into memory, then ``fileio.write_atomic``, so a failure while drawing
+    or writing leaves the old picture whole."""
+    buffer = io.BytesIO()
+    draw(buffer)
+    return write_atomic(path, buffer.getvalue())
 
 
 def announce(paths, quiet: bool) -> list[str]:

@@ -61,7 +61,7 @@ def command(scene_path, speeds, n_modes, poses, elements, tol, margin, harmonics
                                            critical_speeds, nearest_margin, plot_campbell)
     from flexlink.studies.tracking import events_json, tracked_map
     from ._progress import progress_bar
-    from ._written import announce, scene_folders
+    from ._written import announce, scene_folders, write_drawn
 
     window = parse_speeds(speeds)
     [folder] = scene_folders(prepare_out_dir(out_dir), [scene_path])
@@ -75,7 +75,8 @@ def command(scene_path, speeds, n_modes, poses, elements, tol, margin, harmonics
     nearest = nearest_margin(found, window, harmonics)
     labels = dict(enumerate(result.labels, start=1))
     paths = [folder / "campbell.png", folder / "campbell.csv", folder / "campbell.json"]
-    plot_campbell(found, window, margin, harmonics, critical, paths[0], scene.name, labels)
+    write_drawn(paths[0], lambda file: plot_campbell(found, window, margin, harmonics, critical,
+                                                     file, scene.name, labels))
     write_atomic(paths[1], critical_csv(critical, found))
     document = {"command": "campbell", "scene": scene.name,
                 "speeds_rev_per_min": [window[0] / RPM, window[1] / RPM], "margin": margin,

@@ -53,7 +53,7 @@ def command(scene_path, n_modes, poses, elements, tol, speed, margin, harmonics,
     from flexlink.scene import load_scene
     from flexlink.units import parse_quantity
     from ._progress import progress_bar
-    from ._written import announce, scene_folders
+    from ._written import announce, scene_folders, write_drawn
 
     [folder] = scene_folders(prepare_out_dir(out_dir), [scene_path])
     scene = load_scene(scene_path)
@@ -71,7 +71,10 @@ def command(scene_path, n_modes, poses, elements, tol, speed, margin, harmonics,
     hits = resonances(result, check_speed, margin, harmonics) if check_speed else []
     paths = [folder / "cycle.csv", folder / "cycle.png", folder / "cycle.json"]
     write_atomic(paths[0], tracked_csv(result) if track else modal_map_csv(result))
-    (plot_tracked if track else plot_map)(result, paths[1], check_speed, hits)
+    if track:
+        write_drawn(paths[1], lambda file: plot_tracked(result, file, check_speed, hits))
+    else:
+        plot_map(result, paths[1], check_speed, hits)
     f = result.frequencies
     document = {
         "command": "cycle", "scene": scene.name, "poses": poses,

@@ -250,10 +250,28 @@ def _table_rows(model: type[BaseModel]) -> list[str]:
         kind = unit.kind if unit and unit.kind != "-" else _type_text(field.annotation)
         if unit and unit.kind == "-":
             kind = "number (no unit)"
-        accepted = unit.range if unit else ""
+        accepted = _accepted(field, unit)
         text = (field.description or "").replace("|", "\\|")
         rows.append(f"| `{name}` | {kind} | {accepted} | {_default_text(field)} | {text} |")
     return rows
+
+
+def _tag_text(model: type[BaseModel]) -> str:
+    """" (type = 'general')" for one kind of a choice of tables, "" for a plain table."""
+    for name in ("type", "method"):
+        field = model.model_fields.get(name)
+        if field is not None and typing.get_origin(field.annotation) is typing.Literal:
+            return f" ({name} = {typing.get_args(field.annotation)[0]!r})"
+    return ""
+
+
+def _accepted(field, unit) -> str:
+    """The "accepted" column: the unit's range, and a list's least length."""
+    shortest = [m.min_length for m in field.metadata if type(m).__name__ == "MinLen"]
+    text = unit.range if unit else ""
+    if shortest:
+        text += ("; " if text else "") + f"at least {shortest[0]} item{'s' if shortest[0] > 1 else ''}"
+    return text
 
 
 def _sections(model: type[BaseModel], path: str, seen: set, out: list[str]):
@@ -262,8 +280,7 @@ def _sections(model: type[BaseModel], path: str, seen: set, out: list[str]):
         return
     seen.add(key)
     title = f"[{path}]" if path else "top level"
-    out += ["", f"### `{title}`" + (f" ({model.__name__})" if path.startswith("linkage")
-                                    and model.__name__.endswith("Linkage") else ""), ""]
+    out += ["", f"### `{title}`" + _tag_text(model), ""]
     if model.__doc__ and model is not schema.Table:
         out += [" ".join(model.__doc__.split()), ""]
     rows = _table_rows(model)

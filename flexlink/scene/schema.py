@@ -18,7 +18,7 @@ import math
 import typing
 from typing import Annotated, Literal
 
-from pydantic import (AfterValidator, BaseModel, BeforeValidator, ConfigDict, Field,
+from pydantic import (AfterValidator, BaseModel, BeforeValidator, ConfigDict, Field, StrictBool,
                       WithJsonSchema, model_validator)
 
 from flexlink.errors import InputError
@@ -245,7 +245,7 @@ class JointTable(Table):
                                    "families only).", default=None)
     mass: JOINT_MASS | None = doc("Lumped mass of the pin or bearing, on the joint's node.",
                                   default=None)
-    welded: bool = doc(
+    welded: StrictBool = doc(
         "Ground joint only: the beams meeting here are welded to each other and turn together "
         "in one bearing. Needed where one body is meshed as two or more beams meeting at its "
         "ground joint (a triangular rocker of two arms): without it each beam turns freely on "
