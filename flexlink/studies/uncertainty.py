@@ -71,9 +71,10 @@ def material_overrides(inputs: Inputs, values: dict[str, float]) -> dict:
         k: dataclasses.replace(c, **{p: values[f"{k}.{p}"] for p in PROPERTIES})
         for k, c in base.items()}
     beam = woven_composite(parts["fiber"], parts["matrix"], values["vf"])
-    return {"material": {"E": f"{beam.E!r} Pa", "G": f"{beam.G!r} Pa",
-                         "density": f"{beam.density!r} kg/m^3"},
-            "section.thickness": f"{values['thickness']!r} m"}
+    # float(): a NumPy scalar's repr is "np.float64(...)", which no scene file can read
+    return {"material": {"E": f"{float(beam.E)!r} Pa", "G": f"{float(beam.G)!r} Pa",
+                         "density": f"{float(beam.density)!r} kg/m^3"},
+            "section.thickness": f"{float(values['thickness'])!r} m"}
 
 
 def evaluate(paths, base_overrides: dict, inputs: Inputs, values: dict[str, float],

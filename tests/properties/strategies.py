@@ -100,7 +100,7 @@ class LinkageSpec:
     heading: float = 0.0
     mirror: bool = False
 
-    def placed(self, origin=(0.0, 0.0), heading=0.0, mirror=False) -> "LinkageSpec":
+    def placed(self, origin=(0.0, 0.0), heading=0.0, mirror=False) -> LinkageSpec:
         """The same linkage as a general scene, placed at ``origin`` with the ground line at
         ``heading`` and, with ``mirror``, reflected."""
         return dataclasses.replace(self, kind="general", origin=tuple(origin), heading=heading,
@@ -125,7 +125,7 @@ class LinkageSpec:
     @property
     def total_mass(self) -> float:
         """Links (rho A L) and joint masses [kg]."""
-        ground, crank, coupler, rocker = self.lengths
+        _, crank, coupler, rocker = self.lengths
         lengths = {"crank": crank, "coupler": coupler, "rocker": rocker}
         return (sum(self.density * self.sections[n].A * lengths[n] for n in lengths)
                 + sum(j.mass for j in self.joints.values()))
@@ -259,7 +259,7 @@ def joint_values(draw, scale_t: float, scale_r: float, scale_m: float, masses: b
 
 @st.composite
 def linkages(draw, kind=None, beam=None, drive=None, masses: bool = True,
-             elements=st.integers(2, 3)):
+             elements=None):
     """A ``LinkageSpec``: either scene kind, either beam theory, finite or rigid joints, joint
     masses, a rigid, finite or no drive; ``kind``, ``beam``, ``drive`` ("rigid", "finite",
     "none") pin one choice."""
@@ -279,7 +279,7 @@ def linkages(draw, kind=None, beam=None, drive=None, masses: bool = True,
     spec = LinkageSpec(lengths=lengths, crank_angle=theta, E=E, G=G, density=density,
                        sections=sec, joints=joints, drive=stiffness,
                        beam=beam or draw(st.sampled_from(("euler-bernoulli", "timoshenko"))),
-                       elements=draw(elements), branch=draw(st.sampled_from(("open", "crossed"))))
+                       elements=draw(st.integers(2, 3) if elements is None else elements), branch=draw(st.sampled_from(("open", "crossed"))))
     kind = kind or draw(st.sampled_from(("four-bar", "general")))
     if kind == "general":
         spec = spec.placed(*draw(placements()))

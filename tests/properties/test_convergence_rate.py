@@ -13,15 +13,16 @@
   mesh is refined; the rate lies between the axial elements' 2 and the bending elements' 4.
 """
 
+import itertools
 import math
 
 import numpy as np
 from hypothesis import given
 from hypothesis import strategies as st
+from strategies import cantilever_toml, fewer, linkages, load, log_uniform, write_scene
 
 from flexlink.analysis.modal import analyze
 from flexlink.scene import load_scene
-from strategies import cantilever_toml, fewer, linkages, load, log_uniform, write_scene
 
 BETA_L = (1.8751040687119611, 4.6940911329741746)  # cantilever roots of 1 + cos x cosh x = 0
 
@@ -84,7 +85,7 @@ def test_refining_an_euler_bernoulli_frame_never_raises_a_frequency(spec):
     scene = load(spec)
     f = {e: analyze(scene, 3, e).elastic_frequencies(3) for e in (2, 4, 8, 16)}
     e = sorted(f)
-    for coarse, fine in zip(e, e[1:]):
+    for coarse, fine in itertools.pairwise(e):
         # min-max on nested spaces: exact; 1e-12 only absorbs the eigen solve's round-off
         assert np.all(f[fine] <= f[coarse] * (1 + 1e-12)), (coarse, f[coarse], f[fine])
     rates = orders({k: f[k] for k in (4, 8, 16)})

@@ -12,12 +12,12 @@ import math
 import numpy as np
 from hypothesis import given
 from hypothesis import strategies as st
+from strategies import linkages, load
 
 from flexlink.analysis.identity import total_mass
 from flexlink.analysis.modal import analyze
 from flexlink.fe.assembly import assemble
 from flexlink.fe.energy import lumped_mass
-from strategies import linkages, load
 
 # Sums of a few dozen positive entries: round-off of a few eps.
 RTOL = 1e-12

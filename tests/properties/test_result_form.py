@@ -3,7 +3,6 @@ returned, every zero mode below them listed), finite, the same for any request s
 same numbers in the text table, the CSV file and the JSON document of ``flexlink modes``."""
 
 import csv
-import io
 import json
 import math
 import re
@@ -13,11 +12,11 @@ import numpy as np
 from click.testing import CliRunner
 from hypothesis import given
 from hypothesis import strategies as st
+from strategies import fewer, linkages, load, write_scene
 
 from flexlink.analysis.modal import MASSES, analyze
 from flexlink.analysis.solve import ELASTIC, MECHANISM
 from flexlink.cli import main
-from strategies import fewer, linkages, load, write_scene
 
 
 @given(linkages(), st.integers(1, 5), st.sampled_from(MASSES))

@@ -21,10 +21,19 @@ import dataclasses
 import numpy as np
 from hypothesis import given
 from hypothesis import strategies as st
+from strategies import (
+    GROUND,
+    JOINTS,
+    LINKS,
+    RIGID,
+    JointValues,
+    linkages,
+    load,
+    log_uniform,
+)
 
 from flexlink.analysis.modal import analyze
 from flexlink.analysis.solve import MECHANISM
-from strategies import GROUND, JOINTS, LINKS, RIGID, JointValues, linkages, load
 
 
 def rigid_freedoms(spec) -> int:
@@ -52,7 +61,7 @@ def rigid_freedoms(spec) -> int:
     rows = [np.zeros((0, 9))]
     for j, joint in spec.joints.items():
         if joint.Kt > 0:
-            rows.append(relative(lambda link: velocity(link, points[j]), j))
+            rows.append(relative(lambda link, p=points[j]: velocity(link, p), j))
         if joint.Kr > 0:
             rows.append(relative(rotation, j))
     if spec.drive is not None and spec.drive > 0:
@@ -63,15 +72,22 @@ def rigid_freedoms(spec) -> int:
 @st.composite
 def connections(draw):
     """A four-bar whose every joint has Kt and Kr each 0, finite or rigid, and a drive
-    absent, finite or rigid."""
+    absent, finite or rigid. Finite springs go down to 1e-4 of the link scale (Kt of
+    E A / L1, Kr and the drive of E I / L1): their modes then lie at about 1e-3 of the links'
+    own bending eigenvalue scale or above, three orders above the solver's mechanism
+    threshold (1e-6 of it), so every one of them must be labelled elastic."""
     spec = draw(linkages(elements=st.just(2)))
+    crank = spec.sections["crank"]
+    scale_t = spec.E * crank.A / spec.lengths[0]
+    scale_r = spec.E * crank.I / spec.lengths[0]
+    finite = log_uniform(1e-4, 1.0)
     joints = {}
     for name, joint in spec.joints.items():
-        Kt = draw(st.sampled_from((0.0, joint.Kt if joint.Kt < RIGID else spec.E * 1e-3, RIGID)))
-        Kr = draw(st.sampled_from((0.0, spec.E * spec.sections["crank"].I / spec.lengths[0],
-                                   RIGID)))
+        Kt = draw(st.sampled_from((0.0, draw(finite) * scale_t, RIGID)))
+        Kr = draw(st.sampled_from((0.0, draw(finite) * scale_r, RIGID)))
         joints[name] = JointValues(Kt, Kr, joint.mass)
-    return dataclasses.replace(spec, joints=joints)
+    drive = draw(st.sampled_from((None, draw(finite) * scale_r, RIGID)))
+    return dataclasses.replace(spec, joints=joints, drive=drive)
 
 
 @given(connections())

@@ -7,9 +7,9 @@ a general scene of bodies are one physical object and give the same answer."""
 import numpy as np
 from hypothesis import given
 from hypothesis import strategies as st
+from strategies import linkages, load, placements
 
 from flexlink.analysis.modal import MASSES, analyze
-from strategies import linkages, load, placements
 
 N_MODES = 3
 # Frequencies: the placed scene differs from the original only by the round-off of placing

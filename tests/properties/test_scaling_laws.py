@@ -12,6 +12,9 @@
   for the exact first-order law that the strain fractions give); a bound still holds: for
   s >= 1, rigid Kt, Kr zero or rigid, and joint masses times s, every eigenvalue lies
   between lambda / s^4 (all bending) and lambda / s^2 (all axial), i.e. f / s^2 <= f' <= f / s.
+- In-plane depth of the sections times s (A times s, I times s^3), Euler-Bernoulli links,
+  rigid Kt, Kr zero or rigid, no joint masses: K' = s K_axial + s^3 K_bending, M' = s M, so
+  for s >= 1 every frequency lies between f (all axial) and s f (all bending).
 - Out-of-plane size: an edgewise bar's thickness (or A and I together) times s, with springs
   and joint masses times s: K -> s K and M -> s M, so f does not change.
 """
@@ -22,9 +25,9 @@ import math
 import numpy as np
 from hypothesis import given
 from hypothesis import strategies as st
+from strategies import RIGID, JointValues, linkages, load, scaled
 
 from flexlink.analysis.modal import analyze
-from strategies import RIGID, JointValues, linkages, load, scaled
 
 N_MODES = 3
 # Each law is exact; the two models differ only by round-off in their inputs (the scene file
@@ -84,3 +87,20 @@ def test_longer_links_on_the_same_sections_lie_between_the_axial_and_bending_law
 @given(linkages(), factors)
 def test_the_out_of_plane_size_does_not_change_in_plane_frequencies(spec, s):
     assert_law(frequencies(spec), frequencies(scaled(spec, across=s, Kt=s, Kr=s, mass=s)), 1.0)
+
+
+@given(linkages(beam="euler-bernoulli", masses=False), st.floats(1.1, 4.0),
+       st.sampled_from((0.0, RIGID)))
+def test_deeper_sections_lie_between_the_axial_and_bending_laws(spec, s, kr):
+    """f <= f' <= s f for s >= 1 (Courant-Fischer on K' = s K_axial + s^3 K_bending,
+    M' = s M; the exact first-order law is in test_energy_identities)."""
+    joints = {n: JointValues(RIGID, kr, 0.0) for n in spec.joints}
+    spec = dataclasses.replace(spec, joints=joints,
+                               drive=None if spec.drive is None else RIGID)
+    f0, kinds0 = frequencies(spec)
+    f1, kinds1 = frequencies(scaled(spec, section=s))
+    assert kinds0 == kinds1
+    elastic = np.array([k == "elastic" for k in kinds0])
+    f0, f1 = f0[elastic], f1[elastic]
+    assert np.all(f1 >= f0 * (1 - RTOL))  # exact bounds; RTOL absorbs round-off
+    assert np.all(f1 <= s * f0 * (1 + RTOL))
