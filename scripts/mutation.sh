@@ -82,8 +82,19 @@ mv "$OUT/setup.cfg.new" "$OUT/setup.cfg"
 
 # The tests must import the mutated copy (mutants/flexlink), never this checkout nor the
 # editable install: mutmut puts mutants/ first on sys.path; PYTHONPATH says the same to any
-# subprocess a test starts.
-export PYTHONPATH="$OUT/mutants"
+# subprocess a test starts. An editable install still served some flexlink modules from its
+# own checkout within a mutmut run (the old text of a message came back), so a sitecustomize
+# removes its finders from every Python started here; flexlink then reads the shipped
+# materials from the copy's materials/ folder, as a source checkout does.
+mkdir -p "$OUT/site"
+cat > "$OUT/site/sitecustomize.py" <<'PY'
+import sys
+
+sys.meta_path[:] = [f for f in sys.meta_path if "_EditableFinder" not in repr(f)]
+sys.path_hooks[:] = [h for h in sys.path_hooks if "_EditableNamespaceFinder" not in repr(h)]
+sys.path_importer_cache.clear()
+PY
+export PYTHONPATH="$OUT/mutants:$OUT/site"
 mutmut() { (cd "$OUT" && nice -n "$NICE" "$PY" -m mutmut "$@"); }
 
 # Stats phase once for all targets. mutmut has no stats-only command: a name filter that
