@@ -82,11 +82,13 @@ mv "$OUT/setup.cfg.new" "$OUT/setup.cfg"
 
 # The tests must import the mutated copy (mutants/flexlink), never this checkout nor the
 # editable install: mutmut puts mutants/ first on sys.path; PYTHONPATH says the same to any
-# subprocess a test starts. An editable install still served some flexlink modules from its
-# own checkout within a mutmut run (the old text of a message came back), so a sitecustomize
-# removes its finders from every Python started here; flexlink then reads the shipped
-# materials from the copy's materials/ folder, as a source checkout does.
-mkdir -p "$OUT/site"
+# subprocess a test starts. The folder must exist before Python starts: Python caches a
+# missing sys.path folder as "nothing here" for the whole process, and the editable install
+# then served flexlink from the main checkout (the old text of a message came back). So a
+# sitecustomize also removes the editable install's finders from every Python started here,
+# which turns any such slip into an import error; flexlink then reads the shipped materials
+# from the copy's materials/ folder, as a source checkout does.
+mkdir -p "$OUT/site" "$OUT/mutants"
 cat > "$OUT/site/sitecustomize.py" <<'PY'
 import sys
 
