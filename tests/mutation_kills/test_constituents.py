@@ -87,7 +87,7 @@ poisson = { mean = 0.36 }
 
 
 def test_a_material_file_is_read_in_si_with_absent_spreads_zero(tmp_path):
-    path = tmp_path / "resin.toml"
+    path = tmp_path / "resin_batch_7.toml"  # the name inside wins over the file's
     path.write_text(GOOD)
     resin = load_constituent(path)
     assert (resin.name, resin.E, resin.G, resin.density, resin.poisson) == (
@@ -116,3 +116,32 @@ def test_a_material_file_missing_a_value_names_the_key_and_the_file(tmp_path, fi
     assert info.value.field == field
     assert info.value.source == str(path)
     assert info.value.expected  # says what would have been accepted
+
+
+@pytest.mark.parametrize("key", ["E", "density"])
+def test_a_spread_in_the_wrong_unit_kind_names_its_key(tmp_path, key):
+    path = tmp_path / "resin.toml"
+    path.write_text(GOOD.replace('spread = "0.1 GPa"' if key == "E" else 'spread = "0.01 g/cm^3"',
+                                 'spread = "2 mm"'))
+    with pytest.raises(InputError) as info:
+        load_constituent(path)
+    assert info.value.field == f"{key}.spread"
+
+
+def test_a_file_rewritten_within_one_clock_tick_is_read_again(tmp_path):
+    """Coarse file clocks give two writes the same mtime; the size tells them apart."""
+    import os
+
+    path = tmp_path / "resin.toml"
+    path.write_text(GOOD)
+    stamp = path.stat().st_mtime_ns
+    assert load_constituent(path).density == pytest.approx(1200.0)
+    path.write_text(GOOD.replace('mean = "1.2 g/cm^3"', 'mean = "1.25 g/cm^3"'))
+    os.utime(path, ns=(stamp, stamp))
+    assert load_constituent(path).density == pytest.approx(1250.0)
+
+
+def test_an_unknown_material_says_what_would_be_accepted():
+    with pytest.raises(InputError) as info:
+        load_constituent("unobtainium")
+    assert info.value.expected and "material" in info.value.expected
