@@ -25,7 +25,8 @@
 # the stats phase: use it only when that phase ran on the same sources, as it does without
 # KEEP), KEEP=1 reuses an existing scratch copy: its cached verdicts and stats stay, new test files
 # are copied in and only their stats are collected; a named package is always re-run.
-# Inside the scratch copy `python -m mutmut results`, `python -m mutmut show NAME` and
+# ONLY="flexlink/materials" runs only those of the mutated targets (with KEEP: the targets
+# of a scratch copy stay as first given). Inside the scratch copy `python -m mutmut results`, `python -m mutmut show NAME` and
 # `python -m mutmut tests-for-mutant NAME` explain any verdict.
 set -euo pipefail
 ROOT="$(cd "$(dirname "$0")/.." && pwd)"
@@ -107,7 +108,8 @@ mutmut run --max-children "$JOBS" "flexlink.__stats_only__" > "$OUT/stats.log" 2
 [ -s "$OUT/mutants/mutmut-stats.json" ] || { echo "stats phase failed: see $OUT/stats.log"; exit 1; }
 echo "setup (copy, mutant generation, stats over the suite): $(( $(date +%s) - start )) s"
 
-for t in "${targets[@]}"; do
+read -ra run_targets <<< "${ONLY:-${targets[*]}}"
+for t in "${run_targets[@]}"; do
     t="${t%/}"
     if [ -n "${SAMPLE:-}" ]; then
         mapfile -t names < <(cd "$OUT" && "$PY" "$ROOT/scripts/mutation_table.py" pick "$t" \
