@@ -5,11 +5,11 @@
 # studies, output).
 #
 # One scratch copy of the repository holds every mutant of the named packages. mutmut first
-# runs the whole suite once with every mutated function instrumented (its "stats" phase) and
-# records which tests reach which function, at any call depth; each mutant is then run against
-# only those tests, fastest first, stopping at the first failure. No test table is kept here.
-# Mutants in code no test reaches are counted as "no tests" (not killed): we do not use
-# mutate_only_covered_lines, which would drop them from the count.
+# runs the selected tests (TESTS, default the whole suite) once with every mutated function
+# instrumented (its "stats" phase) and records which tests reach which function, at any call
+# depth; each mutant is then run against only those tests, fastest first, stopping at the
+# first failure. Mutants in code no selected test reaches count as "no tests" (not killed):
+# mutate_only_covered_lines is not used, since it would drop them from the count.
 #
 # Then one `mutmut run 'PACKAGE.*'` per package, in order, so the small packages have
 # complete numbers first; SAMPLE=N runs N mutants per package drawn at random (SEED, default
@@ -17,16 +17,20 @@
 # After each package it prints, per module (scripts/mutation_table.py): mutants, checked,
 # killed (a timeout counts as killed, as in mutmut's own score), survived, no tests, other,
 # the kill rate over the checked mutants with its 95 % interval, and the module's wall time
-# (the sum of its mutants' run times; with JOBS=1 that is the wall time spent on it).
+# (the sum of its mutants' run times: the wall time spent on it when JOBS=1).
 #
-# Settings (environment): SAMPLE and SEED (above), JOBS mutants in parallel (default 1; the
-# machine is shared), NICE niceness (default 15), MUTATION_OUT the scratch folder (default /tmp/flexlink-mutation),
-# NO_CLEAN=1 skips mutmut's clean run of the selected tests before the mutants (a repeat of
-# the stats phase: use it only when that phase ran on the same sources, as it does without
-# KEEP), KEEP=1 reuses an existing scratch copy: its cached verdicts and stats stay, new test files
-# are copied in and only their stats are collected; a named package is always re-run.
-# ONLY="flexlink/materials" runs only those of the mutated targets (with KEEP: the targets
-# of a scratch copy stay as first given). Inside the scratch copy `python -m mutmut results`, `python -m mutmut show NAME` and
+# Settings (environment):
+#   TESTS     test files or folders mutmut may choose from (default: tests)
+#   SAMPLE    mutants per package drawn at random (SEED, default 1); unset: every mutant
+#   JOBS      mutants run in parallel (default 1: the machine is shared); NICE (default 15)
+#   MUTATION_OUT  the scratch folder (default /tmp/flexlink-mutation)
+#   KEEP=1    reuse the scratch copy: cached verdicts and stats stay, new tests are copied in
+#             and only their stats collected; the targets and TESTS must be as first given
+#   ONLY      a subset of the targets to run (with KEEP, e.g. ONLY=flexlink/materials)
+#   NO_CLEAN=1  skip mutmut's clean run of the selected tests before the mutants, which
+#             repeats the stats phase (that phase fails unless every selected test passes);
+#             only when the stats ran on the same sources, as without KEEP
+# Inside the scratch copy `python -m mutmut results`, `python -m mutmut show NAME` and
 # `python -m mutmut tests-for-mutant NAME` explain any verdict.
 set -euo pipefail
 ROOT="$(cd "$(dirname "$0")/.." && pwd)"
