@@ -43,7 +43,7 @@ def single_link(length, angle, E, density, depth, across, beam, Kt, Kr, drive, t
         "[linkage.guess]", f'P = ["{tip[0]!r} m", "{tip[1]!r} m"]',
         "[material]", f'E = "{E!r} Pa"', f'density = "{density!r} kg/m^3"',
         "[links.arm]", 'start = "O"', 'end = "P"',
-        f'section = {{ width = "{depth!r} m", thickness = "{across!r} m" }}',
+        f'section = {{ width = "{depth!r} m", thickness = "{across!r} m", bending = "edgewise" }}',
         "[joints.O]", f"Kt = {stiff(Kt, 'N/m')}", f"Kr = {stiff(Kr, 'N*m/rad')}",
         "[joints.P]", 'Kt = "rigid"', 'Kr = "rigid"', f'mass = "{tip_mass!r} kg"',
         "[mesh]", "elements_per_link = 4", "[model]", f'beam = "{beam}"']
