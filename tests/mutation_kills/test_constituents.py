@@ -2,7 +2,6 @@
 and the material file's schema. Written against mutants of flexlink/materials/mixtures.py that
 the suite let through (docs/testing.md, mutation testing)."""
 
-import math
 
 import pytest
 
