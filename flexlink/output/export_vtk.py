@@ -199,7 +199,8 @@ def modes_mesh(result: CaseResult, modes: ModeSet, fraction: float) -> meshio.Me
         "mode_numbers": np.asarray(modes.numbers, dtype=np.int64),
         "warp_scale": np.array([modes.scale(i, fraction) for i in range(len(modes.numbers))]),
         "theta2_deg": np.array([math.degrees(result.pose.theta2)]),
-        "mu_deg": np.array([math.degrees(result.pose.mu)]),
+        # a linkage with no transmission angle (a single rotor) has no mu to record
+        **({} if result.pose.mu is None else {"mu_deg": np.array([math.degrees(result.pose.mu)])}),
         **{f"{modes.label(i)}_frequency_Hz": np.array([float(modes.frequencies[i])])
            for i in range(len(modes.numbers))},
         **_name_fields(modes),

@@ -47,8 +47,8 @@ def frequency_plot(summary: dict, size: tuple[float, float] = (8.0, 5.0), dpi: i
     ax.set_xticks(modes, [f"mode {m}" for m in modes])
     ax.set_ylabel("natural frequency [Hz]")
     pose = summary["pose"]
-    ax.set_title(f"{summary['scene']}: \u03bc = {pose['mu_deg']:.1f} deg, "
-                 f"{summary['elements_per_link']} elements/link")
+    angle = "" if pose["mu_deg"] is None else f"\u03bc = {pose['mu_deg']:.1f} deg, "
+    ax.set_title(f"{summary['scene']}: {angle}{summary['elements_per_link']} elements/link")
     ax.grid(axis="y", which="both", alpha=0.3)
     ax.legend(loc="upper left", fontsize=9)
     buffer = io.BytesIO()
