@@ -41,7 +41,7 @@ from flexlink.kinematics.dynamics import rigid_motion
 from flexlink.scene import Scene
 from flexlink.studies.campbell import Band, CriticalSpeed, bands, critical_speeds
 from flexlink.studies.cycle import kinematic_cycle
-from flexlink.studies.operating_point import external_loads, link_bodies
+from flexlink.studies.operating_point import external_loads, link_motion
 from flexlink.studies.tracking import SPARE, track
 
 EXTRA = 8  # static modes in each pose's basis beyond the ones solved at speed
@@ -90,13 +90,7 @@ def reduce_pose(scene: Scene, state, topology, basis: int,
     column, n = reduced_columns(T, model.n_dofs)
     Kr, _ = assemble_reduced_dense(model, T)
     motion = rigid_motion(scene.linkage, state, 1.0, 0.0)  # every term at 1 rad/s
-    bodies = link_bodies(scene, topology.links)
-    index = {b: i for i, b in enumerate(motion.bodies)}
-    omega = np.array([motion.omega[index[b]] for b in bodies])
-    alpha = np.array([motion.alpha[index[b]] for b in bodies])
-    acc = np.empty((len(model.nodes), 2))
-    for link, body in zip(model.links, bodies):
-        acc[link.nodes] = motion.point_acceleration(body, model.nodes[link.nodes])
+    omega, alpha, acc = link_motion(scene, model, topology, motion)
 
     def reduce(rows, cols, vals):
         return dense_sum(dense_slots(column, n, rows, cols), vals, n)

@@ -162,7 +162,7 @@ def operating_modes(scene: Scene, speed: float, n_modes: int = 4,
                      transmission=pose_transmission_angles(scene.linkage, scene.transmission,
                                                            state.points))
     warnings = tuple(pose_warnings(scene.four_bar, pose) + model_warnings(model))
-    omega, alpha, acc = _link_motion(scene, model, topology, motion)
+    omega, alpha, acc = link_motion(scene, model, topology, motion)
     T = reduction(model)
     column, n = reduced_columns(T, model.n_dofs)
     reduce = _reducer(column, n, dense=n <= AUTO_DENSE_MAX)
@@ -196,7 +196,7 @@ def operating_modes(scene: Scene, speed: float, n_modes: int = 4,
         loads=loads, warnings=warnings)
 
 
-def _link_motion(scene: Scene, model: FrameModel, topology, motion: RigidMotion):
+def link_motion(scene: Scene, model: FrameModel, topology, motion: RigidMotion):
     """(omega, alpha) per link [rad/s, rad/s^2] and the rigid acceleration of every node
     (N, 2) [m/s^2]."""
     bodies = link_bodies(scene, topology.links)

@@ -30,7 +30,7 @@ from flexlink.fe.preload import axial_forces, inertia_loads, static_displacement
 from flexlink.fe.rotating import node_owners, rotating_entries
 from flexlink.kinematics.dynamics import rigid_motion
 from flexlink.scene import Scene
-from flexlink.studies.operating_point import _link_motion, _reduced_pair, _reducer, external_loads
+from flexlink.studies.operating_point import link_motion, _reduced_pair, _reducer, external_loads
 
 DEFAULT_DAMPING_RATIO = 0.01  # modal; light structural damping of bolted metal frames
 
@@ -116,7 +116,7 @@ def _pose_matrices(scene, topology, angle, T, n, reduce, basis, reference):
     K = K.toarray() if hasattr(K, "toarray") else K
     M = M.toarray() if hasattr(M, "toarray") else M
     K_ext = _geometric(model, K, T, reduce, external_loads(scene, model, topology, state))
-    omega, alpha, acc = _link_motion(scene, model, topology, rigid_motion(
+    omega, alpha, acc = link_motion(scene, model, topology, rigid_motion(
         scene.linkage, state, 1.0, 0.0))
     rows, cols, rot = rotating_entries(model, omega, alpha)
     G1 = reduce(rows, cols, rot[1])
