@@ -36,6 +36,7 @@ ARGS = {
     "report": [CASE1, "-e", "2", "-n", "2", "--cycle-poses", "0"],
     "schema": [],
     "stability": [CASE1],
+    "stability-map": [CASE1, "--speeds", "0:600 rev/min", "--count", "3", "-n", "2"],
     "torque": [CASE1, "--speed", "600 rev/min", "--poses", "8"],
 }
 
