@@ -139,3 +139,9 @@ def stop_on_signals(restore: bool = True) -> Iterator[None]:
             for s, handler in previous.items():
                 signal.signal(s, handler)
             _State.stopping = False
+        else:
+            # ignored at the OS level: the interpreter's own shutdown puts the default action
+            # back for a Python handler, so a signal arriving then would kill the process
+            # with no message after its work is done
+            for s in previous:
+                signal.signal(s, signal.SIG_IGN)
