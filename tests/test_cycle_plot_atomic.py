@@ -18,18 +18,20 @@ def small_map() -> ModalMap:
                     mechanism_counts=np.ones(12, dtype=int), mu90={"a/b": np.array([1.0])})
 
 
+def half_then_fail(self, fname, **kwargs):
+    """Figure.savefig that writes half a PNG, then fails as a dying renderer would."""
+    if hasattr(fname, "write"):
+        fname.write(b"\x89PNG half")
+    else:
+        with open(fname, "wb") as fh:
+            fh.write(b"\x89PNG half")
+    raise RuntimeError("renderer died")
+
+
 def test_a_drawing_that_fails_half_way_keeps_the_old_picture(tmp_path, monkeypatch):
     target = tmp_path / "case-cycle.png"
     target.write_bytes(b"old picture")
     real = Figure.savefig
-
-    def half_then_fail(self, fname, **kwargs):
-        if hasattr(fname, "write"):
-            fname.write(b"\x89PNG half")
-        else:
-            with open(fname, "wb") as fh:
-                fh.write(b"\x89PNG half")
-        raise RuntimeError("renderer died")
 
     monkeypatch.setattr(Figure, "savefig", half_then_fail)
     with pytest.raises(RuntimeError):
@@ -64,14 +66,6 @@ def test_tracked_and_campbell_pictures_are_written_atomically(tmp_path, monkeypa
                                                    3, [], path),
         "tracked.png": lambda path: plot_tracked(tracked, path),
     }
-
-    def half_then_fail(self, fname, **kwargs):
-        if hasattr(fname, "write"):
-            fname.write(b"\x89PNG half")
-        else:
-            with open(fname, "wb") as fh:
-                fh.write(b"\x89PNG half")
-        raise RuntimeError("renderer died")
 
     monkeypatch.setattr(Figure, "savefig", half_then_fail)
     for name, draw in draws.items():

@@ -9,6 +9,7 @@ import io
 import math
 
 from flexlink.studies.operating_point import ASSUMPTIONS, OperatingPoint
+from flexlink.units import percent_error
 
 RPM = 60.0 / (2 * math.pi)  # rev/min per rad/s
 
@@ -23,7 +24,7 @@ def operating_summary(op: OperatingPoint) -> dict:
             "mode": i + 1, "frequency_Hz": float(f), "growth_rate_1_s": float(rate),
             "growing": bool(grows), "static_mode": int(j) + 1, "static_Hz": float(static[i]),
             "divergent": bool(abs(op.modes.eigenvalues[i].imag) <= 1e-8 * abs(op.modes.eigenvalues[i])),
-            "change_Hz": float(f - static[i]), "change_pct": float(100 * (f / static[i] - 1)),
+            "change_Hz": float(f - static[i]), "change_pct": float(percent_error(f, static[i])),
             "mac": float(mac), "backward_error": float(op.modes.backward_errors[i])})
     largest = op.largest_axial
     terms = op.terms

@@ -57,7 +57,7 @@ def plot_stability(result, path, title: str) -> None:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from flexlink.fileio import write_atomic_with
+    from flexlink.output.figures import write_figure
 
     fig, ax = plt.subplots(figsize=(8, 4))
     ax.plot(result.speeds / RPM, result.largest_modulus, lw=1.2)
@@ -65,5 +65,4 @@ def plot_stability(result, path, title: str) -> None:
     for r in result.ranges:
         ax.axvspan(r.low / RPM, max(r.high, r.low + 1e-9) / RPM, color="tab:red", alpha=0.25)
     ax.set(xlabel="crank speed [rev/min]", ylabel="largest |Floquet multiplier|", title=title)
-    write_atomic_with(path, lambda f: fig.savefig(f, format="png", dpi=120))
-    plt.close(fig)
+    write_figure(fig, path)

@@ -128,7 +128,7 @@ def complex_mac(static_shapes: np.ndarray, shapes: np.ndarray, M) -> np.ndarray:
                             np.einsum("ij,ij->j", shapes.conj(), MX).real)
 
 
-def _reducer(column: np.ndarray, n: int, dense: bool):
+def reducer(column: np.ndarray, n: int, dense: bool):
     """entries (rows, cols, values) of a full-size matrix -> its n x n T^T A T, dense or
     sparse; ``column`` from ``assembly.reduced_columns`` (T only renumbers and drops DOFs)."""
     if dense:
@@ -165,8 +165,8 @@ def operating_modes(scene: Scene, speed: float, n_modes: int = 4,
     omega, alpha, acc = link_motion(scene, model, topology, motion)
     T = reduction(model)
     column, n = reduced_columns(T, model.n_dofs)
-    reduce = _reducer(column, n, dense=n <= AUTO_DENSE_MAX)
-    Kr, Mr = _reduced_pair(model, T, n, reduce)
+    reduce = reducer(column, n, dense=n <= AUTO_DENSE_MAX)
+    Kr, Mr = reduced_pair(model, T, n, reduce)
     loads = inertia_loads(model, acc, alpha) + external_loads(scene, model, topology, state)
     forces = axial_forces(model, static_displacement(Kr, T, loads))
     rows, cols, rot = rotating_entries(model, omega, alpha)
@@ -232,7 +232,7 @@ def external_loads(scene: Scene, model: FrameModel, topology, state) -> np.ndarr
     return f
 
 
-def _reduced_pair(model: FrameModel, T, n: int, reduce):
+def reduced_pair(model: FrameModel, T, n: int, reduce):
     """Reduced (K, M) of size ``n``, dense through ``assembly.assemble_reduced_dense`` for
     small models."""
     if n <= AUTO_DENSE_MAX:

@@ -30,7 +30,7 @@ from flexlink.fe.preload import axial_forces, inertia_loads, static_displacement
 from flexlink.fe.rotating import node_owners, rotating_entries
 from flexlink.kinematics.dynamics import rigid_motion
 from flexlink.scene import Scene
-from flexlink.studies.operating_point import link_motion, _reduced_pair, _reducer, external_loads
+from flexlink.studies.operating_point import external_loads, link_motion, reduced_pair, reducer
 
 DEFAULT_DAMPING_RATIO = 0.01  # modal; light structural damping of bolted metal frames
 
@@ -95,7 +95,7 @@ def periodic_model(scene: Scene, n_modes: int = 6, poses: int = 37,
     column, n = reduced_columns(T, model0.n_dofs)
     basis = np.zeros((n, n_modes))
     basis[column[column >= 0]] = static.shapes[np.ix_(column >= 0, static.elastic[:n_modes])]
-    reduce = _reducer(column, n, dense=True)
+    reduce = reducer(column, n, dense=True)
     angles = state0.q + 2.0 * np.pi * np.arange(poses) / poses
     out = np.empty((4, poses, n_modes, n_modes))
     for p, angle in enumerate(angles):
@@ -112,7 +112,7 @@ def _pose_matrices(scene, topology, angle, T, n, reduce, basis, reference):
     """(M, G1, K + K_ext, K2) at crank ``angle`` [rad] in ``basis`` of co-rotating DOFs."""
     state = scene.rigid_state(angle)
     model = pose_model(topology, state.points)
-    K, M = _reduced_pair(model, T, n, reduce)
+    K, M = reduced_pair(model, T, n, reduce)
     K = K.toarray() if hasattr(K, "toarray") else K
     M = M.toarray() if hasattr(M, "toarray") else M
     K_ext = _geometric(model, K, T, reduce, external_loads(scene, model, topology, state))
