@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Debian packages for the browser test of the HTML report (tests/test_report_browser.py):
+# Debian packages for the browser test of the HTML report (tests/output/test_report_browser.py):
 # headless Chromium, driven by playwright for Python through executable_path (playwright's own
 # browser download cannot work without the wider network, so it is never used). Installs only
 # what is missing; without them the browser test skips.

@@ -75,7 +75,7 @@ done
     echo "    -p"
     echo "    no:cacheprovider"
     echo "    --deselect"
-    echo "    tests/test_layout.py::test_one_module_per_public_name"
+    echo "    tests/project/test_layout.py::test_one_module_per_public_name"
 } > "$OUT/setup.cfg.new"
 # mutmut keeps the mutants of a module it no longer mutates in name only (it overwrites the
 # code with the plain source), so a KEEP run needs the same targets and settings.

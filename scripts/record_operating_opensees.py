@@ -1,5 +1,5 @@
 """Record OpenSeesPy's frequencies of two four-bars under their inertia preload at a crank speed,
-for tests/test_operating_opensees.py.
+for tests/studies/test_operating_opensees.py.
 
 Run when the preload or the frame model is meant to change (the test then fails until this is
 re-run):

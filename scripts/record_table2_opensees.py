@@ -1,4 +1,4 @@
-"""Record the four Table II cases' frequencies as computed by OpenSeesPy, for tests/test_table2_pin.py.
+"""Record the four Table II cases' frequencies as computed by OpenSeesPy, for tests/analysis/test_table2_pin.py.
 
 Run when the default model is meant to change (the pin test then fails until this is re-run):
     PYTHONPATH=. python scripts/record_table2_opensees.py

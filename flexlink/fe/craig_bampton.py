@@ -36,7 +36,7 @@ fixed-interface modes grow only like k^2. The truncated modes couple to the kept
 the mass matrix only, so their effect is put back (``truncation.corrected``) from a short series
 of 6 x 6 residual-flexibility matrices per link, computed once, with a few updates of each
 eigenvector; with it a basis of 3 times the highest frequency is within round-off of the full
-model (tests/test_craig_bampton.py).
+model (tests/fe/test_craig_bampton.py).
 
 Mode shapes: ``CraigBamptonPlan.shapes`` expands reduced eigenvectors to the full mesh (boundary
 DOFs plus each link's basis); the truncation correction refines eigenvalues only, so those

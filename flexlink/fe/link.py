@@ -10,7 +10,7 @@ The matrices come from the weak forms, assembled with scikit-fem for one unit-le
     bending  (Hermite): K = int EI w'' v'' dx,  M = int rhoA w v dx   (consistent mass)
 The Hermite element's nodal DOFs are the value w and the slope w' = rz, so the chain matches
 the textbook element (axial 2a/a with a = rhoA l/6, bending b(156, 22l, 54, -13l, 4l^2, -3l^2)
-with b = rhoA l/420, stiffness EA/l and EI/l^3 (12, 6l, 4l^2, 2l^2)); tests/test_elements.py
+with b = rhoA l/420, stiffness EA/l and EI/l^3 (12, 6l, 4l^2, 2l^2)); tests/fe/test_elements.py
 checks that against those closed forms. Only the rotation to the pose depends on the pose, so
 these matrices are built once per link and mesh (cached) and reused at every pose.
 """

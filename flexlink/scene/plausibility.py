@@ -127,7 +127,7 @@ def exact_timoshenko_drop(section, length: float) -> float:
     pinned-pinned beam [-] once shear strain and rotary inertia count, from the exact
     solutions of both theories (``fe.beams.timoshenko_pinned``, ``euler_bernoulli_pinned``),
     which flexlink's Timoshenko and Euler-Bernoulli elements converge to
-    (tests/test_timoshenko.py). Exact where ``timoshenko_drop`` is a first-order estimate, and
+    (tests/fe/test_timoshenko.py). Exact where ``timoshenko_drop`` is a first-order estimate, and
     a few microseconds: scenes are loaded thousands of times in a calibration."""
     return 1.0 - timoshenko_pinned(section, length) / euler_bernoulli_pinned(section, length)
 

@@ -58,7 +58,7 @@ def modal_map(scene: Scene, n_poses: int = 360, n_modes: int = 3,
     """The first ``n_modes`` elastic frequencies at ``n_poses`` input angles over the cycle.
 
     ``reduction``: as in ``sweep.modal_sweep``; by default the Craig-Bampton links
-    (tests/test_craig_bampton.py: within 1e-6 of the full model), None for the full model.
+    (tests/fe/test_craig_bampton.py: within 1e-6 of the full model), None for the full model.
     Links the reduction cannot take (``sweep.craig_bampton_refusal``) are solved on the full
     model, and the map's ``note`` says so (as it says when the scene's family is not planar:
     ``families.in_plane_only_note``).

@@ -26,7 +26,7 @@ case, about 90 % of a fit's cost. Here each mode's sensitivity comes from its sh
 
 The mode pairing is the residuals' own (``families.paired``, by order). A mode whose frequency
 the model did not find (its residual is the constant penalty) has a zero row. Agreement with a
-finite-difference Jacobian: tests/test_jacobian.py.
+finite-difference Jacobian: tests/studies/test_jacobian.py.
 """
 
 from __future__ import annotations

@@ -1,7 +1,7 @@
 """Numerical stability on stiff and extreme cases: each check states what it expects, what it
 got, and whether it passed. All start from one scene (a four-bar), changed one input at a time.
 
-Fast checks run in the test suite (tests/test_stability.py); the slow one (1e5 DOFs) runs from
+Fast checks run in the test suite (tests/studies/test_stability.py); the slow one (1e5 DOFs) runs from
 ``flexlink stability --slow`` and scripts/stability-slow.sh.
 """
 
@@ -39,7 +39,7 @@ ELEMENTS = DEFAULT_ELEMENTS  # every check is about the solver, not the mesh
 class Check:
     """One check: ``id`` a short descriptive name, what it ``expected`` and what it ``got`` (text
     for people), whether it ``passed``, and ``details``: the numbers it measured (SI units or
-    as named), for a judge that wants to see them (tests/test_stability.py judges them
+    as named), for a judge that wants to see them (tests/studies/test_stability.py judges them
     against its own closed forms and tolerances)."""
 
     id: str
