@@ -11,7 +11,8 @@ from flexlink.studies.stability_map import _nearest, periodic_model, stability_m
 @pytest.fixture(scope="module")
 def model():
     # a coarse mesh and few poses: the checks below are identities, not converged numbers
-    return periodic_model(load_scene(CASES_DIR / "case1.toml"), n_modes=3, poses=5,
+    # (13 poses: with 9 the interpolated stiffness turns indefinite between poses)
+    return periodic_model(load_scene(CASES_DIR / "case1.toml"), n_modes=3, poses=13,
                           elements_per_link=2)
 
 
@@ -19,11 +20,11 @@ def test_mass_is_constant_over_the_turn_in_co_rotating_coordinates(model):
     # A link's mass matrix only turns with the link; in co-rotating node coordinates it is the
     # same at every crank angle (to round-off, 1e-12 of the unit modal mass).
     assert np.allclose(model.mass, model.mass[0], atol=1e-12, rtol=0)
-    assert np.allclose(model.mass[0], np.eye(3), atol=1e-12)
+    assert np.allclose(model.mass[0], np.eye(model.mass.shape[1]), atol=1e-12)
 
 
 def test_reference_pose_is_diagonal_with_the_static_frequencies(model):
-    # the basis is the reference pose's mass-normalised static modes: K = diag(omega_i^2)
+    # the basis is given as the reference pose's Ritz vectors: K = diag(omega_i^2) there
     omega2 = (2 * np.pi * model.frequencies) ** 2
     assert np.allclose(model.stiffness[0], np.diag(omega2), rtol=0, atol=1e-9 * omega2.max())
 
