@@ -33,6 +33,7 @@ from flexlink.fe.pose import pose_model
 from flexlink.fe.preload import axial_forces, inertia_loads, static_displacement
 from flexlink.fe.rotating import node_owners, rotating_entries
 from flexlink.kinematics.dynamics import rigid_motion
+from flexlink.parallel import on_cluster, run_tasks, workers
 from flexlink.scene import Scene
 from flexlink.studies.operating_point import external_loads, link_motion, reduced_pair, reducer
 
@@ -251,36 +252,57 @@ class InstabilityRange:
     high: float
     modes: tuple[int, ...]
     harmonic: int
-    kind: str
+    kind: str  # "primary", "combination", or "divergence" (K + Omega^2 K2 indefinite)
     growth_rate: float
 
 
 @dataclasses.dataclass(frozen=True)
 class StabilityMap:
-    """Per speed [rad/s]: the largest multiplier modulus [-] and growth rate [1/s]."""
+    """Per speed [rad/s]: the largest multiplier modulus [-], growth rate [1/s] and stiffness
+    floor [(rad/s)^2] (``PeriodicModel.stiffness_floor``: negative where the frozen frame is
+    quasi-statically divergent at some crank angle)."""
 
     speeds: np.ndarray
     largest_modulus: np.ndarray
     growth_rate: np.ndarray
     ranges: tuple[InstabilityRange, ...]
+    stiffness_floor: np.ndarray
 
 
 def stability_map(model: PeriodicModel, speeds: np.ndarray, steps: int = 200,
-                  harmonics: int = 6, progress=None,
+                  harmonics: int = 6, progress: bool = False,
                   step_phase: float = STEP_PHASE) -> StabilityMap:
     """The largest Floquet multiplier over ``speeds`` [rad/s]. At zero speed the equations do
     not vary: nothing is parametrically excited, the modulus is 1 and the rate 0 by definition
-    (the damped modes decay). ``progress``: wraps the loop over speeds (a progress bar)."""
+    (the damped modes decay). The speeds go out in chunks through ``parallel.run_tasks``: in
+    this process, or on the dask cluster of ``parallel.use_scheduler`` (each speed is
+    computed alone, so the result is the same wherever it runs); ``progress``: a bar."""
     speeds = np.asarray(speeds, dtype=float)
+    # on a cluster a few chunks per worker; here one speed a chunk, for the bar
+    count = 4 * workers(n_jobs=1) if on_cluster() else len(speeds)
+    chunks = np.array_split(np.arange(len(speeds)), max(1, min(len(speeds), count)))
+    parts = run_tasks(_speed_chunk, [(model, speeds[c], steps, step_phase) for c in chunks],
+                      n_jobs=1, progress=progress, label="speed chunks")
+    modulus = np.concatenate([p[0] for p in parts])
+    rate = np.concatenate([p[1] for p in parts])
+    floor = np.array([model.stiffness_floor(w) for w in speeds])
+    return StabilityMap(speeds, modulus, rate,
+                        _ranges(model, speeds, modulus, rate, floor, harmonics), floor)
+
+
+def _speed_chunk(model: PeriodicModel, speeds: np.ndarray, steps: int, step_phase: float):
+    """(largest modulus, growth rate) at each of ``speeds`` [rad/s]."""
     modulus, rate = np.ones(len(speeds)), np.zeros(len(speeds))
-    for i in (progress or iter)(range(len(speeds))):
-        if speeds[i] > 0.0:
-            result = speed_multipliers(model, speeds[i], steps, step_phase)
+    for i, speed in enumerate(speeds):
+        if speed > 0.0:
+            result = speed_multipliers(model, speed, steps, step_phase)
             modulus[i], rate[i] = result.largest_modulus, result.growth_rate
-    return StabilityMap(speeds, modulus, rate, _ranges(model, speeds, modulus, rate, harmonics))
+    return modulus, rate
 
 
-def _ranges(model, speeds, modulus, rate, harmonics):
+def _ranges(model, speeds, modulus, rate, floor, harmonics):
+    """Runs of unstable speeds, each labelled with the nearest parametric resonance, or as a
+    "divergence" (no modes, harmonic 0) when the stiffness is indefinite somewhere in it."""
     unstable = np.concatenate([[False], modulus > 1.0, [False]])
     starts, ends = np.flatnonzero(np.diff(unstable.astype(int)) == 1), \
         np.flatnonzero(np.diff(unstable.astype(int)) == -1)
@@ -289,6 +311,8 @@ def _ranges(model, speeds, modulus, rate, harmonics):
         low, high = speeds[a], speeds[b - 1]
         middle = 0.5 * (low + high) / (2.0 * np.pi)  # rev/s
         modes, k, kind = _nearest(model.checked, middle, harmonics)
+        if floor[a:b].min() < 0.0:
+            modes, k, kind = (), 0, "divergence"
         out.append(InstabilityRange(float(low), float(high), modes, k, kind,
                                     float(rate[a:b].max())))
     return tuple(out)
