@@ -1,11 +1,12 @@
 """The linkage's periodic equations over one crank turn and the stability map built on them."""
 import numpy as np
 import pytest
+from scipy.linalg import eigh_tridiagonal
 from conftest import CASES_DIR
 
 from flexlink.errors import InputError
 from flexlink.scene import load_scene
-from flexlink.studies.stability_map import _nearest, periodic_model, stability_map
+from flexlink.studies.stability_map import PeriodicModel, _nearest, periodic_model, stability_map
 
 
 @pytest.fixture(scope="module")
@@ -69,3 +70,58 @@ def test_document_lists_instability_ranges(model):
     assert document["instability_ranges"] == []
     assert document["largest_modulus"][0] == 1.0
     assert stability_csv(result).count("\n") == 3
+
+
+def mathieu_model(speed_stiffness: float) -> PeriodicModel:
+    """One DOF, q'' + 2 zeta omega0 q' + (omega0^2 (1 + 0.3 cos theta) + Omega^2 K2) q = 0,
+    given directly (no basis): at crank speed Omega a Mathieu equation in theta."""
+    angles = 2 * np.pi * np.arange(9) / 9
+    omega0 = 2 * np.pi * 10.0
+    K = omega0**2 * (1 + 0.3 * np.cos(angles))
+    ones = np.ones((9, 1, 1))
+    return PeriodicModel(angles=angles, mass=ones, coriolis=0 * ones, stiffness=K[:, None, None],
+                         speed_stiffness=speed_stiffness * ones, frequencies=np.array([10.0]),
+                         damping_ratio=0.001)
+
+
+def hill_edges(epsilon: float) -> tuple[float, float]:
+    """The first tongue of q'' + delta (1 + epsilon cos t) q = 0: on an edge q is 4 pi periodic,
+    so delta / (1/4 ... ) are eigenvalues of Hill's tridiagonal matrix over odd half harmonics
+    n/2 with coupling epsilon delta / 2 (solved for delta by fixed-point iteration; the
+    truncation at |n| <= 41 is converged far below the test's tolerance)."""
+    n = np.arange(-41, 42, 2)
+    edges = []
+    for side in (0, 1):
+        delta = 0.25
+        for _ in range(60):
+            values = eigh_tridiagonal(n**2 / 4.0, np.full(n.size - 1, -epsilon * delta / 2),
+                                      eigvals_only=True)
+            delta = np.sort(values[np.argsort(np.abs(values - 0.25))[:2]])[side]
+        edges.append(delta)
+    return edges[0], edges[1]
+
+
+def test_mathieu_through_the_map_is_a_primary_range_at_twice_the_frequency():
+    # theta = Omega t: q'' + delta (1 + 0.3 cos theta) q = 0 in theta with delta =
+    # (omega0 / Omega)^2; the range is where delta lies inside Hill's first tongue
+    revs = np.linspace(17.0, 23.0, 241)  # 0.025 rev/s apart
+    result = stability_map(mathieu_model(0.0), 2 * np.pi * revs)
+    [found] = result.ranges
+    assert (found.modes, found.harmonic, found.kind) == ((1,), 1, "primary")
+    low_delta, high_delta = hill_edges(0.3)
+    # edges known to one grid step (damping 0.001 narrows the tongue by ~1e-4 of its width)
+    step = revs[1] - revs[0]
+    assert abs(found.low / (2 * np.pi) - 10 / np.sqrt(high_delta)) <= step
+    assert abs(found.high / (2 * np.pi) - 10 / np.sqrt(low_delta)) <= step
+    assert np.all(result.stiffness_floor > 0)
+
+
+def test_inertia_softening_past_the_stiffness_is_labelled_divergence():
+    # K2 = -0.1: K + Omega^2 K2 turns negative at the softest angle once
+    # Omega^2 > 0.7 omega0^2 / 0.1, Omega > 26.4 rev/s
+    revs = np.linspace(27.0, 35.0, 5)
+    result = stability_map(mathieu_model(-0.1), 2 * np.pi * revs)
+    assert np.all(result.stiffness_floor < 0)
+    assert np.all(result.largest_modulus > 1)  # diverging at every speed of the scan
+    assert [r.kind for r in result.ranges] == ["divergence"]
+    assert result.ranges[0].modes == () and result.ranges[0].harmonic == 0
