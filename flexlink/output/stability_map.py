@@ -104,11 +104,11 @@ def plot_stability(result, model, path, title: str, harmonics: int = 6) -> None:
         campbell.annotate(f"{k}x", (at, k * at / 60.0), fontsize=7, ha="right", va="bottom")
     modulus.semilogy(rpm, result.largest_modulus, lw=1.2, color="k")
     modulus.axhline(1.0, color="k", lw=0.6, ls="--")
-    for r in result.ranges:
+    half = 0.5 * float(np.median(np.diff(rpm))) if len(rpm) > 1 else 0.0
+    for r in result.ranges:  # each unstable speed stands for half a grid step either side
         colour = "0.5" if r.kind == "divergence" else "tab:red"
         for ax in (campbell, modulus):
-            ax.axvspan(r.low / RPM, max(r.high, r.low + 1e-9) / RPM, color=colour, alpha=0.25,
-                       lw=0)
+            ax.axvspan(r.low / RPM - half, r.high / RPM + half, color=colour, alpha=0.25, lw=0)
     campbell.set(ylim=(0, top), ylabel="frequency [Hz]",
                  title=f"{title}: unstable speed ranges over the Campbell diagram")
     campbell.legend(fontsize=7, loc="upper left")
