@@ -125,3 +125,14 @@ def test_inertia_softening_past_the_stiffness_is_labelled_divergence():
     assert np.all(result.largest_modulus > 1)  # diverging at every speed of the scan
     assert [r.kind for r in result.ranges] == ["divergence"]
     assert result.ranges[0].modes == () and result.ranges[0].harmonic == 0
+
+
+def test_even_pose_count_is_a_one_line_error(tmp_path):
+    from click.testing import CliRunner
+
+    from flexlink.cli import main
+    result = CliRunner().invoke(main, ["stability-map", str(CASES_DIR / "case1.toml"),
+                                       "--speeds", "0:3000 rev/min", "--poses", "36",
+                                       "--out", str(tmp_path)])
+    assert result.exit_code == 2
+    assert "--poses" in result.output and "Traceback" not in result.output
