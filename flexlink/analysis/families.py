@@ -23,15 +23,14 @@ from flexlink.analysis.modal import analyze
 from flexlink.analysis.outofplane import out_of_plane_solution, tilt_stiffnesses
 from flexlink.fe.formulation import FORMULATIONS, IN_PLANE_FORMULATION, OUT_OF_PLANE_FORMULATION
 from flexlink.fe.model import FrameModel
+from flexlink.fe.motions import ModelFamily, Part
 from flexlink.scene import Scene
 
-FAMILIES = ("planar", "out-of-plane", "3d")
 IN_PLANE, OUT_OF_PLANE = IN_PLANE_FORMULATION.part, OUT_OF_PLANE_FORMULATION.part
-PARTS = {"planar": (IN_PLANE,), "out-of-plane": (OUT_OF_PLANE,), "3d": (IN_PLANE, OUT_OF_PLANE)}
 
 
-def scene_family(scene: Scene) -> str:
-    return scene.options.family  # one of FAMILIES, checked by the scene schema
+def scene_family(scene: Scene) -> ModelFamily:
+    return scene.options.family
 
 
 def in_plane_only_note(scene: Scene, what: str) -> str | None:
@@ -39,9 +38,9 @@ def in_plane_only_note(scene: Scene, what: str) -> str | None:
     shapes, the report's shapes) holds other modes than the scene's family's; None when the
     family is planar."""
     family = scene_family(scene)
-    if family == "planar":
+    if family is ModelFamily.PLANAR:
         return None
-    return (f"model.family = {family!r}: {what} holds the in-plane modes only (built for the "
+    return (f"model.family = '{family}': {what} holds the in-plane modes only (built for the "
             "in-plane model; `flexlink modes` gives the family's modes at the scene's pose)")
 
 
@@ -51,7 +50,7 @@ class FamilyModes:
     (for OUT_OF_PLANE with its bearing springs), its elastic frequencies [Hz], ascending, and
     their shapes (model.n_dofs, k) in the model's DOFs."""
 
-    part: str
+    part: Part
     model: FrameModel
     frequencies: np.ndarray
     shapes: np.ndarray
@@ -74,7 +73,7 @@ def family_modes(scene: Scene, n_modes: int, elements: int | None = None,
                  method: str = "auto") -> tuple[FamilyModes, ...]:
     """The lowest ``n_modes`` elastic modes of each part of the scene's family."""
     out = []
-    for part in PARTS[scene_family(scene)]:
+    for part in scene_family(scene).parts:
         model, modes = SOLUTIONS[part](scene, n_modes, elements, method)
         elastic = modes.elastic[:n_modes]
         out.append(FamilyModes(part, model, modes.frequencies[elastic], modes.shapes[:, elastic]))
@@ -94,7 +93,7 @@ def paired(parts: tuple[FamilyModes, ...], n_modes: int
 
 
 def elastic_modes(scene: Scene, n_modes: int, elements: int | None = None,
-                  method: str = "auto") -> tuple[np.ndarray, tuple[str, ...]]:
+                  method: str = "auto") -> tuple[np.ndarray, tuple[Part, ...]]:
     """The lowest ``n_modes`` elastic frequencies [Hz] of the scene's family (NaN where fewer
     were found) and, per mode, whether it is an in-plane or out-of-plane mode."""
     parts = family_modes(scene, n_modes, elements, method)
@@ -102,13 +101,13 @@ def elastic_modes(scene: Scene, n_modes: int, elements: int | None = None,
     return freqs, tuple(parts[p].part for p, _ in pairs)
 
 
-def part_model(scene: Scene, part: str, elements: int | None = None) -> FrameModel:
+def part_model(scene: Scene, part: Part, elements: int | None = None) -> FrameModel:
     """The model ``family_modes`` solves for ``part`` of ``scene``, built without solving."""
     return FORMULATIONS[part].model(scene.topology(elements), scene.rigid_pose().joints,
                                     tilt_stiffnesses(scene))
 
 
-def quadratic_forms(part: str, model: FrameModel, shapes: np.ndarray
+def quadratic_forms(part: Part, model: FrameModel, shapes: np.ndarray
                     ) -> tuple[np.ndarray, np.ndarray]:
     """(s^T K s, s^T M s) for each column s of ``shapes`` (model.n_dofs, k) on ``part``'s K
     and M of ``model`` (finite springs only: rigid ones are constraints the shapes obey)."""

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import dataclasses
+import enum
 import functools
 import logging
 import time
@@ -11,6 +12,7 @@ from collections.abc import Mapping
 import numpy as np
 
 from flexlink.analysis.precision import refuse_too_fine
+from flexlink.choices import parse_choice
 from flexlink.analysis.solve import (AUTO_DENSE_MAX, LOST_LIMIT, ModalResult, lowest_elastic,
                                      require_elastic, solve_modes)
 from flexlink.fe.assembly import assemble, assemble_reduced_dense, reduction
@@ -23,7 +25,14 @@ from flexlink.scene.plausibility import model_warnings, pose_warnings
 
 log = logging.getLogger(__name__)
 
-MASSES = ("consistent", "lumped")
+
+
+class Mass(enum.StrEnum):
+    """The mass matrix: the element's own (consistent) or the HRZ diagonal (lumped,
+    ``energy.lumped_mass``)."""
+
+    CONSISTENT = "consistent"
+    LUMPED = "lumped"
 
 
 @dataclasses.dataclass(frozen=True)
@@ -41,7 +50,7 @@ class CaseResult:
 
 
 def pose_modes(topology: Topology, points: Mapping[str, tuple[float, float]], n_modes: int,
-               method: str = "auto", mass: str = "consistent", refine: bool = True
+               method: str = "auto", mass: Mass = Mass.CONSISTENT, refine: bool = True
                ) -> tuple[FrameModel, ModalResult, dict[str, float]]:
     """(model, modes, seconds) of ``topology`` with its joints at ``points`` [m]: the lowest
     ``n_modes`` elastic modes and every rigid-body/mechanism mode below them, labelled.
@@ -49,8 +58,6 @@ def pose_modes(topology: Topology, points: Mapping[str, tuple[float, float]], n_
     Refuses, before assembling, a mesh too fine for double precision
     (``precision.refuse_too_fine``), and asking for more elastic modes than the model has
     (``solve.require_elastic``). ``mass`` and ``refine`` as in ``analyze``."""
-    if mass not in MASSES:
-        raise ValueError(f"unknown mass {mass!r}: one of {MASSES}")
     t0 = time.perf_counter()
     refuse_too_fine(topology, points, LOST_LIMIT)
     model = pose_model(topology, points)
@@ -59,12 +66,12 @@ def pose_modes(topology: Topology, points: Mapping[str, tuple[float, float]], n_
     # Small models, which the dense solver takes anyway (solve.pick_method), are assembled
     # straight into dense reduced K and M: scipy.sparse's bookkeeping (COO -> CSR, T^T K T)
     # costs several times their eigen solve. Same matrices, same checks.
-    dense = mass == "consistent" and method in ("auto", "dense") and n <= AUTO_DENSE_MAX
+    dense = mass is Mass.CONSISTENT and method in ("auto", "dense") and n <= AUTO_DENSE_MAX
     if dense:
         K, M = assemble_reduced_dense(model, T)
     else:
         K, M = assemble(model)
-        if mass == "lumped":
+        if mass is Mass.LUMPED:
             M = lumped_mass(model)
     t1 = time.perf_counter()
     energy = (lambda shapes: twice_strain_energy(model, shapes)) if refine else None
@@ -76,13 +83,14 @@ def pose_modes(topology: Topology, points: Mapping[str, tuple[float, float]], n_
 
 
 def analyze(scene: Scene, n_modes: int = 4, elements_per_link: int | None = None,
-            method: str = "auto", mass: str = "consistent", refine: bool = True) -> CaseResult:
+            method: str = "auto", mass: Mass = Mass.CONSISTENT, refine: bool = True) -> CaseResult:
     """Natural frequencies of ``scene`` at its pose: the lowest ``n_modes`` elastic modes
     (plus any rigid-body/mechanism modes below them, labelled as such).
 
-    ``mass``: "consistent" (the element's own) or "lumped" (HRZ diagonal, ``energy.py``).
+    ``mass``: a ``Mass`` (its text accepted: "consistent" or "lumped").
     ``refine``: eigenvalues as Rayleigh quotients of the strain energy computed from element
     deformations (``energy.py``), so fine meshes are not limited by the round-off of K."""
+    mass = parse_choice(Mass, mass, "mass")
     pose = scene.rigid_pose()
     topology = scene.topology(elements_per_link)
     model, modes, seconds = pose_modes(topology, pose.joints, n_modes, method, mass, refine)

@@ -13,6 +13,7 @@ the round-off floor 100 eps lambda_max) are rigid-body or mechanism modes; they 
 from __future__ import annotations
 
 import dataclasses
+import enum
 import logging
 import warnings
 
@@ -30,7 +31,6 @@ DENSE_LIMIT = 4000  # DOFs; largest dense problem a sweep or a convergence study
 # (2026-11-22): dense 3.5 ms vs sparse 4.1 ms at 152 DOFs, 7.8 vs 5.2 ms at 296, 37 vs 7 ms at 584.
 AUTO_DENSE_MAX = 250
 DENSE_REFUSE = 20000  # DOFs; a dense solve would need > 3 GB and minutes: refused
-ELASTIC, MECHANISM = "elastic", "rigid-body/mechanism"
 LOST_LIMIT = 10.0  # eps lambda_max / lambda_1 beyond which the lowest mode shapes are lost
 SPARE_MODES = 4  # solved beyond the elastic modes asked for, for mechanism modes below them
 # The checks on every eigen answer (``check``, and ``stacked.stacked_modes`` for a stack):
@@ -40,6 +40,17 @@ ZERO_TOL = 1e-6  # modes below ZERO_TOL * lambda_ref are rigid-body/mechanism mo
 ROUNDOFF_WARN = 1e-6  # eps lambda_max / lambda_1 above this: warn (the default frequency tol)
 
 
+class ModeKind(enum.StrEnum):
+    """What a mode is: elastic, or a rigid-body/mechanism mode (eigenvalue below the zero
+    threshold), which must never be paired with a measured frequency."""
+
+    ELASTIC = "elastic"
+    MECHANISM = "rigid-body/mechanism"
+
+
+ELASTIC, MECHANISM = ModeKind.ELASTIC, ModeKind.MECHANISM
+
+
 @dataclasses.dataclass(frozen=True)
 class ModalResult:
     """Lowest modes of a model. eigenvalues [rad^2/s^2], frequencies [Hz], shapes (n_full, k)."""
@@ -47,7 +58,7 @@ class ModalResult:
     eigenvalues: np.ndarray
     frequencies: np.ndarray
     shapes: np.ndarray
-    kinds: tuple[str, ...]
+    kinds: tuple[ModeKind, ...]
     residuals: np.ndarray
     backward_errors: np.ndarray
     orthogonality_error: float
@@ -330,7 +341,7 @@ def refined_eigenvalues(vals, shapes, energy, lambda_ref: float, lambda_max: flo
 
 
 def label(vals, zero: float, lambda_ref: float, zero_tol: float, refined: bool,
-          lambda_max: float) -> tuple[str, ...]:
+          lambda_max: float) -> tuple[ModeKind, ...]:
     """ELASTIC or MECHANISM per eigenvalue: below ``zero`` [rad^2/s^2] a mode is a rigid-body
     or mechanism mode. Unrefined eigenvalues between the physical threshold
     ``zero_tol * lambda_ref`` and ``zero`` (the round-off floor) cannot be told apart from a

@@ -39,6 +39,22 @@ class FiniteFloatRange(click.FloatRange):
         return super().convert(number, param, ctx)
 
 
+class EnumChoice(click.Choice):
+    """click's Choice over the values of an enum ``kind``, giving its member: the edge where a
+    command-line choice becomes the enum the stages compare. ``none``: one more word (such as
+    "auto"), given as None (the stage then picks)."""
+
+    def __init__(self, kind, none: str | None = None):
+        self.kind, self.none = kind, none
+        super().__init__(([none] if none else []) + [member.value for member in kind])
+
+    def convert(self, value, param, ctx):
+        if isinstance(value, self.kind):
+            return value
+        text = super().convert(value, param, ctx)
+        return None if text == self.none else self.kind(text)
+
+
 TOLERANCE = FiniteFloatRange(0, 1, min_open=True)  # a relative frequency tolerance, in (0, 1]
 
 

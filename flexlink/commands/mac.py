@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import click
 
-from flexlink.commands._options import dumps, json_option, out_option
+from flexlink.commands._options import EnumChoice, dumps, json_option, out_option
+from flexlink.fe.motions import Part
 
 
 @click.command("mac")
@@ -17,7 +18,7 @@ from flexlink.commands._options import dumps, json_option, out_option
                    "`flexlink modes`].")
 @click.option("--elements-b", default=None, type=click.IntRange(1, 100000),
               help="Elements per link of B, to compare two meshes of one scene.")
-@click.option("--family", type=click.Choice(["auto", "in-plane", "out-of-plane"]),
+@click.option("--family", type=EnumChoice(Part, none="auto"),
               default="auto", show_default=True,
               help="Model family whose modes are compared: auto = the family both scenes "
                    "declare (model.family planar -> in-plane); a comparison across families "

@@ -29,6 +29,7 @@ def command(scenes, n_modes, elements, method, tol, sensitivity, samples, seed, 
     every scene when there are several. With --speed: the modes about the rigid motion at that
     crank speed beside the static ones, in OUT/<scene>/modes_at_speed.json and .csv."""
     from flexlink.analysis.families import elastic_modes, scene_family
+    from flexlink.fe.motions import ModelFamily
     from flexlink.fileio import prepare_out_dir, write_atomic
     from flexlink.output.report import case_summary, comparison_csv, format_case
     from flexlink.scene import scene_files
@@ -51,7 +52,7 @@ def command(scenes, n_modes, elements, method, tol, sensitivity, samples, seed, 
             try:
                 scene, mesh, result = analysed_scene(path, n_modes, elements, tol, method)
                 family = scene_family(scene)
-                other = {} if family == "planar" else dict(zip(
+                other = {} if family is ModelFamily.PLANAR else dict(zip(
                     ("computed", "kinds"), elastic_modes(scene, n_modes, mesh.elements, method)))
                 summary = {**case_summary(result, n_modes, family, **other),
                            "mesh": mesh.as_dict(), "warnings": list(result.warnings)}

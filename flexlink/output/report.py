@@ -13,6 +13,7 @@ import numpy as np
 from flexlink.analysis.damping import damping_ratios
 from flexlink.analysis.identity import DIRECTIONS, mode_identity, participating_mass, total_mass
 from flexlink.analysis.modal import CaseResult
+from flexlink.analysis.solve import ELASTIC
 from flexlink.units import percent_error
 
 
@@ -62,7 +63,7 @@ def case_summary(result: CaseResult, n_modes: int, family: str = "planar", compu
     kinds of a model family other than the planar one of ``result`` (see ``families.py``)."""
     scene, pose, modes = result.scene, result.pose, result.modes
     rows = comparison_rows(result, n_modes, computed, kinds)
-    mechanism = [float(f) for f, k in zip(modes.frequencies, modes.kinds) if k != "elastic"]
+    mechanism = [float(f) for f, k in zip(modes.frequencies, modes.kinds) if k != ELASTIC]
     return {
         "scene": scene.name,
         "file": scene.path,

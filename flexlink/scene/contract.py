@@ -15,6 +15,7 @@ import numpy as np
 
 from flexlink.errors import InputError
 from flexlink.fe.model import DriveSpec, JointSpec, LinkSpec, Section, Topology
+from flexlink.fe.motions import ModelFamily
 from flexlink.kinematics import FourBar, Linkage, State
 from flexlink.scene.source import Assumption
 
@@ -62,7 +63,7 @@ class PrbOptions:
 class Options:
     """The stages' declared options (``schema.py`` documents each)."""
 
-    family: str = "planar"  # model family
+    family: ModelFamily = ModelFamily.PLANAR
     crank_speed: float | None = None  # [rad/s]
     crank_acceleration: float | None = None  # [rad/s^2], only with crank_speed
     plausibility: str = "error"

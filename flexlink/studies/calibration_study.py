@@ -14,6 +14,7 @@ import numpy as np
 from flexlink import logbook
 from flexlink.analysis.families import scene_family
 from flexlink.errors import InputError
+from flexlink.fe.motions import ModelFamily
 from flexlink.meshes import FIT_ELEMENTS
 from flexlink.scene import load_scene
 from flexlink.studies.array_shapes import check_shape
@@ -27,7 +28,8 @@ from flexlink.studies.uncertainty import (Inputs, MonteCarlo, Sensitivities, mon
 
 # inputs with no effect on a family are left out of its default free set (they could not be
 # identified: zero Jacobian column)
-NOT_IN_FAMILY = {"planar": {"Ktilt"}, "out-of-plane": {"Kr", "drive"}, "3d": set()}
+NOT_IN_FAMILY = {ModelFamily.PLANAR: {"Ktilt"}, ModelFamily.OUT_OF_PLANE: {"Kr", "drive"},
+                 ModelFamily.THREE_D: set()}
 DEFAULT_TILT = "Ktilt=1e-2 N*m/rad:1e5 N*m/rad"
 # the comparisons of a study, each a table of errors [%] per case and mode
 COMPARISONS = ("assumed_inputs_vs_Ex", "calibrated_to_Ex_in_sample", "cross_validated_vs_Ex",
@@ -35,7 +37,7 @@ COMPARISONS = ("assumed_inputs_vs_Ex", "calibrated_to_Ex_in_sample", "cross_vali
                "per_case_fit_in_sample")
 
 
-def default_free(family: str) -> tuple[FreeParameter, ...]:
+def default_free(family: ModelFamily) -> tuple[FreeParameter, ...]:
     specs = [parse_free(s) for s in (*DEFAULT_FREE, DEFAULT_TILT)]
     return tuple(p for p in specs if p.name not in NOT_IN_FAMILY[family])
 
@@ -138,7 +140,7 @@ class CalibrationStudy:
     Frequencies [Hz] and errors [%] are arrays (cases, n_modes); ``free_nominal`` [SI] is each
     free input's assumed value in the first scene (inf for a rigid one)."""
 
-    family: str
+    family: ModelFamily
     files: tuple[str, ...]
     settings: StudySettings
     free: tuple[FreeParameter, ...]
@@ -179,12 +181,12 @@ class CalibrationStudy:
         return tuple(case_label(p) for p in self.files)
 
 
-def study_families(names, files) -> list[str]:
-    """The model families ``names`` once each, in order; "scene" stands for the first scene
+def study_families(names, files) -> list[ModelFamily]:
+    """The model families ``names`` once each, in order; None stands for the first scene
     file's own [model] family."""
     chosen = []
     for name in names:
-        name = scene_family(load_scene(files[0])) if name == "scene" else name
+        name = scene_family(load_scene(files[0])) if name is None else name
         if name not in chosen:
             chosen.append(name)
     return chosen
@@ -212,7 +214,7 @@ def _uncertainty(paths, overrides, s: StudySettings, reference) -> UncertaintySu
                               reference=reference)
 
 
-def run_study(paths, family: str, free: tuple[FreeParameter, ...] | None,
+def run_study(paths, family: ModelFamily, free: tuple[FreeParameter, ...] | None,
               settings: StudySettings) -> CalibrationStudy:
     """Everything the report needs for one family (see the module docstring). The model's
     warnings over the study's thousands of evaluations are summarised in one line at its end.
@@ -221,7 +223,7 @@ def run_study(paths, family: str, free: tuple[FreeParameter, ...] | None,
         return _study(tuple(str(p) for p in paths), family, free, settings)
 
 
-def _study(paths: tuple[str, ...], family: str, free, s: StudySettings) -> CalibrationStudy:
+def _study(paths: tuple[str, ...], family: ModelFamily, free, s: StudySettings) -> CalibrationStudy:
     free = free or default_free(family)
     base = Problem(scenes=paths, parameters=free, reference="Ex", elements=s.elements,
                    fixed=(("model.family", family),))

@@ -20,10 +20,11 @@ from flexlink.analysis.modal import analyze
 from flexlink.analysis.outofplane import analyze_out_of_plane
 from flexlink.errors import InputError
 from flexlink.fe.model import FrameModel
+from flexlink.fe.motions import ModelFamily, Part
 from flexlink.fe.pose import pose_model
 from flexlink.scene import Scene
 
-FAMILY_OF_SCENE = {"planar": IN_PLANE, "out-of-plane": OUT_OF_PLANE}  # "3d" holds both
+FAMILY_OF_SCENE = {ModelFamily.PLANAR: IN_PLANE, ModelFamily.OUT_OF_PLANE: OUT_OF_PLANE}  # 3d: both
 
 
 @dataclasses.dataclass(frozen=True)
@@ -49,21 +50,18 @@ class ShapeComparison:
     b: Side
     mac: np.ndarray
     pairs: tuple[tuple[int, int, float], ...]
-    family: str = IN_PLANE
+    family: Part = IN_PLANE
 
 
-def mac_family(scene_a: Scene, scene_b: Scene, requested: str = "auto") -> str:
-    """The family to compare: ``requested`` ("in-plane" or "out-of-plane": every scene has both
-    models), or with "auto" the family both scenes declare in ``model.family``."""
-    if requested in (IN_PLANE, OUT_OF_PLANE):
+def mac_family(scene_a: Scene, scene_b: Scene, requested: Part | None = None) -> Part:
+    """The part to compare: ``requested`` (every scene has both models), or with None the part
+    of the family both scenes declare in ``model.family``."""
+    if requested is not None:
         return requested
-    if requested != "auto":
-        raise InputError(f"got {requested!r}", source="command line", field="--family",
-                         expected=f"auto, {IN_PLANE} or {OUT_OF_PLANE}")
     declared = [(s.path, s.options.family) for s in (scene_a, scene_b)]
     for path, family in declared:
         if family not in FAMILY_OF_SCENE:
-            raise InputError(f"model.family = {family!r} holds both the in-plane and the "
+            raise InputError(f"model.family = '{family}' holds both the in-plane and the "
                              "out-of-plane modes, which MAC cannot compare with each other",
                              source=path, field="model.family",
                              expected=f"--family {IN_PLANE} or --family {OUT_OF_PLANE}")
@@ -101,7 +99,7 @@ SIDES = {IN_PLANE: _in_plane, OUT_OF_PLANE: _out_of_plane}
 
 def compare_scenes(scene_a: Scene, scene_b: Scene, n_modes: int, elements_a: int | None,
                    elements_b: int | None, per_link: int = STATIONS,
-                   family: str = IN_PLANE) -> ShapeComparison:
+                   family: Part = IN_PLANE) -> ShapeComparison:
     """The lowest ``n_modes`` elastic modes of ``family`` of both scenes at their poses,
     compared at ``per_link`` + 1 stations along each link (the scenes must name the same
     links)."""

@@ -174,7 +174,7 @@ def free_crank(scene: Scene) -> Check:
                  "shifted by a vanishing drive spring k_d by k_d phi_d^2 / (2 lambda) (first order, "
                  "within 1 %), and M-orthogonal to the mechanism mode (1e-8)",
                  f"{n_mech} mechanism mode(s) ({r.frequencies[0]:.1e} Hz), labelled "
-                 f"{r.kinds[0]!r}; elastic shift by the weak drive max {np.abs(change).max():.1e}, "
+                 f"'{r.kinds[0]}'; elastic shift by the weak drive max {np.abs(change).max():.1e}, "
                  f"first-order prediction max {np.abs(expected).max():.1e}; M-coupling "
                  f"{cross:.1e}", passed,
                  {"elastic_Hz": el.tolist(), "mechanism_modes": n_mech, "kinds": list(r.kinds),
