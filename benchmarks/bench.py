@@ -258,6 +258,7 @@ def scaling_point(spans: int) -> dict:
     from flexlink.fe.assembly import assemble, reduction
     from flexlink.fe.energy import twice_strain_energy
     from flexlink.fe.model import build_model
+    from flexlink.analysis.eigensolver import EigenSolver
     from flexlink.analysis.solve import solve_modes
     from flexlink.studies.stability import LONG_SPANS, graded_spans
 
@@ -268,7 +269,7 @@ def scaling_point(spans: int) -> dict:
         model = build_model(topology, points)
         K, M = assemble(model)
         return solve_modes(K, M, N_MODES, T=reduction(model), lambda_ref=in_plane_eigen_scale(model),
-                           method="sparse", energy=lambda U: twice_strain_energy(model, U))
+                           solver=EigenSolver("sparse"), energy=lambda U: twice_strain_energy(model, U))
 
     solve(2)  # load the code paths first
     rss = lambda key: int(next(line.split()[1] for line in  # noqa: E731  [kB]

@@ -19,6 +19,7 @@ import dataclasses
 
 import numpy as np
 
+from flexlink.analysis.eigensolver import DEFAULT_SOLVER, EigenSolver
 from flexlink.analysis.modal import analyze
 from flexlink.analysis.outofplane import out_of_plane_solution, tilt_stiffnesses
 from flexlink.fe.formulation import FORMULATIONS, IN_PLANE_FORMULATION, OUT_OF_PLANE_FORMULATION
@@ -56,25 +57,25 @@ class FamilyModes:
     shapes: np.ndarray
 
 
-def _in_plane_solution(scene: Scene, n_modes: int, elements: int | None, method: str):
-    case = analyze(scene, n_modes, elements, method)  # with the scene's plausibility warnings
+def _in_plane_solution(scene: Scene, n_modes: int, elements: int | None, solver: EigenSolver):
+    case = analyze(scene, n_modes, elements, solver)  # with the scene's plausibility warnings
     return case.model, case.modes
 
 
-def _out_of_plane_solution(scene: Scene, n_modes: int, elements: int | None, method: str):
+def _out_of_plane_solution(scene: Scene, n_modes: int, elements: int | None, solver: EigenSolver):
     return out_of_plane_solution(scene.topology(elements), scene.rigid_pose().joints,
-                                 tilt_stiffnesses(scene), n_modes, method)
+                                 tilt_stiffnesses(scene), n_modes, solver)
 
 
 SOLUTIONS = {IN_PLANE: _in_plane_solution, OUT_OF_PLANE: _out_of_plane_solution}
 
 
 def family_modes(scene: Scene, n_modes: int, elements: int | None = None,
-                 method: str = "auto") -> tuple[FamilyModes, ...]:
+                 solver: EigenSolver = DEFAULT_SOLVER) -> tuple[FamilyModes, ...]:
     """The lowest ``n_modes`` elastic modes of each part of the scene's family."""
     out = []
     for part in scene_family(scene).parts:
-        model, modes = SOLUTIONS[part](scene, n_modes, elements, method)
+        model, modes = SOLUTIONS[part](scene, n_modes, elements, solver)
         elastic = modes.elastic[:n_modes]
         out.append(FamilyModes(part, model, modes.frequencies[elastic], modes.shapes[:, elastic]))
     return tuple(out)
@@ -93,10 +94,10 @@ def paired(parts: tuple[FamilyModes, ...], n_modes: int
 
 
 def elastic_modes(scene: Scene, n_modes: int, elements: int | None = None,
-                  method: str = "auto") -> tuple[np.ndarray, tuple[Part, ...]]:
+                  solver: EigenSolver = DEFAULT_SOLVER) -> tuple[np.ndarray, tuple[Part, ...]]:
     """The lowest ``n_modes`` elastic frequencies [Hz] of the scene's family (NaN where fewer
     were found) and, per mode, whether it is an in-plane or out-of-plane mode."""
-    parts = family_modes(scene, n_modes, elements, method)
+    parts = family_modes(scene, n_modes, elements, solver)
     freqs, pairs = paired(parts, n_modes)
     return freqs, tuple(parts[p].part for p, _ in pairs)
 

@@ -13,8 +13,9 @@ import numpy as np
 
 from flexlink.analysis.precision import refuse_too_fine
 from flexlink.choices import parse_choice
-from flexlink.analysis.solve import (AUTO_DENSE_MAX, LOST_LIMIT, ModalResult, lowest_elastic,
-                                     require_elastic, solve_modes)
+from flexlink.analysis.eigensolver import DEFAULT_SOLVER, EigenSolver
+from flexlink.analysis.solve import (LOST_LIMIT, ModalResult, lowest_elastic, require_elastic,
+                                     solve_eliminated_modes, solve_modes)
 from flexlink.fe.assembly import assemble, assemble_reduced_dense, reduction
 from flexlink.fe.energy import lumped_mass, twice_strain_energy
 from flexlink.fe.model import FrameModel, Topology
@@ -50,8 +51,8 @@ class CaseResult:
 
 
 def pose_modes(topology: Topology, points: Mapping[str, tuple[float, float]], n_modes: int,
-               method: str = "auto", mass: Mass = Mass.CONSISTENT, refine: bool = True
-               ) -> tuple[FrameModel, ModalResult, dict[str, float]]:
+               solver: EigenSolver = DEFAULT_SOLVER, mass: Mass = Mass.CONSISTENT,
+               refine: bool = True) -> tuple[FrameModel, ModalResult, dict[str, float]]:
     """(model, modes, seconds) of ``topology`` with its joints at ``points`` [m]: the lowest
     ``n_modes`` elastic modes and every rigid-body/mechanism mode below them, labelled.
 
@@ -63,37 +64,39 @@ def pose_modes(topology: Topology, points: Mapping[str, tuple[float, float]], n_
     model = pose_model(topology, points)
     T = reduction(model)
     n = model.n_dofs if T is None else T.shape[1]
-    # Small models, which the dense solver takes anyway (solve.pick_method), are assembled
-    # straight into dense reduced K and M: scipy.sparse's bookkeeping (COO -> CSR, T^T K T)
+    # Small models, which the dense solver takes anyway, are assembled straight into dense
+    # K and M with the constraints eliminated: scipy.sparse's bookkeeping (COO -> CSR, T^T K T)
     # costs several times their eigen solve. Same matrices, same checks.
-    dense = mass is Mass.CONSISTENT and method in ("auto", "dense") and n <= AUTO_DENSE_MAX
-    if dense:
+    if mass is Mass.CONSISTENT and solver.assembles_dense(n):
+        solve_model = solve_eliminated_modes
         K, M = assemble_reduced_dense(model, T)
     else:
+        solve_model = solve_modes
         K, M = assemble(model)
         if mass is Mass.LUMPED:
             M = lumped_mass(model)
     t1 = time.perf_counter()
     energy = (lambda shapes: twice_strain_energy(model, shapes)) if refine else None
-    solve = functools.partial(solve_modes, K, M, T=T, lambda_ref=in_plane_eigen_scale(model),
-                              method=method, energy=energy, reduced=dense)
+    solve = functools.partial(solve_model, K, M, T=T, lambda_ref=in_plane_eigen_scale(model),
+                              solver=solver, energy=energy)
     modes = require_elastic(lowest_elastic(solve, n_modes), n_modes)
     t2 = time.perf_counter()
     return model, modes, {"assembly": t1 - t0, "solve": t2 - t1}
 
 
 def analyze(scene: Scene, n_modes: int = 4, elements_per_link: int | None = None,
-            method: str = "auto", mass: Mass = Mass.CONSISTENT, refine: bool = True) -> CaseResult:
+            solver: EigenSolver = DEFAULT_SOLVER, mass: Mass = Mass.CONSISTENT,
+            refine: bool = True) -> CaseResult:
     """Natural frequencies of ``scene`` at its pose: the lowest ``n_modes`` elastic modes
     (plus any rigid-body/mechanism modes below them, labelled as such).
 
-    ``mass``: a ``Mass`` (its text accepted: "consistent" or "lumped").
+    ``solver``: the eigen solver (``eigensolver.EigenSolver``). ``mass``: a ``Mass`` (its text accepted: "consistent" or "lumped").
     ``refine``: eigenvalues as Rayleigh quotients of the strain energy computed from element
     deformations (``energy.py``), so fine meshes are not limited by the round-off of K."""
     mass = parse_choice(Mass, mass, "mass")
     pose = scene.rigid_pose()
     topology = scene.topology(elements_per_link)
-    model, modes, seconds = pose_modes(topology, pose.joints, n_modes, method, mass, refine)
+    model, modes, seconds = pose_modes(topology, pose.joints, n_modes, solver, mass, refine)
     warnings = tuple(pose_warnings(scene.four_bar, pose) + model_warnings(model))
     for w in warnings:  # once per kind and run: the CLI's logbook filter counts the repeats
         log.warning("%s: %s", scene.path, w)

@@ -60,7 +60,8 @@ TOLERANCE = FiniteFloatRange(0, 1, min_open=True)  # a relative frequency tolera
 
 def mesh_options(method: bool = True):
     """-e/--elements and --tol (the mesh rule of ``analysis.mesh.choose_mesh``), and with
-    ``method`` the eigen solver's --method: one wording for every command that solves a scene."""
+    ``method`` the eigen solver's --method, given to the command as ``solver`` (an
+    ``analysis.eigensolver.EigenSolver``): one wording for every command that solves a scene."""
     options = [
         click.option("-e", "--elements", default=None, type=click.IntRange(1, 100000),
                      help="Elements per link (default: the scene's mesh.elements_per_link if it "
@@ -71,8 +72,12 @@ def mesh_options(method: bool = True):
                           "[default: 1e-6]."),
     ]
     if method:
-        options.append(click.option("--method", type=click.Choice(["auto", "dense", "sparse"]),
-                                    default="auto", show_default=True, help="Eigen solver."))
+        from flexlink.analysis.eigensolver import EigenSolver, Method
+
+        options.append(click.option("--method", "solver", type=EnumChoice(Method),
+                                    default=Method.AUTO.value, show_default=True,
+                                    callback=lambda ctx, param, method: EigenSolver(method),
+                                    help="Eigen solver."))
 
     def decorate(command):
         for option in reversed(options):

@@ -32,7 +32,7 @@ from flexlink.commands._options import dumps, json_option, mesh_options, out_opt
 @json_option
 @out_option
 @names_scene("scenes")
-def command(scenes, n_modes, elements, tol, method, subdivide, phases, amplitude, pictures,
+def command(scenes, n_modes, elements, tol, solver, subdivide, phases, amplitude, pictures,
             common_phase, as_json, out_dir):
     """Write, for each SCENE (a scene file or a folder of them), the first modes as a .vtu, a
     .pvd animation per mode, a PNG per mode, an overview sheet and a frequency plot, into
@@ -69,7 +69,7 @@ def command(scenes, n_modes, elements, tol, method, subdivide, phases, amplitude
         try:
             scene = load_scene(path)
             mesh = choose_mesh(scene, n_modes, elements, tol)
-            result = analyze(scene, n_modes, mesh.elements, method)
+            result = analyze(scene, n_modes, mesh.elements, solver)
             summary = case_summary(result, n_modes)
             case = {"scene": scene.name, "file": str(path), "mesh": mesh.as_dict(),
                     "frequencies_Hz": [row["computed_Hz"] for row in summary["modes"]]}

@@ -21,13 +21,14 @@ from flexlink.commands._sensitivity import (scene_sensitivity, sensitivity_optio
 @json_option
 @out_option
 @operating_options
-def command(scenes, n_modes, elements, method, tol, sensitivity, samples, seed, jobs, scheduler,
+def command(scenes, n_modes, elements, solver, tol, sensitivity, samples, seed, jobs, scheduler,
             as_json, out_dir, **at_speed):
     """Natural frequencies of each SCENE (a scene file or a folder of them) at its pose,
     compared with the scene's reference columns (measured Ex, published FE). Writes
     OUT/<scene>/modes.json and modes.csv per scene, and OUT/modes.json and modes.csv with
     every scene when there are several. With --speed: the modes about the rigid motion at that
     crank speed beside the static ones, in OUT/<scene>/modes_at_speed.json and .csv."""
+    from flexlink.analysis.eigensolver import DEFAULT_SOLVER
     from flexlink.analysis.families import elastic_modes, scene_family
     from flexlink.fe.motions import ModelFamily
     from flexlink.fileio import prepare_out_dir, write_atomic
@@ -43,17 +44,17 @@ def command(scenes, n_modes, elements, method, tol, sensitivity, samples, seed, 
     logging.getLogger("flexlink.analysis.modal").setLevel(logging.ERROR)
     out = prepare_out_dir(out_dir)
     files = scene_files(scenes)
-    if operating_given(static_only=sensitivity or method != "auto", **at_speed):
+    if operating_given(static_only=sensitivity or solver != DEFAULT_SOLVER, **at_speed):
         return run_operating(files, n_modes, elements, tol, **at_speed, as_json=as_json, out=out)
     all_folders = dict(zip(files, scene_folders(out, files)))
     summaries, meshes, folders, failures = [], [], [], []
     with sensitivity_scheduler(sensitivity, scheduler):  # one cluster for every scene
         for path in files:
             try:
-                scene, mesh, result = analysed_scene(path, n_modes, elements, tol, method)
+                scene, mesh, result = analysed_scene(path, n_modes, elements, tol, solver)
                 family = scene_family(scene)
                 other = {} if family is ModelFamily.PLANAR else dict(zip(
-                    ("computed", "kinds"), elastic_modes(scene, n_modes, mesh.elements, method)))
+                    ("computed", "kinds"), elastic_modes(scene, n_modes, mesh.elements, solver)))
                 summary = {**case_summary(result, n_modes, family, **other),
                            "mesh": mesh.as_dict(), "warnings": list(result.warnings)}
                 summary.update(_alternatives(scene, n_modes, mesh.elements, result.warnings))

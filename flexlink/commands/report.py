@@ -24,7 +24,7 @@ from flexlink.commands._sensitivity import (scene_sensitivity, sensitivity_optio
 @json_option
 @out_option
 @names_scene("scenes")
-def command(scenes, n_modes, elements, tol, method, cycle_poses, sensitivity, samples, seed, jobs,
+def command(scenes, n_modes, elements, tol, solver, cycle_poses, sensitivity, samples, seed, jobs,
             scheduler, as_json, out_dir):
     """Write OUT/report.html: for each SCENE (a scene file or a folder of them) its pose and
     drawing, frequencies against the reference columns, assumptions (with --sensitivity their
@@ -65,7 +65,7 @@ def command(scenes, n_modes, elements, tol, method, cycle_poses, sensitivity, sa
     with sensitivity_scheduler(sensitivity, scheduler):  # one cluster for every scene
         for path in bar:
             try:
-                scene, mesh, result = analysed_scene(path, n_modes, elements, tol, method)
+                scene, mesh, result = analysed_scene(path, n_modes, elements, tol, solver)
                 note = in_plane_only_note(scene, "this page")  # shown with the warnings
                 summary = {**case_summary(result, n_modes),
                            "warnings": list(result.warnings) + ([note] if note else []),

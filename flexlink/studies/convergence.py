@@ -20,7 +20,8 @@ import statistics
 import numpy as np
 
 from flexlink.analysis.mesh import DEFAULT_TOL, ORDER, MeshRule, mesh_for_tolerance  # noqa: F401 (re-exported)
-from flexlink.analysis.modal import analyze
+from flexlink.analysis.eigensolver import EigenSolver, Method
+from flexlink.analysis.modal import Mass, analyze
 from flexlink.errors import NumericalError
 from flexlink.scene import Scene
 from flexlink.analysis.solve import DENSE_LIMIT
@@ -35,8 +36,8 @@ ORDER_SLACK = 0.5  # observed order within ORDER +- this counts as asymptotic
 class Choice:
     """A way to solve: eigen ``method``, ``mass`` matrix, and energy refinement (see solve.py)."""
 
-    method: str
-    mass: str
+    method: Method
+    mass: Mass
     refine: bool = True
 
     @property
@@ -44,9 +45,9 @@ class Choice:
         return f"{self.method}/{self.mass}" + ("" if self.refine else " (unrefined)")
 
 
-CHOICES = (Choice("sparse", "consistent"), Choice("dense", "consistent"),
-           Choice("sparse", "lumped"), Choice("dense", "lumped"),
-           Choice("sparse", "consistent", refine=False))
+CHOICES = (Choice(Method.SPARSE, Mass.CONSISTENT), Choice(Method.DENSE, Mass.CONSISTENT),
+           Choice(Method.SPARSE, Mass.LUMPED), Choice(Method.DENSE, Mass.LUMPED),
+           Choice(Method.SPARSE, Mass.CONSISTENT, refine=False))
 
 
 @dataclasses.dataclass(frozen=True)
@@ -112,7 +113,7 @@ def run_levels(scene: Scene, work, n_modes: int, repeats: int, progress=None,
                                >= REPEAT_BUDGET_S):
                 continue
             try:
-                done.append(analyze(scene, n_modes, elements, choice.method, choice.mass,
+                done.append(analyze(scene, n_modes, elements, EigenSolver(choice.method), choice.mass,
                                     choice.refine))
             except NumericalError as exc:
                 if refused is None:
@@ -202,7 +203,7 @@ def convergence_study(scene: Scene, n_modes: int, max_elements: int, repeats: in
     first choice (Richardson), measure every level's error against it and against the
     measured column, and name the cheapest level within the relative tolerance ``tol``."""
     work = [(c, e) for c in CHOICES for e in mesh_levels(max_elements)
-            if c.method != "dense" or runs_dense(e, scene)]
+            if c.method is not Method.DENSE or runs_dense(e, scene)]
     refused: list = []
     levels = run_levels(scene, work, n_modes, repeats, progress, refused)
     main_choice = CHOICES[0]

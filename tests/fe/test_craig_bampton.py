@@ -18,6 +18,7 @@ import numpy as np
 import pytest
 import scipy.linalg as la
 
+from flexlink.analysis.eigensolver import EigenSolver
 from flexlink.fe.assembly import assemble, reduction
 from flexlink.fe.craig_bampton import SERIES, CraigBamptonPlan, _families, reduce_link
 from flexlink.analysis.solve import solve_modes
@@ -112,7 +113,7 @@ def test_shapes_from_reduced_coordinates_satisfy_the_full_model():
     model = build_model(topology, points)
     plan = CraigBamptonPlan(model, layout(topology), math.inf)  # every mode: exact
     K, M = plan.matrices(model)
-    modes = solve_modes(K, M, 4, lambda_ref=1.0, method="dense")
+    modes = solve_modes(K, M, 4, lambda_ref=1.0, solver=EigenSolver("dense"))
     shapes = plan.shapes(model, modes.shapes)
     Kf, Mf = assemble(model)
     T = reduction(model)
