@@ -18,7 +18,7 @@ _EXPORTS = {
     "woven_composite": "materials.mixtures",
     "FrameModel": "fe.model", "JointSpec": "fe.model", "LinkSpec": "fe.model",
     "Section": "fe.model", "Topology": "fe.model", "build_model": "fe.model",
-    "assemble": "fe.assembly", "reduction": "fe.assembly",
+    "assemble": "fe.assembly", "rigid_elimination": "fe.assembly",
     "ModalResult": "analysis.solve", "solve_modes": "analysis.solve",
     "Scene": "scene.load", "load_scene": "scene.load",
     "CaseResult": "analysis.modal", "analyze": "analysis.modal",

@@ -16,7 +16,7 @@ from flexlink.choices import parse_choice
 from flexlink.analysis.eigensolver import DEFAULT_SOLVER, EigenSolver
 from flexlink.analysis.solve import (LOST_LIMIT, ModalResult, lowest_elastic, require_elastic,
                                      solve_eliminated_modes, solve_modes)
-from flexlink.fe.assembly import assemble, assemble_reduced_dense, reduction
+from flexlink.fe.assembly import assemble, assemble_reduced_dense, rigid_elimination
 from flexlink.fe.energy import lumped_mass, twice_strain_energy
 from flexlink.fe.model import FrameModel, Topology
 from flexlink.fe.pose import in_plane_eigen_scale, pose_model
@@ -62,7 +62,7 @@ def pose_modes(topology: Topology, points: Mapping[str, tuple[float, float]], n_
     t0 = time.perf_counter()
     refuse_too_fine(topology, points, LOST_LIMIT)
     model = pose_model(topology, points)
-    T = reduction(model)
+    T = rigid_elimination(model)
     n = model.n_dofs if T is None else T.shape[1]
     # Small models, which the dense solver takes anyway, are assembled straight into dense
     # K and M with the constraints eliminated: scipy.sparse's bookkeeping (COO -> CSR, T^T K T)

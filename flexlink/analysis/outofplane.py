@@ -13,7 +13,7 @@ import functools
 from flexlink.analysis.eigensolver import DEFAULT_SOLVER, EigenSolver
 from flexlink.analysis.solve import (ModalResult, lowest_elastic, require_elastic,
                                      solve_eliminated_modes, solve_modes)
-from flexlink.fe.assembly import reduction
+from flexlink.fe.assembly import rigid_elimination
 from flexlink.fe.formulation import OUT_OF_PLANE_FORMULATION
 from flexlink.fe.model import FrameModel
 from flexlink.fe.strip import (StripProperties, assemble_out_of_plane,
@@ -46,7 +46,7 @@ def out_of_plane_solution(topology, points, tilt: dict[str, float], n_modes: int
                           solver: EigenSolver = DEFAULT_SOLVER) -> tuple[FrameModel, ModalResult]:
     """(the out-of-plane model, ``out_of_plane_modes``): for callers that need the model too."""
     model, strips = out_of_plane_model(topology, points, tilt)
-    T = reduction(model)
+    T = rigid_elimination(model)
     n = model.n_dofs if T is None else T.shape[1]
     # Small models, which the dense solver takes anyway, are assembled straight into dense
     # K and M with the constraints eliminated, as in modal.pose_modes: scipy.sparse's

@@ -4,7 +4,7 @@ calibration and Monte Carlo.
 The topology (links, sections, joints, mesh) is fixed; only joint positions change from pose to
 pose, so each link's local matrices are built once (cached in ``link.py``) and every pose only
 rotates and assembles them before the eigen solve. Which global entry each rotated link entry
-lands in, and the springs, masses and rigid-joint reduction, depend on the topology alone; for
+lands in, and the springs, masses and rigid-joint elimination, depend on the topology alone; for
 models the dense solver takes, ``_DensePlan`` works them out once and each pose scatters its
 rotated entries straight into the reduced dense K and M (one ``np.bincount``), so the pose costs
 little more than the eigen solve itself.
@@ -24,7 +24,7 @@ import numpy as np
 from flexlink.fe.pose import in_plane_eigen_scale
 from flexlink.fe.assembly import (assemble, dense_slots, dense_sum, placed_link_entries,
                                   point_mass_entries, reduced_columns, spring_entries)
-from flexlink.fe.assembly import reduction as rigid_reduction
+from flexlink.fe.assembly import rigid_elimination
 from flexlink.fe.craig_bampton import CUTOFF, CraigBamptonPlan, fixed_interface_bound
 from flexlink.fe.truncation import CONVERGED, corrected
 from flexlink.fe.beams import link_entries
@@ -75,7 +75,7 @@ _PRODUCT = np.array([[0, 1, 3, -1],   # c c, c s, c 1, c 0
 
 class _DensePlan:
     """Where every link entry, spring and point mass goes in the reduced dense K and M of one
-    topology, worked out once (u = T q with T from ``assembly.reduction``: a 0/1 matrix, one 1
+    topology, worked out once (u = T q with T from ``assembly.rigid_elimination``: a 0/1 matrix, one 1
     per kept DOF, so T^T K T only renumbers and drops entries).
 
     A link entry (3a + p, 3b + q) of value v adds v R[p, i] R[q, j] to (3a + i, 3b + j), and
@@ -205,7 +205,7 @@ def modal_sweep(topology: Topology, poses: Iterable[Mapping[str, tuple[float, fl
         model = pose_model(topology, points, fixed, warn=i == 0)
         lambda_ref = in_plane_eigen_scale(model)
         if i == 0:
-            T = rigid_reduction(model)  # depends on the topology only
+            T = rigid_elimination(model)  # depends on the topology only
             n = model.n_dofs if T is None else T.shape[1]
             if solver.pick(n, n_modes) is Method.DENSE:  # refuses a dense solve too large
                 plan = _DensePlan(model, T)

@@ -44,7 +44,7 @@ def command(scenes, free_specs, families, scheduler, as_json, out_dir, **setting
     out = run_folder(prepare_out_dir(out_dir), scenes)
     files = [str(f) for f in scene_files(scenes)]
     free = tuple(parse_free(s) for s in free_specs) or None
-    settings = study_settings(**settings, progress=sys.stderr.isatty() and not as_json)
+    settings = study_settings(**settings, show_progress=sys.stderr.isatty() and not as_json)
     studies, written = [], []
     with use_scheduler(scheduler):
         for family in study_families(families, files):  # each kept as soon as it is done

@@ -54,7 +54,7 @@ import numpy as np
 import scipy.linalg as la
 
 from flexlink.errors import NumericalError
-from flexlink.fe.assembly import point_mass_entries, reduction, spring_entries
+from flexlink.fe.assembly import point_mass_entries, rigid_elimination, spring_entries
 from flexlink.fe.link import link_matrices
 from flexlink.fe.model import GROUND, FrameModel, LinkMesh, Springs, _Layout
 

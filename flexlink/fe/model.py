@@ -10,7 +10,7 @@ bearing, a rigid weld between the links of a ``welded`` ground joint (one bearin
 first link's node), and the drive: a torsional spring between the driven link's node and the
 ground, in parallel with its bearing's Kr.
 A stiffness of ``inf`` ("rigid" in a scene file) is an exact constraint, not a penalty: the
-two DOFs are merged (or the DOF is fixed, for ground) by ``assembly.reduction``.
+two DOFs are merged (or the DOF is fixed, for ground) by ``assembly.rigid_elimination``.
 """
 
 from __future__ import annotations

@@ -68,7 +68,7 @@ def inertia_loads(model, node_accelerations: np.ndarray, alpha) -> np.ndarray:
 
 def static_displacement(Kr, T, f: np.ndarray) -> np.ndarray:
     """u (n_full,) with Kr q = T^T f, u = T q: the frame's static answer to loads ``f``.
-    ``Kr`` the reduced stiffness T^T K T (dense or sparse), ``T`` from ``assembly.reduction``
+    ``Kr`` the reduced stiffness T^T K T (dense or sparse), ``T`` from ``assembly.rigid_elimination``
     (None: nothing rigid). NumericalError when Kr is singular (a mechanism: nothing holds the
     frame against the loads)."""
     fr = f if T is None else T.T @ f

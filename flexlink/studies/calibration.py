@@ -344,7 +344,7 @@ def _summarise(problem: Problem, reference: np.ndarray, runs) -> FitResult:
 
 
 def fit_many(problems: list[Problem], starts: int = 8, seed: int = 0, n_jobs: int = -1,
-             progress: bool = False) -> list[FitResult]:
+             show_progress: bool = False) -> list[FitResult]:
     """Fit every problem from ``starts`` start points each; all runs share one parallel pool.
     Start points are drawn in this process from ``seed``, so results do not depend on n_jobs."""
     rng = np.random.default_rng(seed)
@@ -354,7 +354,7 @@ def fit_many(problems: list[Problem], starts: int = 8, seed: int = 0, n_jobs: in
         for x0 in start_points(pr, starts, rng):
             tasks.append((pr, ref, x0))
             owner.append(k)
-    runs = run_tasks(_solve_from, tasks, n_jobs=n_jobs, progress=progress, label="fits")
+    runs = run_tasks(_solve_from, tasks, n_jobs=n_jobs, show_progress=show_progress, label="fits")
     return [_summarise(pr, ref, [r for r, o in zip(runs, owner) if o == k])
             for k, (pr, ref) in enumerate(zip(problems, references))]
 

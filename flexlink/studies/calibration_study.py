@@ -51,7 +51,7 @@ class StudySettings:
     thickness_sd: float = 0.15e-3  # [m]
     elements: int | None = FIT_ELEMENTS
     n_jobs: int = -1
-    progress: bool = False
+    show_progress: bool = False
 
 
 @dataclasses.dataclass(frozen=True)
@@ -207,9 +207,9 @@ def _pct(predicted, reference):
 def _uncertainty(paths, overrides, s: StudySettings, reference) -> UncertaintySummary:
     inputs = scene_inputs(paths[0], overrides, s.vf_sd, s.thickness_sd)
     mc = monte_carlo(paths, overrides, inputs, s.samples, s.seed, elements=s.elements,
-                     n_jobs=s.n_jobs, progress=s.progress)
+                     n_jobs=s.n_jobs, show_progress=s.show_progress)
     sens = sensitivities(paths, overrides, inputs, elements=s.elements, n_jobs=s.n_jobs,
-                         progress=s.progress)
+                         show_progress=s.show_progress)
     return UncertaintySummary(inputs=inputs, monte_carlo=mc, sensitivities=sens,
                               reference=reference)
 
@@ -238,7 +238,7 @@ def _study(paths: tuple[str, ...], family: ModelFamily, free, s: StudySettings) 
               "per_case": single_case_problems(base, "frequencies"),
               "ratios": single_case_problems(base, "ratios")}
     fitted = iter(fit_many([p for group in groups.values() for p in group], s.starts, s.seed,
-                           s.n_jobs, s.progress))  # one pool for every fit
+                           s.n_jobs, s.show_progress))  # one pool for every fit
     fits = {name: [next(fitted) for _ in group] for name, group in groups.items()}
     [ex_fit], [fe_fit], per_case = fits["Ex"], fits["FE"], fits["per_case"]
     cv = cross_validation(base, fits["folds"])

@@ -33,7 +33,7 @@ from flexlink.analysis.modal import pose_modes
 from flexlink.analysis.solve import MECHANISM
 from flexlink.errors import InputError, NumericalError
 from flexlink.fe.assembly import (assemble_reduced_dense, dense_slots, dense_sum,
-                                  reduced_columns, reduction)
+                                  reduced_columns, rigid_elimination)
 from flexlink.fe.geometric import GeometricForm, geometric_entries
 from flexlink.fe.preload import axial_forces, inertia_loads, static_displacement
 from flexlink.fe.rotating import rotating_entries
@@ -86,7 +86,7 @@ def reduce_pose(scene: Scene, state, topology, basis: int,
         raise NumericalError(
             f"{scene.path}: the frame has a rigid-body/mechanism mode at crank angle "
             f"{math.degrees(state.q):.4g} deg: modes at speed need the crank held by its drive")
-    T = reduction(model)
+    T = rigid_elimination(model)
     column, n = reduced_columns(T, model.n_dofs)
     Kr, _ = assemble_reduced_dense(model, T)
     motion = rigid_motion(scene.linkage, state, 1.0, 0.0)  # every term at 1 rad/s

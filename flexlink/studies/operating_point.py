@@ -27,7 +27,7 @@ from flexlink.analysis.solve import AUTO_DENSE_MAX, MECHANISM, ModalResult
 from flexlink.errors import InputError, NumericalError
 from flexlink.fe.assembly import (assemble_reduced_dense, dense_slots, dense_sum,
                                   placed_link_entries, point_mass_entries, reduced_columns,
-                                  reduction, rotated_entries, spring_entries)
+                                  rigid_elimination, rotated_entries, spring_entries)
 from flexlink.fe.energy import twice_strain_energy
 from flexlink.fe.geometric import GeometricForm, geometric_entries
 from flexlink.fe.model import FrameModel
@@ -163,7 +163,7 @@ def operating_modes(scene: Scene, speed: float, n_modes: int = 4,
                                                            state.points))
     warnings = tuple(pose_warnings(scene.four_bar, pose) + model_warnings(model))
     omega, alpha, acc = link_motion(scene, model, topology, motion)
-    T = reduction(model)
+    T = rigid_elimination(model)
     column, n = reduced_columns(T, model.n_dofs)
     reduce = reducer(column, n, dense=n <= AUTO_DENSE_MAX)
     Kr, Mr = reduced_pair(model, T, n, reduce)

@@ -19,7 +19,7 @@ import scipy.sparse as sp
 
 from flexlink.analysis.modal import pose_modes
 from flexlink.fe.pose import in_plane_eigen_scale, pose_model
-from flexlink.fe.assembly import assemble, reduction
+from flexlink.fe.assembly import assemble, rigid_elimination
 from flexlink.fe.energy import lumped_mass
 from flexlink.errors import FlexlinkError, InputError, KinematicsError, NumericalError
 from flexlink.kinematics.fourbar import FourBar
@@ -448,7 +448,7 @@ def massless(scene: Scene) -> list[Check]:
     pose = scene.rigid_pose()
     model = build_model(scene.topology(64), pose.joints)
     K, _ = assemble(model)
-    T, lam = reduction(model), in_plane_eigen_scale(model)
+    T, lam = rigid_elimination(model), in_plane_eigen_scale(model)
     M = lumped_mass(model)
     no_rotary = sp.diags(np.where(np.arange(model.n_dofs) % 3 == 2, 0.0, M.diagonal()), format="csr")
     hrz = solve_modes(K, M, 6, T=T, lambda_ref=lam)
@@ -463,7 +463,7 @@ def massless(scene: Scene) -> list[Check]:
     # a node hanging on springs only, with no mass, tied to the coupler's mid node
     small = build_model(scene.topology(ELEMENTS), pose.joints)
     Ks, Ms = assemble(small)
-    Ts = reduction(small)
+    Ts = rigid_elimination(small)
     base = solve_modes(Ks, Ms, 6, T=Ts, lambda_ref=in_plane_eigen_scale(small))
     coupler = next(l for l in small.links if l.name == "coupler")
     mid = coupler.first_node + coupler.elements // 2

@@ -23,7 +23,7 @@ from flexlink.analysis.floquet import FloquetResult, first_order, monodromy
 from flexlink.analysis.modal import pose_modes
 from flexlink.analysis.solve import MECHANISM
 from flexlink.errors import InputError, NumericalError
-from flexlink.fe.assembly import reduced_columns, reduction
+from flexlink.fe.assembly import reduced_columns, rigid_elimination
 from flexlink.fe.geometric import GeometricForm, geometric_entries
 from flexlink.fe.pose import pose_model
 from flexlink.fe.preload import axial_forces, inertia_loads, static_displacement
@@ -91,7 +91,7 @@ def periodic_model(scene: Scene, n_modes: int = 6, poses: int = 37,
     if MECHANISM in static.kinds:
         raise NumericalError(f"{scene.path}: the frame has a mechanism mode at its pose: the "
                              "stability map needs the crank held by its drive")
-    T = reduction(model0)
+    T = rigid_elimination(model0)
     column, n = reduced_columns(T, model0.n_dofs)
     basis = np.zeros((n, n_modes))
     basis[column[column >= 0]] = static.shapes[np.ix_(column >= 0, static.elastic[:n_modes])]

@@ -15,7 +15,7 @@ from flexlink.analysis.eigensolver import AUTO_DENSE_MAX, EigenSolver
 from flexlink.analysis import modal
 from flexlink.analysis import solve as sv
 from flexlink.errors import NumericalError
-from flexlink.fe.assembly import assemble, assemble_reduced_dense, reduction
+from flexlink.fe.assembly import assemble, assemble_reduced_dense, rigid_elimination
 from flexlink.fe.energy import twice_strain_energy
 from flexlink.fe.pose import in_plane_eigen_scale, pose_model
 from flexlink.scene import load_scene
@@ -28,7 +28,7 @@ def sparse_path(topology, points, n_modes):
     """What ``pose_modes`` did before the fast path: sparse K, M reduced by T in scipy.sparse."""
     model = pose_model(topology, points)
     K, M = assemble(model)
-    solve = functools.partial(sv.solve_modes, K, M, T=reduction(model),
+    solve = functools.partial(sv.solve_modes, K, M, T=rigid_elimination(model),
                               lambda_ref=in_plane_eigen_scale(model), solver=EigenSolver("dense"),
                               energy=lambda shapes: twice_strain_energy(model, shapes))
     return sv.require_elastic(sv.lowest_elastic(solve, n_modes), n_modes)
@@ -82,7 +82,7 @@ def test_dense_reduced_matrices_equal_the_sparse_reduction(path):
     scene = load_scene(path, overrides=JOINT_MASSES if path == SCENES[1] else None)
     model = pose_model(scene.topology(6), scene.rigid_pose().joints)
     K, M = assemble(model)
-    T = reduction(model)
+    T = rigid_elimination(model)
     Kd, Md = assemble_reduced_dense(model, T)
     for dense, sparse in ((Kd, T.T @ K @ T), (Md, T.T @ M @ T)):
         np.testing.assert_allclose(dense, sparse.toarray(), rtol=0, atol=1e-14 * abs(dense).max())

@@ -9,7 +9,7 @@ import pytest
 from flexlink.analysis.eigensolver import EigenSolver
 from flexlink.analysis.modal import analyze
 from flexlink.fe.pose import in_plane_eigen_scale
-from flexlink.fe.assembly import assemble, reduction
+from flexlink.fe.assembly import assemble, rigid_elimination
 from flexlink.fe.model import build_model
 from flexlink.scene import load_scene
 from flexlink.analysis.solve import solve_modes
@@ -25,7 +25,7 @@ def case1():
 def solve(topology, points, n=6, method="dense"):
     model = build_model(topology, points)
     K, M = assemble(model)
-    return solve_modes(K, M, n, T=reduction(model), lambda_ref=in_plane_eigen_scale(model), solver=EigenSolver(method))
+    return solve_modes(K, M, n, T=rigid_elimination(model), lambda_ref=in_plane_eigen_scale(model), solver=EigenSolver(method))
 
 
 def test_matrices_symmetric(case1):

@@ -35,7 +35,7 @@ from strategies import JointValues, linkages, load, scaled
 
 from flexlink.analysis.identity import effective_masses, energy_parts
 from flexlink.analysis.modal import Mass, analyze
-from flexlink.fe.assembly import assemble, reduction
+from flexlink.fe.assembly import assemble, rigid_elimination
 from flexlink.fe.energy import lumped_mass
 from flexlink.output.report import comparison_rows
 
@@ -68,7 +68,7 @@ def reduced_pair(model, mass="consistent"):
     K, M = assemble(model)
     if mass == "lumped":
         M = lumped_mass(model)
-    T = reduction(model)
+    T = rigid_elimination(model)
     return K, M, sp.identity(model.n_dofs, format="csr") if T is None else T
 
 
