@@ -254,7 +254,7 @@ def scaling_point(spans: int) -> dict:
     stability suite's row of graded pinned spans (``stability.graded_spans``): well conditioned
     at any size, with a closed-form lowest frequency, unlike one link cut ever finer (which
     flexlink refuses past double precision)."""
-    from flexlink.fe.pose import in_plane_eigen_scale
+    from flexlink.fe.model_at_pose import in_plane_eigen_scale
     from flexlink.fe.assembly import assemble, rigid_elimination
     from flexlink.fe.energy import twice_strain_energy
     from flexlink.fe.model import build_model

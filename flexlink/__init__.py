@@ -13,7 +13,7 @@ import importlib
 from flexlink.errors import FlexlinkError, InputError, KinematicsError, NumericalError, OutputError
 
 _EXPORTS = {
-    "FourBar": "kinematics.fourbar", "Pose": "kinematics.fourbar",
+    "FourBar": "kinematics.fourbar", "FourBarPose": "kinematics.fourbar",
     "load_constituent": "materials.mixtures", "rule_of_mixtures": "materials.mixtures",
     "woven_composite": "materials.mixtures",
     "FrameModel": "fe.model", "JointSpec": "fe.model", "LinkSpec": "fe.model",

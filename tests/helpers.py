@@ -5,7 +5,7 @@ import math
 import numpy as np
 
 from flexlink.analysis.eigensolver import EigenSolver
-from flexlink.fe.pose import in_plane_eigen_scale
+from flexlink.fe.model_at_pose import in_plane_eigen_scale
 from flexlink.fe.assembly import assemble, rigid_elimination
 from flexlink.fe.model import JointSpec, LinkSpec, Section, Topology, build_model
 from flexlink.analysis.solve import solve_modes

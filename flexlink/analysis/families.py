@@ -8,9 +8,9 @@ Each part is one ``fe.formulation.Formulation``; its solver here is the one thin
 per part at this stage. Measured frequencies are paired with the lowest elastic modes of the
 chosen family by mode order only.
 
-``family_modes`` keeps each family's model and mode shapes, for callers that differentiate the
+``part_modes`` keeps each part's model and mode shapes, for callers that differentiate the
 frequencies (``studies.jacobian``): ``quadratic_forms`` gives s^T K s and s^T M s of shapes on a
-family's model, from the same element, spring and mass entries the assembly sums.
+part's model, from the same element, spring and mass entries the assembly sums.
 """
 
 from __future__ import annotations
@@ -46,7 +46,7 @@ def in_plane_only_note(scene: Scene, what: str) -> str | None:
 
 
 @dataclasses.dataclass(frozen=True)
-class FamilyModes:
+class PartModes:
     """One part (IN_PLANE or OUT_OF_PLANE) of a scene's family at its pose: the model solved
     (for OUT_OF_PLANE with its bearing springs), its elastic frequencies [Hz], ascending, and
     their shapes (model.n_dofs, k) in the model's DOFs."""
@@ -70,18 +70,18 @@ def _out_of_plane_solution(scene: Scene, n_modes: int, elements: int | None, sol
 SOLUTIONS = {IN_PLANE: _in_plane_solution, OUT_OF_PLANE: _out_of_plane_solution}
 
 
-def family_modes(scene: Scene, n_modes: int, elements: int | None = None,
-                 solver: EigenSolver = DEFAULT_SOLVER) -> tuple[FamilyModes, ...]:
+def part_modes(scene: Scene, n_modes: int, elements: int | None = None,
+                 solver: EigenSolver = DEFAULT_SOLVER) -> tuple[PartModes, ...]:
     """The lowest ``n_modes`` elastic modes of each part of the scene's family."""
     out = []
     for part in scene_family(scene).parts:
         model, modes = SOLUTIONS[part](scene, n_modes, elements, solver)
         elastic = modes.elastic[:n_modes]
-        out.append(FamilyModes(part, model, modes.frequencies[elastic], modes.shapes[:, elastic]))
+        out.append(PartModes(part, model, modes.frequencies[elastic], modes.shapes[:, elastic]))
     return tuple(out)
 
 
-def paired(parts: tuple[FamilyModes, ...], n_modes: int
+def paired(parts: tuple[PartModes, ...], n_modes: int
            ) -> tuple[np.ndarray, tuple[tuple[int, int], ...]]:
     """The lowest ``n_modes`` modes over all parts, ascending: their frequencies [Hz] (NaN
     where the parts have fewer) and, per mode found, (index into ``parts``, index into that
@@ -97,13 +97,13 @@ def elastic_modes(scene: Scene, n_modes: int, elements: int | None = None,
                   solver: EigenSolver = DEFAULT_SOLVER) -> tuple[np.ndarray, tuple[Part, ...]]:
     """The lowest ``n_modes`` elastic frequencies [Hz] of the scene's family (NaN where fewer
     were found) and, per mode, whether it is an in-plane or out-of-plane mode."""
-    parts = family_modes(scene, n_modes, elements, solver)
+    parts = part_modes(scene, n_modes, elements, solver)
     freqs, pairs = paired(parts, n_modes)
     return freqs, tuple(parts[p].part for p, _ in pairs)
 
 
 def part_model(scene: Scene, part: Part, elements: int | None = None) -> FrameModel:
-    """The model ``family_modes`` solves for ``part`` of ``scene``, built without solving."""
+    """The model ``part_modes`` solves for ``part`` of ``scene``, built without solving."""
     return FORMULATIONS[part].model(scene.topology(elements), scene.rigid_pose().joints,
                                     tilt_stiffnesses(scene))
 

@@ -19,9 +19,8 @@ from flexlink.analysis.solve import (LOST_LIMIT, ModalResult, lowest_elastic, re
 from flexlink.fe.assembly import assemble, assemble_reduced_dense, rigid_elimination
 from flexlink.fe.energy import lumped_mass, twice_strain_energy
 from flexlink.fe.model import FrameModel, Topology
-from flexlink.fe.pose import in_plane_eigen_scale, pose_model
-from flexlink.kinematics.fourbar import Pose
-from flexlink.scene import Scene
+from flexlink.fe.model_at_pose import in_plane_eigen_scale, pose_model
+from flexlink.scene import RigidPose, Scene
 from flexlink.scene.plausibility import model_warnings, pose_warnings
 
 log = logging.getLogger(__name__)
@@ -39,7 +38,7 @@ class Mass(enum.StrEnum):
 @dataclasses.dataclass(frozen=True)
 class CaseResult:
     scene: Scene
-    pose: Pose
+    pose: RigidPose
     model: FrameModel
     modes: ModalResult
     elements_per_link: int

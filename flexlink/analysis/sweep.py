@@ -21,7 +21,7 @@ from collections.abc import Iterable, Mapping
 
 import numpy as np
 
-from flexlink.fe.pose import in_plane_eigen_scale
+from flexlink.fe.model_at_pose import in_plane_eigen_scale
 from flexlink.fe.assembly import (assemble, dense_slots, dense_sum, placed_link_entries,
                                   point_mass_entries, reduced_columns, spring_entries)
 from flexlink.fe.assembly import rigid_elimination
@@ -29,7 +29,7 @@ from flexlink.fe.craig_bampton import CUTOFF, CraigBamptonPlan, fixed_interface_
 from flexlink.fe.truncation import CONVERGED, corrected
 from flexlink.fe.beams import link_entries
 from flexlink.fe.model import FrameModel, Topology, layout
-from flexlink.fe.pose import pose_model
+from flexlink.fe.model_at_pose import pose_model
 from flexlink.analysis.eigensolver import EigenSolver, Method
 from flexlink.analysis.solve import DENSE_LIMIT, ELASTIC, SPARE_MODES, lowest_elastic, solve_modes
 from flexlink.analysis.stacked import stacked_modes

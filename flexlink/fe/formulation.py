@@ -24,7 +24,7 @@ from flexlink.fe.joints import JointDofs, Springs, joint_mass_entries, springs_o
 from flexlink.fe.model import DOF_NAMES as FRAME_DOFS
 from flexlink.fe.motions import Part
 from flexlink.fe.model import IN_PLANE_JOINTS, FrameModel, Topology, in_plane_stiffness, layout
-from flexlink.fe.pose import in_plane_eigen_scale, pose_model
+from flexlink.fe.model_at_pose import in_plane_eigen_scale, pose_model
 from flexlink.fe.rigid import element_stiffness_scale, rigidified
 from flexlink.fe.strip import DOF_NAMES as STRIP_DOFS
 from flexlink.fe.strip import (OUT_OF_PLANE_JOINTS, StripProperties, link_strips,

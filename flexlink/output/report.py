@@ -69,7 +69,7 @@ def case_summary(result: CaseResult, n_modes: int, family: str = "planar", compu
         "file": scene.path,
         "family": family,
         "linkage": linkage_summary(scene),
-        "pose": {"theta2_deg": math.degrees(pose.theta2),
+        "pose": {"theta2_deg": math.degrees(pose.crank_angle),
                  "mu_deg": None if pose.mu is None else math.degrees(pose.mu),
                  "branch": pose.branch,
                  "joints_m": {k: list(v) for k, v in pose.joints.items()}},

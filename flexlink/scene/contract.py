@@ -128,10 +128,6 @@ class RigidPose:
     branch: str
 
     @property
-    def theta2(self) -> float:
-        return self.crank_angle
-
-    @property
     def mu(self) -> float | None:
         return next(iter(self.transmission.values()), None)
 

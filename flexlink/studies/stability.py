@@ -18,7 +18,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from flexlink.analysis.modal import pose_modes
-from flexlink.fe.pose import in_plane_eigen_scale, pose_model
+from flexlink.fe.model_at_pose import in_plane_eigen_scale, pose_model
 from flexlink.fe.assembly import assemble, rigid_elimination
 from flexlink.fe.energy import lumped_mass
 from flexlink.errors import FlexlinkError, InputError, KinematicsError, NumericalError

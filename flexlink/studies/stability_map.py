@@ -25,7 +25,7 @@ from flexlink.analysis.solve import MECHANISM
 from flexlink.errors import InputError, NumericalError
 from flexlink.fe.assembly import reduced_columns, rigid_elimination
 from flexlink.fe.geometric import GeometricForm, geometric_entries
-from flexlink.fe.pose import pose_model
+from flexlink.fe.model_at_pose import pose_model
 from flexlink.fe.preload import axial_forces, inertia_loads, static_displacement
 from flexlink.fe.rotating import node_owners, rotating_entries
 from flexlink.kinematics.dynamics import rigid_motion

@@ -32,8 +32,8 @@ def test_cli_refuses_an_unknown_method_naming_the_option_and_choices():
 
 
 def test_cli_refuses_an_unknown_part_naming_the_option_and_choices():
-    assert _refusal(["mac", str(CASE), str(CASE), "--family", "sideways"]) == (
-        "Error: Invalid value for '--family': 'sideways' is not one of 'auto', 'in-plane', "
+    assert _refusal(["mac", str(CASE), str(CASE), "--part", "sideways"]) == (
+        "Error: Invalid value for '--part': 'sideways' is not one of 'auto', 'in-plane', "
         "'out-of-plane'.")
 
 

@@ -17,7 +17,7 @@ from flexlink.analysis import solve as sv
 from flexlink.errors import NumericalError
 from flexlink.fe.assembly import assemble, assemble_reduced_dense, rigid_elimination
 from flexlink.fe.energy import twice_strain_energy
-from flexlink.fe.pose import in_plane_eigen_scale, pose_model
+from flexlink.fe.model_at_pose import in_plane_eigen_scale, pose_model
 from flexlink.scene import load_scene
 
 from conftest import ROOT

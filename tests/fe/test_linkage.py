@@ -8,7 +8,7 @@ import pytest
 
 from flexlink.analysis.eigensolver import EigenSolver
 from flexlink.analysis.modal import analyze
-from flexlink.fe.pose import in_plane_eigen_scale
+from flexlink.fe.model_at_pose import in_plane_eigen_scale
 from flexlink.fe.assembly import assemble, rigid_elimination
 from flexlink.fe.model import build_model
 from flexlink.scene import load_scene

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from flexlink.analysis.modal import analyze
-from flexlink.fe.pose import in_plane_eigen_scale
+from flexlink.fe.model_at_pose import in_plane_eigen_scale
 from flexlink.fe.assembly import assemble, rigid_elimination
 from flexlink.studies.cycle import ModalMap, crossings, kinematic_cycle, modal_map, resonances, runs
 from flexlink.fe.model import JointSpec, LinkSpec, Section, Topology, build_model
