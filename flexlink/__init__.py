@@ -20,6 +20,7 @@ _EXPORTS = {
     "Section": "fe.model", "Topology": "fe.model", "build_model": "fe.model",
     "assemble": "fe.assembly", "rigid_elimination": "fe.assembly",
     "ModalResult": "analysis.solve", "solve_modes": "analysis.solve",
+    "EigenSolver": "analysis.eigensolver",
     "Scene": "scene.load", "load_scene": "scene.load",
     "CaseResult": "analysis.modal", "analyze": "analysis.modal",
     "modal_sweep": "analysis.sweep",
