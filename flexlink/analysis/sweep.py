@@ -27,7 +27,7 @@ from flexlink.fe.assembly import (assemble, dense_slots, dense_sum, placed_link_
 from flexlink.fe.assembly import rigid_elimination
 from flexlink.fe.craig_bampton import CUTOFF, CraigBamptonPlan, fixed_interface_bound
 from flexlink.fe.truncation import CONVERGED, corrected
-from flexlink.fe.beams import link_entries
+from flexlink.fe.beams import BeamTheory, link_entries
 from flexlink.fe.model import FrameModel, Topology, layout
 from flexlink.fe.model_at_pose import pose_model
 from flexlink.analysis.eigensolver import EigenSolver, Method
@@ -168,7 +168,7 @@ def craig_bampton_refusal(topology: Topology) -> str | None:
     reduces one unit chain per mesh size and scales it to each link, which is exact for
     Euler-Bernoulli elements only: a Timoshenko element's shear parameter 12 EI / (k G A h^2)
     changes with the element length h, so the scaled chain is another beam."""
-    others = sorted({spec.section.beam for spec in topology.links} - {"euler-bernoulli"})
+    others = sorted({spec.section.beam for spec in topology.links} - {BeamTheory.EULER_BERNOULLI})
     if not others:
         return None
     return (f"the Craig-Bampton reduction takes Euler-Bernoulli links only, not {others[0]} "

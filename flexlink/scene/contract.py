@@ -9,6 +9,7 @@ each stage's declared options. All values SI.
 from __future__ import annotations
 
 import dataclasses
+import enum
 import math
 
 import numpy as np
@@ -132,13 +133,20 @@ class RigidPose:
         return next(iter(self.transmission.values()), None)
 
 
+class SceneKind(enum.StrEnum):
+    """``[linkage] type``: a four-bar given by its lengths, or any linkage as data."""
+
+    FOUR_BAR = "four-bar"
+    GENERAL = "general"
+
+
 @dataclasses.dataclass(frozen=True)
 class Scene:
-    """A validated scene of either kind; ``kind`` is "four-bar" or "general"."""
+    """A validated scene of either kind."""
 
     name: str
     path: str
-    kind: str
+    kind: SceneKind
     linkage: Linkage
     four_bar: FourBar | None
     start: float  # input angle of the analysed pose [rad]
@@ -186,7 +194,7 @@ class Scene:
         """Where a whole-cycle sweep starts: (input angle [rad], moving joints near that pose).
         A four-bar scene's cycle runs over crank angles 0 to 360 deg whatever pose it analyses;
         a general scene's starts at its own start pose, whose guess picks the assembly."""
-        if self.kind == "four-bar":
+        if self.kind is SceneKind.FOUR_BAR:
             joints = self.four_bar.pose(0.0, self.branch).joints
             return 0.0, {k: v for k, v in joints.items() if k in self.guess}
         return self.start, dict(self.guess)

@@ -13,7 +13,7 @@ import logging
 import math
 
 from flexlink.errors import InputError
-from flexlink.fe.beams import euler_bernoulli_pinned, timoshenko_pinned
+from flexlink.fe.beams import BeamTheory, euler_bernoulli_pinned, timoshenko_pinned
 
 log = logging.getLogger(__name__)
 
@@ -141,7 +141,7 @@ def model_warnings(model) -> list[str]:
     out = []
     for link in model.links:
         s = link.section
-        if s.beam != "euler-bernoulli":
+        if s.beam is not BeamTheory.EULER_BERNOULLI:
             continue
         ratio, drop = link.length / s.depth, timoshenko_drop(s, link.length)
         if ratio < SLENDER_LIMIT or drop > SHEAR_WARN:

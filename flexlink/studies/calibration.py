@@ -28,6 +28,7 @@ from flexlink.studies.array_shapes import check_shape
 from flexlink.studies.jacobian import case_modes, log_frequency_sensitivities
 from flexlink.parallel import run_tasks
 from flexlink.scene import Scene, load_scene
+from flexlink.scene.contract import SceneKind
 from flexlink.units import parse_range, percent_error
 
 log = logging.getLogger(__name__)
@@ -178,7 +179,7 @@ def measured(problem: Problem, scenes=None) -> np.ndarray:
     rows = []
     for path in scenes or problem.scenes:
         scene = load_scene(path)
-        if scene.kind != "four-bar":  # KNOWN's inputs (L1, the crank's section, O2..O4) are its
+        if scene.kind is not SceneKind.FOUR_BAR:  # KNOWN's inputs (L1, the crank's section, O2..O4) are its
             raise InputError("calibration fits the inputs of four-bar scenes (L1, section, "
                              "joints O2, A, B, O4); this is a general scene", source=str(path),
                              field="linkage.type", expected="a four-bar scene")

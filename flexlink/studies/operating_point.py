@@ -23,7 +23,8 @@ import scipy.sparse as sp
 
 from flexlink.analysis.modal import pose_modes
 from flexlink.analysis.quadratic import QuadraticModes, quadratic_modes
-from flexlink.analysis.solve import AUTO_DENSE_MAX, MECHANISM, ModalResult
+from flexlink.analysis.eigensolver import AUTO_DENSE_MAX
+from flexlink.analysis.solve import MECHANISM, ModalResult
 from flexlink.errors import InputError, NumericalError
 from flexlink.fe.assembly import (assemble_reduced_dense, dense_slots, dense_sum,
                                   placed_link_entries, point_mass_entries, reduced_columns,

@@ -28,6 +28,7 @@ from flexlink.fe.model import JointSpec, LinkSpec, Section, Topology, build_mode
 from flexlink.scene.plausibility import SHEAR_WARN, SLENDER_LIMIT, model_warnings, pose_warnings, timoshenko_drop
 from flexlink.fe.rigid import RIGID_RATIO, element_stiffness_scale
 from flexlink.scene import RigidPose, Scene, load_scene
+from flexlink.scene.contract import SceneKind
 from flexlink.analysis.eigensolver import DENSE_REFUSE, EigenSolver, Method
 from flexlink.analysis.solve import MECHANISM, solve_modes
 
@@ -579,7 +580,7 @@ SLOW = (large_sparse,)
 def run_checks(scene: Scene, slow: bool = False, progress=None) -> list[Check]:
     """Every fast check (and the slow ones if ``slow``), in the order of ``FAST`` and ``SLOW``;
     a check that raises unexpectedly is reported as failed, never hides the others."""
-    if scene.kind != "four-bar":  # every check varies a four-bar's inputs one at a time
+    if scene.kind is not SceneKind.FOUR_BAR:  # every check varies a four-bar's inputs one at a time
         raise InputError("the stability checks vary the inputs of a four-bar scene; this is a "
                          "general scene", source=scene.path, field="linkage.type",
                          expected='a four-bar scene (linkage.type = "four-bar")')
