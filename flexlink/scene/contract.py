@@ -60,6 +60,13 @@ class PrbOptions:
     K_theta: float
 
 
+class Plausibility(enum.StrEnum):
+    """What a model outside its range of validity does: refuse (ERROR) or warn."""
+
+    ERROR = "error"
+    WARN = "warn"
+
+
 @dataclasses.dataclass(frozen=True)
 class Options:
     """The stages' declared options (``schema.py`` documents each)."""
@@ -67,7 +74,7 @@ class Options:
     family: ModelFamily = ModelFamily.PLANAR
     crank_speed: float | None = None  # [rad/s]
     crank_acceleration: float | None = None  # [rad/s^2], only with crank_speed
-    plausibility: str = "error"
+    plausibility: Plausibility = Plausibility.ERROR
     prb: PrbOptions | None = None
     variants: tuple[Variant, ...] = ()
     tilt: dict[str, float] = dataclasses.field(default_factory=dict)  # joint -> Ktilt [N m/rad]
@@ -89,6 +96,18 @@ class ModalDamping:
         return not self.ratios
 
 
+class LoadKind(enum.StrEnum):
+    TORQUE = "torque"
+    FORCE = "force"
+
+
+class LoadFrame(enum.StrEnum):
+    """Axes a force's components are given along: the global ones or the body's own."""
+
+    GLOBAL = "global"
+    BODY = "body"
+
+
 @dataclasses.dataclass(frozen=True)
 class LoadSpec:
     """An external load on body ``body`` (see schema ``LoadTable``): ``kind`` "torque" [N m,
@@ -98,12 +117,12 @@ class LoadSpec:
     crank angle; a constant load has a single row and no angles. ``field`` names where it was
     declared, e.g. "loads[0]"."""
 
-    kind: str
+    kind: LoadKind
     body: str
     values: np.ndarray
     angles: np.ndarray | None = None
     at: tuple[float, float] = (0.0, 0.0)
-    frame: str = "global"
+    frame: LoadFrame = LoadFrame.GLOBAL
     field: str = "loads"
 
     def value_at(self, q: float) -> np.ndarray:

@@ -13,7 +13,8 @@ from flexlink.fe.motions import ModelFamily
 from flexlink.materials.mixtures import (BeamMaterial, LossFactor, isotropic, load_constituent,
                                          woven_composite)
 from flexlink.scene import schema
-from flexlink.scene.contract import Composite, ModalDamping, Options, PrbOptions, Reference, Variant
+from flexlink.scene.contract import (Composite, ModalDamping, Options, Plausibility, PrbOptions,
+                                     Reference, Variant)
 from flexlink.scene.source import Assumption, SceneSource
 
 DEFAULT_G_RATIO = 2.6  # E / G of an isotropic solid with nu = 0.3: 2 (1 + nu)
@@ -274,7 +275,7 @@ def options(src: SceneSource, sf: schema.SceneFile, joint_names: list[str]) -> O
     variants = tuple(Variant(v.name or v.field, v.field, tuple(v.values)) for v in sf.family)
     return Options(family=ModelFamily(sf.model.family), crank_speed=sf.operation.crank_speed,
                    crank_acceleration=sf.operation.crank_acceleration,
-                   plausibility=sf.checks.plausibility, prb=prb, variants=variants,
+                   plausibility=Plausibility(sf.checks.plausibility), prb=prb, variants=variants,
                    tilt=tilt(sf, joint_names), damping=modal_damping(sf.damping))
 
 

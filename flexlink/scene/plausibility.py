@@ -14,6 +14,7 @@ import math
 
 from flexlink.errors import InputError
 from flexlink.fe.beams import BeamTheory, euler_bernoulli_pinned, timoshenko_pinned
+from flexlink.scene.contract import Plausibility
 
 log = logging.getLogger(__name__)
 
@@ -104,7 +105,7 @@ def check_scene(scene) -> None:
     findings = scene_findings(scene)
     if not findings:
         return
-    if scene.options.plausibility == "warn":
+    if scene.options.plausibility is Plausibility.WARN:
         for f in findings:
             log.warning("%s: %s: %s", f.source, f.field, f.message)
         return

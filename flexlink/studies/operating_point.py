@@ -36,7 +36,7 @@ from flexlink.fe.preload import axial_forces, inertia_loads, static_displacement
 from flexlink.fe.rotating import rotating_entries
 from flexlink.kinematics.dynamics import RigidMotion, check_speed, rigid_motion
 from flexlink.scene import Scene
-from flexlink.scene.contract import RigidPose, pose_transmission_angles
+from flexlink.scene.contract import LoadKind, RigidPose, pose_transmission_angles
 from flexlink.scene.plausibility import model_warnings, pose_warnings
 from flexlink.studies.torque import wrench
 
@@ -225,7 +225,7 @@ def external_loads(scene: Scene, model: FrameModel, topology, state) -> np.ndarr
         nodes = np.concatenate([link.nodes for link in own])
         w = wrench(scene.linkage, state, load)
         pivot = state.points[scene.linkage.body(load.body).joints[0]]
-        point = np.asarray(pivot if load.kind == "torque" else w.point, dtype=float)
+        point = np.asarray(pivot if load.kind is LoadKind.TORQUE else w.point, dtype=float)
         node = nodes[np.argmin(np.linalg.norm(model.nodes[nodes] - point, axis=1))]
         r = point - model.nodes[node]
         f[3 * node:3 * node + 2] += w.force
