@@ -16,12 +16,14 @@ the fit records which did (``FitResult.converged``) and the report says so.
 from __future__ import annotations
 
 import dataclasses
+import enum
 import logging
 import math
 from pathlib import Path
 
 import numpy as np
 
+from flexlink.choices import parse_choice
 from flexlink.errors import FlexlinkError, InputError
 from flexlink.analysis.families import elastic_modes
 from flexlink.studies.array_shapes import check_shape
@@ -110,6 +112,13 @@ def parse_free(spec: str) -> FreeParameter:
     return FreeParameter(name, low, high)
 
 
+class FitTarget(enum.StrEnum):
+    """The residual a fit minimises: errors of the frequencies, or of their ratios to the first."""
+
+    FREQUENCIES = "frequencies"
+    RATIOS = "ratios"
+
+
 @dataclasses.dataclass(frozen=True)
 class Problem:
     """What to fit: scene files, free inputs, the reference column, the residual kind.
@@ -119,14 +128,13 @@ class Problem:
     scenes: tuple[str, ...]
     parameters: tuple[FreeParameter, ...]
     reference: str = "Ex"
-    target: str = "frequencies"
+    target: FitTarget = FitTarget.FREQUENCIES
     n_modes: int = 4
     elements: int | None = None
     fixed: tuple[tuple[str, str], ...] = ()
 
     def __post_init__(self):
-        if self.target not in ("frequencies", "ratios"):
-            raise ValueError(f"target must be 'frequencies' or 'ratios', not {self.target!r}")
+        object.__setattr__(self, "target", parse_choice(FitTarget, self.target, "target"))
 
     @property
     def bounds(self) -> tuple[np.ndarray, np.ndarray]:
@@ -193,7 +201,7 @@ def measured(problem: Problem, scenes=None) -> np.ndarray:
 
 
 def log_residuals(problem: Problem, predicted: np.ndarray, reference: np.ndarray) -> np.ndarray:
-    if problem.target == "ratios":
+    if problem.target is FitTarget.RATIOS:
         r = np.log(predicted[:, 1:] / predicted[:, :1]) - np.log(reference[:, 1:] / reference[:, :1])
     else:
         r = np.log(predicted) - np.log(reference)
@@ -238,7 +246,7 @@ class _Residuals:
             self.names, self._evaluate(x), self.problem.n_modes, self.problem.elements,
             self.followers, self.problem.bounds[1])
         D[np.isnan(predicted)] = 0.0
-        if self.problem.target == "ratios":
+        if self.problem.target is FitTarget.RATIOS:
             J = D[:, 1:] - D[:, :1]
             J[np.isnan(predicted[:, 1:]) | np.isnan(predicted[:, :1])] = 0.0
         else:
@@ -395,7 +403,7 @@ def cross_validation(problem: Problem, folds: list[FitResult]) -> CrossValidatio
                            reference=measured(problem), reasons=tuple(reasons))
 
 
-def single_case_problems(problem: Problem, target: str) -> list[Problem]:
+def single_case_problems(problem: Problem, target: FitTarget) -> list[Problem]:
     return [dataclasses.replace(problem, scenes=(s,), target=target) for s in problem.scenes]
 
 

@@ -18,7 +18,8 @@ from flexlink.fe.motions import ModelFamily
 from flexlink.meshes import FIT_ELEMENTS
 from flexlink.scene import load_scene
 from flexlink.studies.array_shapes import check_shape
-from flexlink.studies.calibration import (DEFAULT_FREE, CrossValidation, FitResult, FreeParameter,
+from flexlink.studies.calibration import (DEFAULT_FREE, CrossValidation, FitResult, FitTarget,
+                                          FreeParameter,
                                           Problem, case_label, cross_validation, fit_many,
                                           leave_one_out_problems, mean_abs, measured, parse_free,
                                           predict_with_failures, ratios, single_case_problems)
@@ -235,8 +236,8 @@ def _study(paths: tuple[str, ...], family: ModelFamily, free, s: StudySettings) 
                          f"leaving one out), got {len(paths)}", field="SCENES",
                          expected="two or more scene files, or a folder of them")
     groups = {"Ex": [base], "FE": [fe], "folds": leave_one_out_problems(base),
-              "per_case": single_case_problems(base, "frequencies"),
-              "ratios": single_case_problems(base, "ratios")}
+              "per_case": single_case_problems(base, FitTarget.FREQUENCIES),
+              "ratios": single_case_problems(base, FitTarget.RATIOS)}
     fitted = iter(fit_many([p for group in groups.values() for p in group], s.starts, s.seed,
                            s.n_jobs, s.show_progress))  # one pool for every fit
     fits = {name: [next(fitted) for _ in group] for name, group in groups.items()}
