@@ -89,10 +89,12 @@ def analyze(scene: Scene, n_modes: int = 4, elements_per_link: int | None = None
     """Natural frequencies of ``scene`` at its pose: the lowest ``n_modes`` elastic modes
     (plus any rigid-body/mechanism modes below them, labelled as such).
 
-    ``solver``: the eigen solver (``eigensolver.EigenSolver``). ``mass``: a ``Mass`` (its text accepted: "consistent" or "lumped").
+    ``solver``: the eigen solver (``eigensolver.EigenSolver``, or its method's text: "auto",
+    "dense" or "sparse"). ``mass``: a ``Mass`` (its text accepted: "consistent" or "lumped").
     ``refine``: eigenvalues as Rayleigh quotients of the strain energy computed from element
     deformations (``energy.py``), so fine meshes are not limited by the round-off of K."""
     mass = parse_choice(Mass, mass, "mass")
+    solver = solver if isinstance(solver, EigenSolver) else EigenSolver(solver)
     pose = scene.rigid_pose()
     topology = scene.topology(elements_per_link)
     model, modes, seconds = pose_modes(topology, pose.joints, n_modes, solver, mass, refine)

@@ -6,6 +6,7 @@ from __future__ import annotations
 import pytest
 from click.testing import CliRunner
 
+from flexlink.analysis.eigensolver import Method
 from flexlink.analysis.modal import Mass, analyze
 from flexlink.choices import parse_choice
 from flexlink.cli import main
@@ -47,6 +48,14 @@ def test_python_edge_refuses_an_unknown_mass_in_one_line():
     with pytest.raises(InputError) as caught:
         analyze(load_scene(CASE), 2, 4, mass="heavy")
     assert str(caught.value) == "mass: 'heavy' is not a choice (expected consistent or lumped)"
+
+
+def test_python_edge_refuses_an_unknown_method_in_one_line_and_takes_a_known_one():
+    scene = load_scene(CASE)
+    with pytest.raises(InputError) as caught:
+        analyze(scene, 2, 4, solver="fast")
+    assert str(caught.value) == "method: 'fast' is not a choice (expected auto, dense or sparse)"
+    assert analyze(scene, 2, 4, solver="sparse").modes.solver is Method.SPARSE
 
 
 @pytest.mark.parametrize("kind", [Mass, Part, ModelFamily])
