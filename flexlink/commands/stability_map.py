@@ -5,7 +5,7 @@ from __future__ import annotations
 import click
 
 from flexlink.commands._failures import names_scene
-from flexlink.commands._options import dumps, json_option, out_option
+from flexlink.commands._options import dumps, json_option, out_option, scheduler_option
 
 
 @click.command("stability-map")
@@ -17,17 +17,29 @@ from flexlink.commands._options import dumps, json_option, out_option
               type=click.IntRange(1, 50), help="Static modes of the reduced basis.")
 @click.option("--damping-ratio", default=0.01, show_default=True, type=float,
               help="Modal damping ratio in [0, 1).")
+@click.option("--poses", default=37, show_default=True, type=click.IntRange(3, 1001),
+              help="Crank angles the periodic matrices are sampled at (odd).")
+@click.option("--basis", "basis_size", default=None, type=click.IntRange(1, 10000),
+              help="Reduced basis size; default: the smallest whose lowest MODES frequencies "
+                   "match the full model's at every pose to --basis-tolerance.")
+@click.option("--basis-tolerance", default=1e-3, show_default=True,
+              type=click.FloatRange(0.0, 1.0, min_open=True),
+              help="Relative frequency excess the basis may have at any pose.")
+@scheduler_option("the speeds in chunks")
 @json_option
 @out_option
 @names_scene("scene_path")
-def command(scene_path, speeds, count, n_modes, damping_ratio, as_json, out_dir):
+def command(scene_path, speeds, count, n_modes, damping_ratio, poses, basis_size,
+            basis_tolerance, scheduler, as_json, out_dir):
     """Largest Floquet multiplier of SCENE's periodic elastic equations against crank speed
     and the unstable ranges, labelled by the nearest parametric resonance. Writes
     stability-map.png, .csv and .json to OUT/<scene>/."""
     import numpy as np
 
     from flexlink.commands.campbell import parse_speeds
+    from flexlink.errors import InputError
     from flexlink.fileio import prepare_out_dir, write_atomic
+    from flexlink.parallel import use_scheduler
     from flexlink.output.stability_map import (plot_stability, stability_csv,
                                                stability_document, stability_lines)
     from flexlink.scene import load_scene
@@ -39,11 +51,16 @@ def command(scene_path, speeds, count, n_modes, damping_ratio, as_json, out_dir)
     low, high = _check_speeds(parse_speeds(speeds))
     [folder] = scene_folders(prepare_out_dir(out_dir), [scene_path])
     scene = load_scene(scene_path)
-    model = periodic_model(scene, n_modes, damping_ratio=damping_ratio)
-    result = stability_map(model, np.linspace(low, high, count),
-                           progress=progress_bar("speeds", as_json))
+    if poses % 2 == 0:
+        raise InputError(f"--poses must be odd (every harmonic with its pair), got {poses}",
+                         field="--poses", expected="an odd count of at least 3")
+    model = periodic_model(scene, n_modes, poses, damping_ratio, basis_size=basis_size,
+                           tolerance=basis_tolerance)
+    with use_scheduler(scheduler):
+        result = stability_map(model, np.linspace(low, high, count),
+                               progress=progress_bar("speeds", as_json) is not None)
     paths = [folder / f"stability-map.{x}" for x in ("png", "csv", "json")]
-    plot_stability(result, paths[0], scene.name)
+    plot_stability(result, model, paths[0], scene.name)
     write_atomic(paths[1], stability_csv(result))
     document = {**stability_document(scene.name, result, model),
                 "files": [str(p) for p in paths]}
