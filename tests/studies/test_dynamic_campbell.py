@@ -88,3 +88,41 @@ def test_campbell_dynamic_command(tmp_path):
     assert (tmp_path / "case1" / "campbell_at_speed.csv").exists()
     assert all(s["frozen_rev_per_min"] or s["at_speed_rev_per_min"]
                for s in at_speed["critical_speeds"])
+
+
+def test_lines_follow_their_modes_through_the_speeds(case1):
+    # Table II case 1 (8 elements per link, 12 poses), 1000 to 2400 rev/min in 200 rev/min
+    # steps: the falling mode of the crank angles near 180 deg crosses the one above it there.
+    # Tracked through the speeds, a line moves by at most 7.3 Hz per step (measured; the
+    # falling mode near 2400 rev/min); lines re-tracked through the cycle at each speed alone
+    # swapped at 1600 rev/min, a jump of 42 Hz (the gap between the two modes).
+    speeds = np.arange(1000.0, 2401.0, 200.0) * RPM
+    result = dynamic_campbell(case1, speeds, n_poses=12, n_modes=3, elements_per_link=8)
+    assert result.divergence is None and result.ambiguous == 0
+    step = np.abs(np.diff(result.frequencies, axis=0))
+    assert step.max() < 10.0
+    # at the first speed the lines are the cycle's tracked lines, as in the static map
+    assert np.all(np.diff(np.sort(result.frequencies[0], axis=1), axis=1) >= 0)
+
+
+def test_divergence_names_the_line_that_falls_to_zero(case1):
+    # Past about 2750 rev/min case 1's lowest mode near crank angle 210 deg diverges: the
+    # record gives the speed where the reduced stiffness at speed is singular at a sampled
+    # pose, the line (1: the lines are numbered at the first speed, here at rest, as the
+    # frozen-pose lines), and a real root that grows at the first grid speed past it.
+    speeds = np.array([0.0, 1000.0, 2000.0, 2400.0, 2600.0, 2700.0, 2900.0]) * RPM
+    result = dynamic_campbell(case1, speeds, n_poses=12, n_modes=3, elements_per_link=8)
+    d = result.divergence
+    assert d is not None and d.line == 1
+    assert 2700 * RPM < d.speed < 2900 * RPM and d.grid_speed == speeds[-1]
+    assert d.growth_rate > 0
+    assert result.stable_speeds == 6 and np.isnan(result.frequencies[-1]).all()
+    # the line's frequency at that pose falls towards 0 Hz as the speed comes up to it
+    pose = int(np.argmin(np.abs(np.angle(np.exp(1j * (result.q - d.q))))))
+    falling = result.frequencies[2:6, pose, 0]
+    assert np.all(np.diff(falling) < 0) and falling[-1] < 0.5 * falling[0]
+    # the full (unreduced) operating-point solve at that pose agrees where the divergence is:
+    # 0.5 % below it all modes oscillate, 0.5 % above it the stiffness at speed is indefinite
+    below = operating_modes(case1, 0.995 * d.speed, 3, 8, crank_angle=d.q)
+    above = operating_modes(case1, 1.005 * d.speed, 3, 8, crank_angle=d.q)
+    assert below.modes.negative_stiffness == 0 and above.modes.negative_stiffness > 0
