@@ -38,8 +38,11 @@ def dynamic_json(result: DynamicCampbell, shifts: list[CriticalShift]) -> dict:
     side, the divergence if any, and the model's assumptions."""
     low, high = result.bands()
     return {
-        "assumptions": list(ASSUMPTIONS) + ["constant crank speed"],
+        "assumptions": list(ASSUMPTIONS) + [
+            "constant crank speed" if not result.crank_acceleration else
+            "the same crank acceleration at every speed and pose (not a run-up)"],
         "basis_static_modes": result.basis,
+        "crank_acceleration_rad_s2": result.crank_acceleration,
         "frozen_bands": [{"mode": b.mode, "min_Hz": b.low, "max_Hz": b.high}
                          for b in frozen_bands(result)],
         "bands_at_speed": [{"rev_per_min": w / RPM,
@@ -86,8 +89,9 @@ def dynamic_lines(result: DynamicCampbell, shifts: list[CriticalShift]) -> list[
     """The text summary: the model, the divergence, and each critical range frozen against at
     speed with the moves of its edges."""
     out = ["at speed: operating-point modes (inertia preload, centrifugal, Coriolis) at every "
-           f"pose, reduced onto {result.basis} static modes per pose; "
-           + "; ".join(ASSUMPTIONS)]
+           f"pose, reduced onto {result.basis} static modes per pose"
+           + (f", crank acceleration {result.crank_acceleration:.6g} rad/s^2 at every speed"
+              if result.crank_acceleration else "") + "; " + "; ".join(ASSUMPTIONS)]
     if result.divergence is not None:
         out.append(divergence_line(result.divergence))
     if result.ambiguous:

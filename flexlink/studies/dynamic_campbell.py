@@ -2,12 +2,15 @@
 speed, from the operating-point modes (``studies.operating_point``) at every pose, against the
 frozen-pose (static) bands.
 
-At constant crank speed Omega every operating-point term of a pose scales with a power of
-Omega: the rigid accelerations, hence the d'Alembert preload, its axial forces and K_g(N), the
-centrifugal -omega^2 Mt and the circulatory alpha S are Omega^2 times their values at 1 rad/s,
-and the gyroscopic G is Omega times its value. So per pose
-    M x'' + Omega G1 x' + (K + K_ext + Omega^2 K2) x = 0,
-with K_ext the geometric stiffness of the scene's constant [[loads]]. Each pose is reduced once
+At crank speed Omega and crank angular acceleration qddot every operating-point term of a pose
+is a sum of powers of the two: the rigid accelerations (a = p'' Omega^2 + p' qddot,
+alpha = L Omega^2 + K qddot), hence the d'Alembert preload, its axial forces and K_g(N), and
+the circulatory alpha S are Omega^2 times their values at 1 rad/s plus qddot times their
+values at 1 rad/s^2 from rest, the centrifugal -omega^2 Mt is Omega^2 times its value and the
+gyroscopic G is Omega times its value. So per pose
+    M x'' + Omega G1 x' + (K + K_ext + Omega^2 K2 + qddot K1) x = 0,
+with K_ext the geometric stiffness of the scene's constant [[loads]]; the same qddot is taken
+at every speed and pose (the modes at that instant of a crank speeding up, not a run-up). Each pose is reduced once
 onto its lowest static modes Phi (mass normalised, ``basis`` of them: Galerkin projection, M ->
 I, K -> diag(omega_i^2)), and every speed is then a small dense quadratic eigenproblem. The
 reduction is checked against the full ``operating_modes`` solve in the tests.
@@ -62,27 +65,33 @@ EXTRA = 8  # static modes in each pose's basis beyond the ones solved at speed
 @dataclasses.dataclass(frozen=True)
 class ReducedPose:
     """One pose's operating-point matrices on its static modes Phi (full DOFs, mass
-    normalised): k0 = Phi^T (K + K_ext) Phi, k2 and g1 the Omega^2 and Omega coefficients
-    [1/s^2, -, 1/s]; ``frame``: Phi in link frames, for the MAC."""
+    normalised): k0 = Phi^T (K + K_ext) Phi, k2, g1 and k1 the Omega^2, Omega and crank
+    acceleration coefficients [1/s^2, -, 1/s, -]; ``frame``: Phi in link frames, for the MAC."""
 
     static_hz: np.ndarray  # the pose's static frequencies of the basis [Hz]
     k0: np.ndarray
     k2: np.ndarray
     g1: np.ndarray
+    k1: np.ndarray
     frame: np.ndarray
 
-    def roots(self, speed: float) -> tuple[np.ndarray, np.ndarray]:
-        """(every root s (2 n,) [1/s], its shape (n,) in the basis) at crank ``speed`` [rad/s]."""
+    def stiffness(self, acceleration: float = 0.0) -> np.ndarray:
+        """k0 + qddot k1: the stiffness at speed less its Omega^2 part [1/s^2]."""
+        return self.k0 + acceleration * self.k1 if acceleration else self.k0
+
+    def roots(self, speed: float, acceleration: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
+        """(every root s (2 n,) [1/s], its shape (n,) in the basis) at crank ``speed`` [rad/s]
+        and crank ``acceleration`` [rad/s^2]."""
         n = len(self.k0)
-        K, G = self.k0 + speed**2 * self.k2, speed * self.g1
+        K, G = self.stiffness(acceleration) + speed**2 * self.k2, speed * self.g1
         s, Z = la.eig(np.block([[np.zeros((n, n)), np.eye(n)], [-K, -G]]))
         return s, Z[:n]
 
-    def modes(self, speed: float, count: int):
+    def modes(self, speed: float, count: int, acceleration: float = 0.0):
         """(s (count,) with Im(s) > 0 by |s| [1/s], link-frame shapes (n_dofs, count) complex)
-        at crank ``speed`` [rad/s]; None at a divergence (a real root pair: the stiffness at
-        speed is not definite), which is never returned as a frequency."""
-        s, Y = self.roots(speed)
+        at crank ``speed`` [rad/s] and ``acceleration`` [rad/s^2]; None at a divergence (a real
+        root pair: the stiffness at speed is not definite), never returned as a frequency."""
+        s, Y = self.roots(speed, acceleration)
         upper = np.flatnonzero(s.imag > 1e-9 * np.abs(s))
         if len(upper) < len(self.k0):
             return None
@@ -92,14 +101,16 @@ class ReducedPose:
         Y = Y * np.exp(-1j * np.angle(Y[big, np.arange(count)]))
         return s[pick], self.frame @ Y
 
-    def growth_rate(self, speed: float) -> float:
-        """The largest real part of the roots at ``speed`` [rad/s] [1/s]."""
-        return float(self.roots(speed)[0].real.max())
+    def growth_rate(self, speed: float, acceleration: float = 0.0) -> float:
+        """The largest real part of the roots at ``speed`` [rad/s] and ``acceleration``
+        [rad/s^2] [1/s]."""
+        return float(self.roots(speed, acceleration)[0].real.max())
 
-    def divergence_speed(self) -> tuple[float, np.ndarray | None]:
+    def divergence_speed(self, acceleration: float = 0.0) -> tuple[float, np.ndarray | None]:
         """(the lowest crank speed [rad/s] at which the stiffness at speed
-        k0 + Omega^2 k2 is singular (inf if none), the link-frame shape of its null direction)."""
-        mu, X = la.eig(self.k0, -self.k2)
+        k0 + qddot k1 + Omega^2 k2 is singular (inf if none), the link-frame shape of its null
+        direction)."""
+        mu, X = la.eig(self.stiffness(acceleration), -self.k2)
         real = np.isfinite(mu) & (np.abs(mu.imag) <= 1e-9 * np.abs(mu)) & (mu.real > 0)
         if not real.any():
             return math.inf, None
@@ -122,6 +133,8 @@ def reduce_pose(scene: Scene, state, topology, basis: int,
     Kr, _ = assemble_reduced_dense(model, T)
     motion = rigid_motion(scene.linkage, state, 1.0, 0.0)  # every term at 1 rad/s
     omega, alpha, acc = link_motion(scene, model, topology, motion)
+    start = rigid_motion(scene.linkage, state, 0.0, 1.0)  # and at 1 rad/s^2 from rest
+    _, alpha1, acc1 = link_motion(scene, model, topology, start)
 
     def reduce(rows, cols, vals):
         return dense_sum(dense_slots(column, n, rows, cols), vals, n)
@@ -133,6 +146,8 @@ def reduce_pose(scene: Scene, state, topology, basis: int,
     rows, cols, rot = rotating_entries(model, omega, alpha)
     K2 = reduce(rows, cols, rot[0] + rot[2]) + geometric(inertia_loads(model, acc, alpha))
     G1 = reduce(rows, cols, rot[1])
+    rows1, cols1, rot1 = rotating_entries(model, np.zeros_like(alpha1), alpha1)
+    K1 = reduce(rows1, cols1, rot1[2]) + geometric(inertia_loads(model, acc1, alpha1))
     external = external_loads(scene, model, topology, state)
     K_ext = geometric(external) if np.any(external) else np.zeros((n, n))
     Phi = static.shapes[:, static.elastic[:basis]]
@@ -142,7 +157,7 @@ def reduce_pose(scene: Scene, state, topology, basis: int,
     lam = (2 * math.pi * static.elastic_frequencies[:basis]) ** 2
     pose = ReducedPose(static_hz=static.elastic_frequencies[:basis],
                        k0=np.diag(lam) + P.T @ K_ext @ P, k2=P.T @ K2 @ P, g1=P.T @ G1 @ P,
-                       frame=link_frame(model, Phi))
+                       k1=P.T @ K1 @ P, frame=link_frame(model, Phi))
     return pose, link_frame_mass(model)
 
 
@@ -166,6 +181,7 @@ class DynamicCampbell:
     """frequencies[k, i, j] [Hz] of tracked line j at pose i and speed speeds[k] [rad/s] (NaN
     from the first speed where some pose diverges); ``static``: the frozen-pose tracked lines
     (poses, lines) [Hz]; crank angles q [rad]; ``divergence`` within the grid, or None;
+    ``crank_acceleration`` [rad/s^2] the same at every speed;
     ``ambiguous``: how many (speed, pose, line) steps paired with the previous speed below
     ``tracking.PAIR_MAC``."""
 
@@ -177,6 +193,7 @@ class DynamicCampbell:
     basis: int
     divergence: Divergence | None = None
     ambiguous: int = 0
+    crank_acceleration: float = 0.0  # [rad/s^2], the same at every speed and pose
 
     @property
     def stable_speeds(self) -> int:
@@ -190,9 +207,10 @@ class DynamicCampbell:
 
 def dynamic_campbell(scene: Scene, speeds: np.ndarray, n_poses: int = 72, n_modes: int = 3,
                      elements_per_link: int | None = None, basis: int | None = None,
-                     progress=None) -> DynamicCampbell:
+                     progress=None, crank_acceleration: float = 0.0) -> DynamicCampbell:
     """The lowest ``n_modes`` operating-point modes at every pose of ``n_poses`` over the cycle
-    and every crank speed of ``speeds`` [rad/s] (constant speed, ascending), each pose reduced
+    and every crank speed of ``speeds`` [rad/s] (ascending) with the crank angular acceleration
+    ``crank_acceleration`` [rad/s^2] (default 0: constant speed), each pose reduced
     onto its lowest ``basis`` static modes (default n_modes + SPARE + EXTRA), tracked by MAC
     through the cycle at the first speed and through the speeds at every pose. Speeds from the
     first where a pose diverges on are left out (NaN)."""
@@ -201,6 +219,9 @@ def dynamic_campbell(scene: Scene, speeds: np.ndarray, n_poses: int = 72, n_mode
             or np.any(np.diff(speeds) <= 0)):
         raise InputError("crank speeds must be finite, >= 0 and ascending", field="--speeds",
                          expected="0 <= low < high")
+    if not math.isfinite(crank_acceleration):
+        raise InputError(f"got {crank_acceleration!r} rad/s^2", field="--crank-acceleration",
+                         expected="a finite angular acceleration")
     count = n_modes + SPARE
     basis = basis or count + EXTRA
     if basis < count:
@@ -223,7 +244,7 @@ def dynamic_campbell(scene: Scene, speeds: np.ndarray, n_poses: int = 72, n_mode
         static_shapes.append(np.vstack([frame, np.zeros_like(frame)]))
         previous = None
         for k in range(min(stop + 1, len(speeds))):
-            found = pose.modes(speeds[k], count)
+            found = pose.modes(speeds[k], count, crank_acceleration)
             if found is None:  # this speed and every higher one are out
                 stop = k
                 break
@@ -238,7 +259,7 @@ def dynamic_campbell(scene: Scene, speeds: np.ndarray, n_poses: int = 72, n_mode
             previous = shapes[:, order]
             if k == 0:
                 first.append(previous)
-        critical, null = pose.divergence_speed()
+        critical, null = pose.divergence_speed(crank_acceleration)
         if critical < lowest[0] and previous is not None:
             shape = np.concatenate([null, np.zeros_like(null)])[:, None]
             m = int(np.argmax(np.nan_to_num(mac_matrix(previous, shape, W))[:, 0]))
@@ -256,10 +277,12 @@ def dynamic_campbell(scene: Scene, speeds: np.ndarray, n_poses: int = 72, n_mode
     frozen = track(static, static_shapes, n_modes, W).frequencies
     return DynamicCampbell(scene=scene.name, q=cycle.q, speeds=speeds, frequencies=lines,
                            static=frozen, basis=basis, ambiguous=ambiguous,
-                           divergence=_divergence(speeds, stop, cycle.q, lowest, start))
+                           crank_acceleration=float(crank_acceleration),
+                           divergence=_divergence(speeds, stop, cycle.q, lowest, start,
+                                                  crank_acceleration))
 
 
-def _divergence(speeds, stop: int, q, lowest, start) -> Divergence | None:
+def _divergence(speeds, stop: int, q, lowest, start, acceleration) -> Divergence | None:
     """The divergence record, when some pose diverges on the grid (``stop`` < len)."""
     if stop == len(speeds):
         return None
@@ -271,7 +294,7 @@ def _divergence(speeds, stop: int, q, lowest, start) -> Divergence | None:
         line = int(np.flatnonzero(start[i] == m)[0]) + 1
     return Divergence(speed=float(critical) if math.isfinite(critical) else None,
                       q=float(q[i]), line=line, grid_speed=float(speeds[stop]),
-                      growth_rate=pose.growth_rate(float(speeds[stop])))
+                      growth_rate=pose.growth_rate(float(speeds[stop]), acceleration))
 
 
 @dataclasses.dataclass(frozen=True)

@@ -37,6 +37,21 @@ def test_reduced_pose_agrees_with_full_operating_point_solve(case1, pose):
     assert full.frequencies != pytest.approx(full.static_frequencies, rel=1e-3)
 
 
+@pytest.mark.parametrize("pose, acceleration", [(9, 5e3), (20, -5e3)])
+def test_reduced_pose_with_crank_acceleration(case1, pose, acceleration):
+    # the crank acceleration's part K1 (rigid accelerations p' qddot and alpha = K qddot in the
+    # preload and the alpha S term) against the full solve with that acceleration: the same
+    # 3e-4 as at constant speed, while 5e3 rad/s^2 moves the modes by 1e-2 and more
+    state = kinematic_cycle(case1, 24).states[pose]
+    reduced, _ = reduce_pose(case1, state, case1.topology(8), 13)
+    s, _ = reduced.modes(2000 * RPM, 5, acceleration)
+    full = operating_modes(case1, 2000 * RPM, 5, 8, crank_angle=state.q,
+                           crank_acceleration=acceleration)
+    assert np.abs(s.imag) / (2 * math.pi) == pytest.approx(full.frequencies, rel=3e-4)
+    steady, _ = reduced.modes(2000 * RPM, 5)
+    assert np.abs(steady.imag) != pytest.approx(np.abs(s.imag), rel=1e-2)
+
+
 def test_zero_speed_equals_static_campbell(case1):
     # at rest the reduced problem is diagonal in the static modes: the same tracked lines and
     # bands as the static cycle map, to round-off
@@ -126,3 +141,47 @@ def test_divergence_names_the_line_that_falls_to_zero(case1):
     below = operating_modes(case1, 0.995 * d.speed, 3, 8, crank_angle=d.q)
     above = operating_modes(case1, 1.005 * d.speed, 3, 8, crank_angle=d.q)
     assert below.modes.negative_stiffness == 0 and above.modes.negative_stiffness > 0
+
+
+@pytest.mark.parametrize("extra, message", [
+    (["--crank-acceleration", "50 rad/s^2"], "--dynamic"),
+    (["--dynamic", "--crank-acceleration", "50 rev/min"], "angular acceleration"),
+    (["--dynamic", "--crank-acceleration", "nan rad/s^2"], "cannot read"),
+    (["--dynamic", "--crank-acceleration", "1e400 rad/s^2"], "finite"),
+])
+def test_campbell_crank_acceleration_bad_input(tmp_path, extra, message):
+    # an acceleration without the bands at speed, a wrong unit or NaN: exit 2, one line
+    # naming the option, nothing computed
+    from click.testing import CliRunner
+
+    from flexlink.cli import main
+
+    result = CliRunner().invoke(main, [
+        "campbell", str(CASES_DIR / "case1.toml"), "--speeds", "0:2000 rev/min", "--poses", "6",
+        "-e", "4", "-n", "1", "--out", str(tmp_path), *extra])
+    assert result.exit_code == 2, result.output
+    assert "--crank-acceleration" in result.output and message in result.output
+    assert "Traceback" not in result.output
+    assert not (tmp_path / "case1" / "campbell.json").exists()
+
+
+def test_campbell_dynamic_with_crank_acceleration(tmp_path):
+    # the acceleration reaches the bands at speed (at rest it acts alone: alpha = K qddot and
+    # the accelerations p' qddot preload the frame), and the JSON states it
+    from click.testing import CliRunner
+
+    from flexlink.cli import main
+
+    def bands(*extra):
+        result = CliRunner().invoke(main, [
+            "campbell", str(CASES_DIR / "case1.toml"), "--speeds", "0:1000 rev/min", "--dynamic",
+            "--speed-steps", "2", "--poses", "6", "-e", "4", "-n", "2", "--json",
+            "--out", str(tmp_path), *extra])
+        assert result.exit_code == 0, result.output
+        return json.loads(result.output)["at_speed"]
+
+    steady, speeding = bands(), bands("--crank-acceleration", "2000 rad/s^2")
+    assert steady["crank_acceleration_rad_s2"] == 0
+    assert speeding["crank_acceleration_rad_s2"] == pytest.approx(2000.0)
+    for a, b in zip(steady["bands_at_speed"], speeding["bands_at_speed"]):
+        assert a["min_Hz"] != pytest.approx(b["min_Hz"], rel=1e-4)
