@@ -120,6 +120,40 @@ def test_lines_follow_their_modes_through_the_speeds(case1):
     assert np.all(np.diff(np.sort(result.frequencies[0], axis=1), axis=1) >= 0)
 
 
+def test_lines_cross_where_their_modes_cross_in_speed(case1, monkeypatch):
+    # Each pose's reduced problem replaced by one whose two lowest modes cross in speed with
+    # their shapes unchanged: k = diag(lam) + Omega^2 diag(+c, -c, 0, ...), no gyroscopic
+    # term, so the lowest mode's frequency rises to the second's at the top speed and the
+    # second falls to the first's (they cross at top / sqrt(2), between grid speeds). Each
+    # line must follow its mode: sqrt(lam +- Omega^2 c) / (2 pi) exactly (round-off), where
+    # frequency order would swap the lines at the crossing.
+    import dataclasses
+
+    from flexlink.studies import dynamic_campbell as studied
+
+    real, top, slope = studied.reduce_pose, 100.0, {}
+
+    def crossing(scene, state, topology, basis, form=None):
+        pose, mass = real(scene, state, topology, basis)
+        lam = np.diag(pose.k0).copy()
+        c = (lam[1] - lam[0]) / top**2
+        slope[round(float(state.q), 9)] = c
+        d = np.zeros(len(lam))
+        d[:2] = c, -c
+        zero = np.zeros_like(pose.k0)
+        return dataclasses.replace(pose, k0=np.diag(lam), k2=np.diag(d), g1=zero, k1=zero), mass
+
+    monkeypatch.setattr(studied, "reduce_pose", crossing)
+    speeds = np.linspace(0.0, top, 9)
+    result = studied.dynamic_campbell(case1, speeds, n_poses=8, n_modes=2, elements_per_link=4)
+    w0 = 2 * math.pi * result.frequencies[0]  # (poses, lines) at rest
+    sign = np.where(w0 == w0.min(axis=1, keepdims=True), 1.0, -1.0)  # the lower one rises
+    c = np.array([slope[round(float(q), 9)] for q in result.q])[:, None]
+    expected = np.sqrt(w0**2 + sign * c * speeds[:, None, None] ** 2) / (2 * math.pi)
+    assert result.frequencies == pytest.approx(expected, rel=1e-10)
+    assert result.ambiguous == 0
+
+
 def test_divergence_names_the_line_that_falls_to_zero(case1):
     # Past about 2750 rev/min case 1's lowest mode near crank angle 210 deg diverges: the
     # record gives the speed where the reduced stiffness at speed is singular at a sampled
