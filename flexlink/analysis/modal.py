@@ -40,11 +40,34 @@ class CaseResult:
         return self.modes.elastic_frequencies[:n]
 
 
+@dataclasses.dataclass(frozen=True)
+class PoseSystem:
+    """A pose's model, its assembled K and M and its modes (``pose_system``): K, M are
+    T^T K T and T^T M T when ``reduced`` (dense), else full size; T from
+    ``assembly.reduction`` (None: nothing rigid)."""
+
+    model: FrameModel
+    modes: ModalResult
+    K: object
+    M: object
+    T: object
+    reduced: bool
+    seconds: dict[str, float]
+
+
 def pose_modes(topology: Topology, points: Mapping[str, tuple[float, float]], n_modes: int,
                method: str = "auto", mass: str = "consistent", refine: bool = True
                ) -> tuple[FrameModel, ModalResult, dict[str, float]]:
-    """(model, modes, seconds) of ``topology`` with its joints at ``points`` [m]: the lowest
-    ``n_modes`` elastic modes and every rigid-body/mechanism mode below them, labelled.
+    """(model, modes, seconds) of ``pose_system``."""
+    system = pose_system(topology, points, n_modes, method, mass, refine)
+    return system.model, system.modes, system.seconds
+
+
+def pose_system(topology: Topology, points: Mapping[str, tuple[float, float]], n_modes: int,
+                method: str = "auto", mass: str = "consistent", refine: bool = True
+                ) -> PoseSystem:
+    """``topology`` with its joints at ``points`` [m], assembled, and its lowest ``n_modes``
+    elastic modes and every rigid-body/mechanism mode below them, labelled.
 
     Refuses, before assembling, a mesh too fine for double precision
     (``precision.refuse_too_fine``), and asking for more elastic modes than the model has
@@ -72,7 +95,7 @@ def pose_modes(topology: Topology, points: Mapping[str, tuple[float, float]], n_
                               method=method, energy=energy, reduced=dense)
     modes = require_elastic(lowest_elastic(solve, n_modes), n_modes)
     t2 = time.perf_counter()
-    return model, modes, {"assembly": t1 - t0, "solve": t2 - t1}
+    return PoseSystem(model, modes, K, M, T, dense, {"assembly": t1 - t0, "solve": t2 - t1})
 
 
 def analyze(scene: Scene, n_modes: int = 4, elements_per_link: int | None = None,
