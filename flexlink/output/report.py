@@ -10,7 +10,7 @@ import math
 
 import numpy as np
 
-from flexlink.analysis.damping import damping_ratios
+from flexlink.analysis.damping import damping_source, modal_damping_ratios
 from flexlink.analysis.identity import DIRECTIONS, mode_identity, participating_mass, total_mass
 from flexlink.analysis.modal import CaseResult
 from flexlink.units import percent_error
@@ -76,9 +76,12 @@ def case_summary(result: CaseResult, n_modes: int, family: str = "planar", compu
         "dofs": modes.n_dofs,
         "solver": modes.solver,
         "modes": rows,
-        # per elastic mode, from the links' loss factors (``damping.damping_ratios``) [-]
-        "damping_ratio": [] if computed is not None else [float(z) for z in damping_ratios(
-            result.model, modes.shapes[:, modes.elastic[:n_modes]], scene.loss_factors)],
+        # per elastic mode: declared in [damping], else from the links' loss factors [-]
+        "damping_ratio": [] if computed is not None else [float(z) for z in modal_damping_ratios(
+            result.model, modes.shapes[:, modes.elastic[:n_modes]],
+            2 * math.pi * modes.elastic_frequencies[:n_modes], scene.loss_factors,
+            scene.options.damping)],
+        "damping_source": damping_source(scene.options.damping),
         "mechanism_modes_Hz": mechanism,
         "mass_kg": {"total": total_mass(result.model),
                     "participating": dict(zip(DIRECTIONS, map(float, participating_mass(result.model))))},
@@ -142,7 +145,7 @@ def format_case(summary: dict) -> str:
         lines.append("mean |error|: " + ", ".join(
             f"vs {k} {v:.1f} %" for k, v in sorted(summary["mean_abs_error_pct"].items())))
     if summary.get("damping_ratio"):
-        lines.append("damping ratio zeta % (material loss, strain-energy weighted): " + ", ".join(
+        lines.append(f"damping ratio zeta % ({summary['damping_source']}): " + ", ".join(
             f"{100 * z:.3f}" for z in summary["damping_ratio"]))
     lines += [f"damping: {a['field']} = {a['value']}, {a['note']}"
               for a in summary["assumptions"] if a["field"].endswith("loss_factor")]
