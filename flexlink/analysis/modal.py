@@ -49,11 +49,34 @@ class CaseResult:
         return self.modes.elastic_frequencies[:n]
 
 
+@dataclasses.dataclass(frozen=True)
+class PoseSystem:
+    """A pose's model, its assembled K and M and its modes (``pose_system``): K, M are
+    T^T K T and T^T M T when ``eliminated`` (dense), else full size; T from
+    ``assembly.rigid_elimination`` (None: nothing rigid)."""
+
+    model: FrameModel
+    modes: ModalResult
+    K: object
+    M: object
+    T: object
+    eliminated: bool
+    seconds: dict[str, float]
+
+
 def pose_modes(topology: Topology, points: Mapping[str, tuple[float, float]], n_modes: int,
                solver: EigenSolver = DEFAULT_SOLVER, mass: Mass = Mass.CONSISTENT,
                refine: bool = True) -> tuple[FrameModel, ModalResult, dict[str, float]]:
-    """(model, modes, seconds) of ``topology`` with its joints at ``points`` [m]: the lowest
-    ``n_modes`` elastic modes and every rigid-body/mechanism mode below them, labelled.
+    """(model, modes, seconds) of ``pose_system``."""
+    system = pose_system(topology, points, n_modes, solver, mass, refine)
+    return system.model, system.modes, system.seconds
+
+
+def pose_system(topology: Topology, points: Mapping[str, tuple[float, float]], n_modes: int,
+                solver: EigenSolver = DEFAULT_SOLVER, mass: Mass = Mass.CONSISTENT,
+                refine: bool = True) -> PoseSystem:
+    """``topology`` with its joints at ``points`` [m], assembled, and its lowest ``n_modes``
+    elastic modes and every rigid-body/mechanism mode below them, labelled.
 
     Refuses, before assembling, a mesh too fine for double precision
     (``precision.refuse_too_fine``), and asking for more elastic modes than the model has
@@ -66,7 +89,8 @@ def pose_modes(topology: Topology, points: Mapping[str, tuple[float, float]], n_
     # Small models, which the dense solver takes anyway, are assembled straight into dense
     # K and M with the constraints eliminated: scipy.sparse's bookkeeping (COO -> CSR, T^T K T)
     # costs several times their eigen solve. Same matrices, same checks.
-    if mass is Mass.CONSISTENT and solver.assembles_dense(n):
+    eliminated = mass is Mass.CONSISTENT and solver.assembles_dense(n)
+    if eliminated:
         solve_model = solve_eliminated_modes
         K, M = assemble_reduced_dense(model, T)
     else:
@@ -80,7 +104,7 @@ def pose_modes(topology: Topology, points: Mapping[str, tuple[float, float]], n_
                               solver=solver, energy=energy)
     modes = require_elastic(lowest_elastic(solve, n_modes), n_modes)
     t2 = time.perf_counter()
-    return model, modes, {"assembly": t1 - t0, "solve": t2 - t1}
+    return PoseSystem(model, modes, K, M, T, eliminated, {"assembly": t1 - t0, "solve": t2 - t1})
 
 
 def analyze(scene: Scene, n_modes: int = 4, elements_per_link: int | None = None,

@@ -37,12 +37,15 @@ def parse_speeds(text: str) -> tuple[float, float]:
                    "centrifugal, Coriolis), and how they move the critical speed ranges.")
 @click.option("--speed-steps", default=50, show_default=True, type=click.IntRange(2, 100000),
               help="Crank speeds across the range for --dynamic.")
+@click.option("--crank-acceleration", "acceleration", default=None, metavar="ACCELERATION",
+              help="With --dynamic: the crank's angular acceleration at every speed, e.g. "
+                   "'50 rad/s^2' [default: 0, constant speed].")
 @map_parallel_options(sorted_map=False)
 @json_option
 @out_option
 @names_scene("scene_path")
 def command(scene_path, speeds, n_modes, poses, elements, tol, margin, harmonics, dynamic,
-            speed_steps, jobs, scheduler, as_json, out_dir):
+            speed_steps, acceleration, jobs, scheduler, as_json, out_dir):
     """Campbell diagram of SCENE: each tracked mode's frequency band over the crank cycle
     against crank speed, the harmonics n x speed and the margin band; the critical speed
     ranges where a harmonic enters a band (with the margin), or the nearest margin when none
@@ -62,6 +65,7 @@ def command(scene_path, speeds, n_modes, poses, elements, tol, margin, harmonics
     from ._written import announce, scene_folders
 
     window = parse_speeds(speeds)
+    qdd = parse_acceleration(acceleration, dynamic)
     [folder] = scene_folders(prepare_out_dir(out_dir), [scene_path])
     scene = load_scene(scene_path)
     mesh = choose_mesh(scene, n_modes, elements, tol)
@@ -74,7 +78,7 @@ def command(scene_path, speeds, n_modes, poses, elements, tol, margin, harmonics
     labels = dict(enumerate(result.labels, start=1))
     paths = [folder / "campbell.png", folder / "campbell.csv", folder / "campbell.json"]
     at_speed = _at_speed(scene, window, n_modes, poses, mesh.elements, margin, harmonics,
-                         speed_steps, folder, progress_bar("poses at speed", as_json)) \
+                         speed_steps, folder, progress_bar("poses at speed", as_json), qdd) \
         if dynamic else None
     plot_campbell(found, window, margin, harmonics, critical, paths[0], scene.name, labels)
     write_atomic(paths[1], critical_csv(critical, found))
@@ -128,8 +132,23 @@ def command(scene_path, speeds, n_modes, poses, elements, tol, margin, harmonics
     announce(paths + (at_speed[2] if at_speed else []), as_json)
 
 
+def parse_acceleration(text: str | None, dynamic: bool) -> float:
+    """--crank-acceleration [rad/s^2] (0 when not given); it needs --dynamic."""
+    from flexlink.errors import InputError
+    from flexlink.units import parse_quantity
+
+    if text is None:
+        return 0.0
+    if not dynamic:
+        raise InputError("a crank acceleration is for the bands at speed: give --dynamic too",
+                         source="command line", field="--crank-acceleration",
+                         expected="--dynamic with --crank-acceleration")
+    return parse_quantity(text, "angular acceleration", source="command line",
+                          field="--crank-acceleration")
+
+
 def _at_speed(scene, window, n_modes, poses, elements, margin, harmonics, steps, folder,
-              progress):
+              progress, acceleration=0.0):
     """(JSON, text lines, files written) of the speed-dependent diagram over ``window``."""
     import numpy as np
 
@@ -139,7 +158,7 @@ def _at_speed(scene, window, n_modes, poses, elements, margin, harmonics, steps,
     from flexlink.studies.dynamic_campbell import critical_shifts, dynamic_campbell
 
     result = dynamic_campbell(scene, np.linspace(*window, steps), poses, n_modes, elements,
-                              progress=progress)
+                              progress=progress, crank_acceleration=acceleration)
     shifts = critical_shifts(result, margin, harmonics)
     files = [folder / "campbell_at_speed.png", folder / "campbell_at_speed.csv"]
     plot_dynamic(result, margin, harmonics, files[0], scene.name)

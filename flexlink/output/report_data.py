@@ -104,17 +104,20 @@ TORQUE_POSES = 72
 
 
 def at_speed_data(scene: Scene, n_modes: int, elements_per_link: int) -> dict | None:
-    """The scene at its declared operating speed ([operation] crank_speed): the driving torque
-    over the cycle [N m], the operating-point frequencies at the scene's pose from rest to that
-    speed [Hz] (None where a mode diverges) and each link's largest tension and compression of
-    the preload there [N]; None when the scene declares no speed. A part the scene cannot give
-    is {"unavailable": reason}."""
+    """The scene at its declared operating point ([operation] crank_speed and
+    crank_acceleration, 0 if not given): the driving torque over the cycle [N m], the
+    operating-point frequencies at the scene's pose from rest to that speed, with that
+    acceleration at every speed [Hz] (None where a mode diverges) and each link's largest
+    tension and compression of the preload there [N]; None when the scene declares no speed.
+    A part the scene cannot give is {"unavailable": reason}."""
     speed = scene.options.crank_speed
     if speed is None:
         return None
-    out = {"rev_per_min": speed * 30 / math.pi, "rad_per_s": speed, "assumptions": ASSUMPTIONS}
+    acc = scene.options.crank_acceleration or 0.0
+    out = {"rev_per_min": speed * 30 / math.pi, "rad_per_s": speed,
+           "crank_acceleration_rad_s2": acc, "assumptions": ASSUMPTIONS}
     try:
-        curve = torque_study(scene, speed, poses=TORQUE_POSES)
+        curve = torque_study(scene, speed, acc, poses=TORQUE_POSES)
         order = np.argsort(np.degrees(curve.q) % 360.0)
         out["torque"] = {"crank_deg": _rounded(np.degrees(curve.q[order]) % 360.0),
                          "torque_N_m": [float(t) for t in curve.torque[order]],
@@ -123,7 +126,8 @@ def at_speed_data(scene: Scene, n_modes: int, elements_per_link: int) -> dict | 
         out["torque"] = {"unavailable": str(exc)}
     try:
         speeds = np.linspace(0.0, speed, SPEED_STEPS)
-        points = [operating_modes(scene, w, n_modes, elements_per_link) for w in speeds]
+        points = [operating_modes(scene, w, n_modes, elements_per_link, crank_acceleration=acc)
+                  for w in speeds]
     except FlexlinkError as exc:
         out["modes"] = {"unavailable": str(exc)}
         return out

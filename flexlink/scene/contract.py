@@ -239,7 +239,9 @@ class Scene:
         if self.four_bar is not None and set(self.guess) <= {"A", "B"}:
             joints = self.four_bar.pose(q, self.branch).joints
             return self.linkage.solve(q, {k: joints[k] for k in self.guess})
-        steps = max(1, math.ceil(abs(q - self.start) / CONTINUATION_STEP))
+        steps = math.ceil(abs(q - self.start) / CONTINUATION_STEP)
+        if steps == 0:  # the start pose itself
+            return self.linkage.solve(q, self.guess)
         return self.linkage.cycle(np.linspace(self.start, q, steps + 1), self.guess).states[-1]
 
 
