@@ -10,8 +10,7 @@ import numpy as np
 
 from flexlink.studies.dynamic_campbell import CriticalShift, DynamicCampbell, frozen_bands
 from flexlink.studies.operating_point import ASSUMPTIONS
-
-RPM = 2 * math.pi / 60.0  # rad/s per rev/min
+from flexlink.units import RPM
 
 
 def _rpm(pair):

@@ -9,6 +9,7 @@ import numpy as np
 
 from flexlink.output.figures import cycle_axes, write_figure
 from flexlink.studies.tracking import TrackedMap
+from flexlink.units import rev_per_min
 
 
 def events_json(result: TrackedMap) -> list[dict]:
@@ -88,7 +89,7 @@ def plot_tracked(result: TrackedMap, path, crank_speed: float | None = None, hit
             ax.scatter(x, y, marker=marker, s=60, color="k", facecolors="none" if marker == "o"
                        else None, zorder=3, label=kind)
     cycle_axes(ax, deg, result.mu90, hits, result.scene + " (modes tracked by MAC)" + (
-        f", crank {crank_speed * 60 / (2 * math.pi):g} rev/min" if crank_speed else ""))
+        f", crank {rev_per_min(crank_speed):g} rev/min" if crank_speed else ""))
     ax.grid(alpha=0.3)
     fig.tight_layout()
     write_figure(fig, path)
