@@ -10,7 +10,7 @@ from flexlink.fileio import write_atomic
 from flexlink.output.dynamic_campbell import dynamic_csv, dynamic_json, dynamic_lines, plot_dynamic
 from flexlink.output.figures import write_figure
 from flexlink.output.tracking_report import (events_json, periodicity_json, reseeds_json,
-                                             unsampled_json)
+                                             tracking_lines, unsampled_json)
 from flexlink.studies.campbell import RPM, Band, CriticalSpeed
 from flexlink.studies.campbell_study import CampbellStudy
 from flexlink.studies.tracking import unsampled_note
@@ -58,13 +58,8 @@ def campbell_text(document: dict, study: CampbellStudy) -> str:
     out.append(f"{'mode':>4} {'band [Hz]':>19}  label")
     for b in document["bands"]:
         out.append(f"{b['mode']:>4} {b['min_Hz']:>9.2f}-{b['max_Hz']:<9.2f}  {b['label'] or ''}")
-    for r in document["tracking_reseeds"]:
-        out.append(f"re-seeded line{'s' if len(r['lines']) > 1 else ''} "
-                   f"{', '.join(map(str, r['lines']))} at crank "
-                   f"{r['crank_deg']:.1f} deg: {r['reason']}")
-    if document["unsampled_note"]:
-        out.append(f"warning: {document['unsampled_note']}")
-    out.append(f"periodicity: {document['periodicity']['note']}")
+    out += tracking_lines(document["tracking_reseeds"], document["unsampled_note"],
+                          document["periodicity"])
     if document["critical_speeds"]:
         out.append(f"critical speeds:\n{'mode':>4} {'harmonic':>8} {'from [rev/min]':>15} "
                    f"{'to [rev/min]':>13}")

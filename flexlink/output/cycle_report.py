@@ -12,7 +12,8 @@ import numpy as np
 from flexlink.fileio import write_atomic
 from flexlink.output.figures import cycle_axes, write_figure
 from flexlink.output.tracking_report import (events_json, periodicity_json, plot_tracked,
-                                             reseeds_json, tracked_csv, unsampled_json)
+                                             reseeds_json, tracked_csv, tracking_lines,
+                                             unsampled_json)
 from flexlink.studies.cycle import ModalMap, Resonance, runs
 from flexlink.studies.cycle_study import CycleStudy
 from flexlink.studies.tracking import unsampled_note
@@ -123,14 +124,8 @@ def cycle_text(document: dict, study: CycleStudy) -> str:
     for e in tracking.get("events", []):
         out.append(f"{e['kind']} of modes {e['lines'][0]} and {e['lines'][1]} at crank "
                    f"{e['crank_deg']:.1f} deg (gap {100 * e['gap']:.1f} %)")
-    for r in tracking.get("reseeds", []):
-        out.append(f"re-seeded line{'s' if len(r['lines']) > 1 else ''} "
-                   f"{', '.join(map(str, r['lines']))} at crank "
-                   f"{r['crank_deg']:.1f} deg: {r['reason']}")
-    if tracking.get("unsampled_note"):
-        out.append(f"warning: {tracking['unsampled_note']}")
-    if tracking.get("periodicity"):
-        out.append(f"periodicity: {tracking['periodicity']['note']}")
+    out += tracking_lines(tracking.get("reseeds", []), tracking.get("unsampled_note"),
+                          tracking.get("periodicity"))
     for h in document["resonances"]:
         ranges = ", ".join(f"{a:.1f}-{b:.1f}" for a, b in h["crank_deg_ranges"])
         out.append(f"resonance: harmonic {h['harmonic']} ({h['harmonic_Hz']:.2f} Hz) within "

@@ -42,6 +42,20 @@ def periodicity_json(result: TrackedMap) -> dict | None:
             "note": p.note}
 
 
+def tracking_lines(reseeds: list[dict], unsampled: str | None, periodicity: dict | None
+                   ) -> list[str]:
+    """Text lines on the tracking of a map from its JSON-ready ``reseeds`` (``reseeds_json``),
+    unsampled dead-centre note and ``periodicity`` (``periodicity_json``)."""
+    out = [f"re-seeded line{'s' if len(r['lines']) > 1 else ''} "
+           f"{', '.join(map(str, r['lines']))} at crank {r['crank_deg']:.1f} deg: {r['reason']}"
+           for r in reseeds]
+    if unsampled:
+        out.append(f"warning: {unsampled}")
+    if periodicity:
+        out.append(f"periodicity: {periodicity['note']}")
+    return out
+
+
 def tracked_csv(result: TrackedMap) -> str:
     """One row per pose: input angle [deg], tracked f1 ... fN [Hz], each line's MAC with the
     pose it was paired with, and the events at that pose ("crossing 1-2; veering 2-3;
