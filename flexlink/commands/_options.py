@@ -115,3 +115,38 @@ def map_parallel_options(sorted_map: bool):
             command = option(command)
         return command
     return decorate
+
+
+def speeds_option(help_text: str = "Crank speed range, e.g. '0:3000 rev/min'."):
+    """--speeds LOW:HIGH UNIT, parsed by ``parse_speeds``."""
+    return click.option("--speeds", required=True, help=help_text)
+
+
+def parse_speeds(text: str) -> tuple[float, float]:
+    """"LOW:HIGH UNIT" (or "LOW UNIT:HIGH UNIT") -> (low, high) [rad/s] (``units.parse_range``)."""
+    from flexlink.units import parse_range
+
+    return parse_range(text, "angular speed", source="command line", field="--speeds")
+
+
+def crank_acceleration_option(command):
+    """--crank-acceleration of the bands at speed (``campbell --dynamic``)."""
+    return click.option(
+        "--crank-acceleration", "acceleration", default=None, metavar="ACCELERATION",
+        help="With --dynamic: the crank's angular acceleration at every speed, e.g. "
+             "'50 rad/s^2' [default: 0, constant speed].")(command)
+
+
+def parse_crank_acceleration(text: str | None, dynamic: bool) -> float:
+    """--crank-acceleration [rad/s^2] (0 when not given); it needs --dynamic."""
+    from flexlink.errors import InputError
+    from flexlink.units import parse_quantity
+
+    if text is None:
+        return 0.0
+    if not dynamic:
+        raise InputError("a crank acceleration is for the bands at speed: give --dynamic too",
+                         source="command line", field="--crank-acceleration",
+                         expected="--dynamic with --crank-acceleration")
+    return parse_quantity(text, "angular acceleration", source="command line",
+                          field="--crank-acceleration")

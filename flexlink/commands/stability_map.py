@@ -36,7 +36,7 @@ def command(scene_path, speeds, count, n_modes, damping_ratio, poses, basis_size
     stability-map.png, .csv and .json to OUT/<scene>/."""
     import numpy as np
 
-    from flexlink.commands.campbell import parse_speeds
+    from flexlink.commands._options import parse_speeds
     from flexlink.errors import InputError
     from flexlink.fileio import prepare_out_dir, write_atomic
     from flexlink.parallel import use_scheduler

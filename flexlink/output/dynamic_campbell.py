@@ -12,8 +12,7 @@ from flexlink.studies.dynamic_campbell import (CriticalShift, Divergence, Dynami
                                                frozen_bands)
 from flexlink.studies.operating_point import ASSUMPTIONS
 from flexlink.studies.tracking import PAIR_MAC
-
-RPM = 2 * math.pi / 60.0  # rad/s per rev/min
+from flexlink.units import RPM
 
 
 def _rpm(pair):

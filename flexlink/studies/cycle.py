@@ -19,6 +19,7 @@ from flexlink.scene.contract import pose_transmission_angles
 from flexlink.analysis.families import in_plane_only_note
 from flexlink.analysis.sweep import SWEEP_SOLVER, Reduction, modal_sweep
 from flexlink.parallel import on_cluster, run_tasks
+from flexlink.units import rev_per_min
 
 
 def kinematic_cycle(scene: Scene, n_poses: int = 360, progress=None) -> Cycle:
@@ -109,7 +110,7 @@ def resonance_speed(crank_speed: float | None) -> tuple[float | None, str | None
     if crank_speed == 0:
         return None, "crank speed 0: no crank harmonics, resonance check skipped"
     if crank_speed < 0:
-        rpm = -crank_speed * 60 / (2 * math.pi)
+        rpm = rev_per_min(-crank_speed)
         return -crank_speed, (f"crank speed -{rpm:g} rev/min turns the crank the opposite way; "
                               f"the resonance check runs at |speed| = {rpm:g} rev/min (the "
                               "natural frequencies at a pose do not depend on the speed)")
