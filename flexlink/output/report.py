@@ -61,6 +61,7 @@ def summary_document(summary: SceneSummary) -> dict:
         "solver": modes.solver,
         "modes": comparison_rows(summary),
         "damping_ratio": summary.damping_ratio.tolist(),  # per elastic mode [-]
+        "damping_source": summary.damping_source,
         "mechanism_modes_Hz": summary.mechanism.tolist(),
         "mass_kg": {"total": summary.mass,
                     "participating": dict(zip(DIRECTIONS, summary.participating.tolist()))},
@@ -161,7 +162,7 @@ def format_case(summary: SceneSummary) -> str:
         lines.append("mean |error|: " + ", ".join(
             f"vs {k} {v:.1f} %" for k, v in sorted(summary.mean_abs_error_pct.items())))
     if len(summary.damping_ratio):
-        lines.append("damping ratio zeta % (material loss, strain-energy weighted): " + ", ".join(
+        lines.append(f"damping ratio zeta % ({summary.damping_source}): " + ", ".join(
             f"{100 * z:.3f}" for z in summary.damping_ratio))
     lines += [f"damping: {a.field} = {a.value}, {a.note}"
               for a in case.scene.assumptions if a.field.endswith("loss_factor")]

@@ -69,6 +69,22 @@ class Options:
     prb: PrbOptions | None = None
     variants: tuple[Variant, ...] = ()
     tilt: dict[str, float] = dataclasses.field(default_factory=dict)  # joint -> Ktilt [N m/rad]
+    damping: ModalDamping | None = None  # declared modal damping; None: the loss factors
+
+
+@dataclasses.dataclass(frozen=True)
+class ModalDamping:
+    """Damping declared by the scene's [damping] table, one of: ``ratios`` (one per elastic
+    mode, lowest first, the last repeated past the end; a single ratio is a one-entry tuple)
+    or Rayleigh ``alpha`` [1/s] and ``beta`` [s] of C = alpha M + beta K."""
+
+    ratios: tuple[float, ...] = ()
+    alpha: float = 0.0
+    beta: float = 0.0
+
+    @property
+    def is_rayleigh(self) -> bool:
+        return not self.ratios
 
 
 @dataclasses.dataclass(frozen=True)

@@ -16,7 +16,7 @@ import dataclasses
 
 import numpy as np
 
-from flexlink.analysis.damping import damping_ratios
+from flexlink.analysis.damping import damping_source, modal_damping_ratios
 from flexlink.analysis.families import elastic_modes, in_plane_only_note, scene_family
 from flexlink.analysis.identity import (DIRECTIONS, mode_identity, participating_mass,
                                         total_mass)
@@ -59,8 +59,9 @@ class SceneSummary:
     checks, timings); ``family``: the model family whose modes these are; ``frequencies``: its
     n lowest elastic frequencies [Hz] (NaN where fewer were found); ``kinds``: per mode
     "in-plane" or "out-of-plane" (None for the planar family); ``identity``: per mode
-    ``identity.mode_identity`` (empty for another family); ``damping_ratio``: per mode from the
-    links' loss factors [-] (empty for another family); ``mechanism``: rigid-body/mechanism
+    ``identity.mode_identity`` (empty for another family); ``damping_ratio``: per mode [-],
+    declared in the scene's [damping] or else from the links' loss factors (empty for another
+    family), and ``damping_source`` how it was found; ``mechanism``: rigid-body/mechanism
     frequencies [Hz]; ``mass``: total [kg]; ``participating``: mass per direction of
     ``identity.DIRECTIONS`` [kg]; ``reference``: each reference column's values [Hz] paired
     with these modes and ``errors`` their % errors (computed vs reference); ``note``: why the
@@ -72,6 +73,7 @@ class SceneSummary:
     kinds: tuple[str, ...] | None
     identity: tuple[dict, ...]
     damping_ratio: np.ndarray
+    damping_source: str
     mechanism: np.ndarray
     mass: float
     participating: np.ndarray
@@ -142,7 +144,9 @@ def summary_of(case: CaseResult, n_modes: int, mesh: MeshRule, method: str = "au
     if family == "planar":
         shapes = modes.shapes[:, modes.elastic[:n_modes]]
         identity = tuple(mode_identity(case.model, shapes))
-        damping = np.asarray(damping_ratios(case.model, shapes, scene.loss_factors), dtype=float)
+        damping = np.asarray(modal_damping_ratios(
+            case.model, shapes, 2 * np.pi * frequencies, scene.loss_factors,
+            scene.options.damping), dtype=float)
     else:
         frequencies, kinds = elastic_modes(scene, n_modes, mesh.elements, method)
     frequencies = np.asarray(frequencies, dtype=float)
@@ -154,7 +158,8 @@ def summary_of(case: CaseResult, n_modes: int, mesh: MeshRule, method: str = "au
                          dtype=float)
     return SceneSummary(
         case=case, family=family, frequencies=frequencies, kinds=kinds, identity=identity,
-        damping_ratio=damping, mechanism=mechanism, mass=total_mass(case.model),
+        damping_ratio=damping, damping_source=damping_source(scene.options.damping),
+        mechanism=mechanism, mass=total_mass(case.model),
         participating=np.asarray(participating_mass(case.model), dtype=float),
         reference=reference, errors=errors, mesh=mesh, warnings=tuple(case.warnings),
         note=in_plane_only_note(scene, in_plane_only) if in_plane_only else None,
