@@ -18,10 +18,13 @@ import numpy as np
 
 from flexlink.analysis.modal import CaseResult
 from flexlink.errors import FlexlinkError
-from flexlink.output.export_vtk import ModeSet
+from flexlink.output.counts import counted
+from flexlink.output.export_vtk import ModeSet, mode_set
+from flexlink.output.report import summary_document
 from flexlink.scene import Scene
 from flexlink.studies.cycle import ModalMap
 from flexlink.studies.operating_point import ASSUMPTIONS, operating_modes
+from flexlink.studies.report_scene import ReportScene
 from flexlink.studies.torque import torque_study
 
 MM = 1e3  # m -> mm
@@ -149,17 +152,69 @@ def at_speed_data(scene: Scene, n_modes: int, elements_per_link: int) -> dict | 
     return out
 
 
-def scene_page(result: CaseResult, summary: dict, mesh: dict, modes: ModeSet,
-               cycle: dict | None, files: dict, out: Path, at_speed: dict | None = None) -> dict:
-    """Everything the report shows for one scene. ``summary``: ``report.case_summary`` (with
-    its "warnings"); ``mesh``: ``MeshRule.as_dict()`` with "describe"; ``cycle``:
-    ``cycle_data``; ``files``: ``export.export_case``'s answer, linked relative to ``out``;
-    ``at_speed``: ``at_speed_data``."""
+def scene_page(scene: ReportScene, files: dict, out: Path) -> dict:
+    """Everything the report shows for one scene (``studies.report_scene``), its modes drawn
+    on the mesh they were solved on and its operating point (``at_speed_data``); ``files``:
+    ``export.export_case``'s answer, linked relative to ``out``."""
     def relative(paths):
         return [Path(p).relative_to(out).as_posix() for p in paths]
 
-    stem = Path(result.scene.path).stem
-    return {"id": stem, "summary": summary, "mesh": mesh, "drawing": linkage_drawing(result),
-            "shapes": mode_shapes(modes), "cycle": cycle, "at_speed": at_speed,
+    summary = scene.summary
+    result, mesh = summary.case, summary.mesh
+    return {"id": Path(result.scene.path).stem, "summary": summary_document(summary),
+            "mesh": {**mesh.as_dict(), "describe": mesh.describe(), "history": list(mesh.history)},
+            "drawing": linkage_drawing(result),
+            "shapes": mode_shapes(mode_set(result, len(summary.frequencies))),
+            "cycle": cycle_data(scene.cycle, result.pose.crank_angle, scene.cycle_unavailable),
+            "at_speed": at_speed_data(result.scene, len(summary.frequencies), mesh.elements),
             "files": {"vtu": relative(files.get("vtu", [])),
                       "pvd": relative(files.get("pvd", []))}}
+
+
+def report_document(report: Path, page: str, pages: list[dict], out: Path,
+                    failures: list[dict]) -> dict:
+    """The JSON document of ``flexlink report``: the page written to ``report`` and its size,
+    per scene (``scene_page`` each, its files in ``out``) its mesh, frequencies [Hz] and
+    whether it has a cycle map, every file written, and the scenes that failed."""
+    def scene(p: dict) -> dict:
+        summary, cycle = p["summary"], p["cycle"]
+        entry = {"scene": summary["scene"], "file": summary["file"],
+                 "mesh": p["mesh"]["elements_per_link"],
+                 "frequencies_Hz": [r["computed_Hz"] for r in summary["modes"]],
+                 "cycle_map": cycle is not None and "unavailable" not in cycle}
+        if "note" in summary:
+            entry["note"] = summary["note"]
+        if cycle and "note" in cycle:
+            entry["cycle_map_note"] = cycle["note"]
+        return entry
+
+    return {"command": "report", "report": str(report), "bytes": len(page.encode()),
+            "scenes": [scene(p) for p in pages],
+            "files": [str(report)] + [str(out / f) for p in pages
+                                      for f in p["files"]["vtu"] + p["files"]["pvd"]],
+            "failures": failures}
+
+
+def report_html(pages: list[dict], failures: list[dict], n_modes: int) -> str:
+    """The self-contained page of ``pages`` (``scene_page`` each) with plotly.js inlined, the
+    scenes that failed listed at the top, and under the title flexlink's version, when, and
+    what the page holds."""
+    import datetime
+    import importlib.metadata
+
+    import plotly.offline
+
+    from flexlink.output.html_report import render_page
+
+    stamp = datetime.datetime.now().astimezone().strftime("%Y-%m-%d %H:%M %Z")
+    version = importlib.metadata.version("flexlink")
+    subtitle = (f"flexlink {version}, {stamp}: {counted(len(pages), 'scene')}, first "
+                f"{counted(n_modes, 'elastic mode')}")
+    return render_page(pages, plotly.offline.get_plotlyjs(), subtitle=subtitle,
+                       failures=[f["error"] for f in failures])
+
+
+def report_text(document: dict) -> str:
+    """The line ``flexlink report`` prints: how many scenes, how large, where."""
+    return (f"report: {counted(len(document['scenes']), 'scene')}, "
+            f"{document['bytes'] / 1e6:.1f} MB -> {document['report']}")
