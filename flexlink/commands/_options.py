@@ -150,3 +150,10 @@ def parse_crank_acceleration(text: str | None, dynamic: bool) -> float:
                          expected="--dynamic with --crank-acceleration")
     return parse_quantity(text, "angular acceleration", source="command line",
                           field="--crank-acceleration")
+
+
+def odd_count(ctx, param, value: int) -> int:
+    """Click callback: the option's count must be odd (every harmonic sampled with its pair)."""
+    if value % 2 == 0:
+        raise click.BadParameter(f"must be odd (every harmonic with its pair), got {value}")
+    return value

@@ -270,19 +270,19 @@ class StabilityMap:
 
 
 def stability_map(model: PeriodicModel, speeds: np.ndarray, steps: int = 200,
-                  harmonics: int = 6, progress: bool = False,
+                  harmonics: int = 6, show_progress: bool = False,
                   step_phase: float = STEP_PHASE) -> StabilityMap:
     """The largest Floquet multiplier over ``speeds`` [rad/s]. At zero speed the equations do
     not vary: nothing is parametrically excited, the modulus is 1 and the rate 0 by definition
     (the damped modes decay). The speeds go out in chunks through ``parallel.run_tasks``: in
     this process, or on the dask cluster of ``parallel.use_scheduler`` (each speed is
-    computed alone, so the result is the same wherever it runs); ``progress``: a bar."""
+    computed alone, so the result is the same wherever it runs); ``show_progress``: a bar."""
     speeds = np.asarray(speeds, dtype=float)
     # on a cluster a few chunks per worker; here one speed a chunk, for the bar
     count = 4 * workers(n_jobs=1) if on_cluster() else len(speeds)
     chunks = np.array_split(np.arange(len(speeds)), max(1, min(len(speeds), count)))
     parts = run_tasks(_speed_chunk, [(model, speeds[c], steps, step_phase) for c in chunks],
-                      n_jobs=1, progress=progress, label="speed chunks")
+                      n_jobs=1, show_progress=show_progress, label="speed chunks")
     modulus = np.concatenate([p[0] for p in parts])
     rate = np.concatenate([p[1] for p in parts])
     floor = np.array([model.stiffness_floor(w) for w in speeds])
