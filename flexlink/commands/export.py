@@ -19,7 +19,7 @@ from flexlink.commands._options import dumps, json_option, mesh_options, out_opt
 @json_option
 @out_option
 @names_scene("scenes")
-def command(scenes, n_modes, elements, tol, method, subdivide, phases, amplitude, pictures,
+def command(scenes, n_modes, elements, tol, solver, subdivide, phases, amplitude, pictures,
             common_phase, as_json, out_dir):
     """Write, for each SCENE (a scene file or a folder of them), the first modes as a .vtu, a
     .pvd animation per mode, a PNG per mode, an overview sheet and a frequency plot, into
@@ -40,7 +40,7 @@ def command(scenes, n_modes, elements, tol, method, subdivide, phases, amplitude
     entries, failures, done = [], [], []
 
     def export(path):  # the scene's folder, with its own export.json listing the files in it
-        summary = scene_summary(path, n_modes, elements, tol, method, in_plane_only="the export")
+        summary = scene_summary(path, n_modes, elements, tol, solver, in_plane_only="the export")
         return summary, export_case(summary, out, settings, record=lambda written: dumps(
             export_document(out, [export_entry(summary, written)], [], True)))
 

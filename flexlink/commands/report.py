@@ -23,7 +23,7 @@ from flexlink.commands._sensitivity import (sensitivity_options, sensitivity_run
 @json_option
 @out_option
 @names_scene("scenes")
-def command(scenes, n_modes, elements, tol, method, cycle_poses, sensitivity, samples, seed, jobs,
+def command(scenes, n_modes, elements, tol, solver, cycle_poses, sensitivity, samples, seed, jobs,
             scheduler, as_json, out_dir):
     """Write OUT/report.html: for each SCENE (a scene file or a folder of them) its pose and
     drawing, frequencies against the reference columns, assumptions (with --sensitivity their end
@@ -44,7 +44,7 @@ def command(scenes, n_modes, elements, tol, method, cycle_poses, sensitivity, sa
     run = sensitivity_run(sensitivity, samples, seed, jobs, as_json)
 
     def page(path):  # with the scene's .vtu and .pvd files, which the page links to
-        scene = report_scene(path, n_modes, elements, tol, method, cycle_poses, run)
+        scene = report_scene(path, n_modes, elements, tol, solver, cycle_poses, run)
         return scene_page(scene, export_case(scene.summary, out, ExportSettings(
             n_modes=n_modes, pictures=False, plot=False)), out)
 

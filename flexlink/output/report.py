@@ -52,7 +52,7 @@ def summary_document(summary: SceneSummary) -> dict:
         "file": scene.path,
         "family": summary.family,
         "linkage": linkage_summary(scene),
-        "pose": {"theta2_deg": math.degrees(pose.theta2),
+        "pose": {"theta2_deg": math.degrees(pose.crank_angle),
                  "mu_deg": None if pose.mu is None else math.degrees(pose.mu),
                  "branch": pose.branch,
                  "joints_m": {k: list(v) for k, v in pose.joints.items()}},
@@ -135,7 +135,7 @@ def format_case(summary: SceneSummary) -> str:
     head = f"{case.scene.name}  ({case.scene.path})"
     mu = "" if pose.mu is None else f"mu = {math.degrees(pose.mu):.3f} deg, "
     lines = [head, "-" * len(head),
-             f"pose: theta2 = {math.degrees(pose.theta2):.3f} deg, {mu}{pose.branch} branch; "
+             f"pose: theta2 = {math.degrees(pose.crank_angle):.3f} deg, {mu}{pose.branch} branch; "
              f"{summary.family} model; {case.elements_per_link} elements/link, "
              f"{modes.n_dofs} DOFs, {modes.solver} solver, "
              f"max residual {summary.max_residual:.1e}"]

@@ -100,15 +100,15 @@ def cycle_data(cycle: ModalMap | None, crank_angle: float, reason: str | None = 
 
 
 def at_speed_data(at: AtSpeed | None) -> dict | None:
-    """The scene at its declared operating speed (``report_scene.AtSpeed``): the driving torque
+    """The scene at its declared operating point (``report_scene.AtSpeed``): the driving torque
     over the cycle [N m], the operating-point frequencies at the scene's pose from rest to that
-    speed [Hz] (None where a mode diverges) and each link's largest tension and compression of
-    the preload there [N]; None when the scene declares no speed. A part the scene cannot give
-    is {"unavailable": reason}."""
+    speed, with the declared crank acceleration at every speed [Hz] (None where a mode
+    diverges) and each link's largest tension and compression of the preload there [N]; None
+    when the scene declares no speed. A part the scene cannot give is {"unavailable": reason}."""
     if at is None:
         return None
     out = {"rev_per_min": at.speed * 30 / math.pi, "rad_per_s": at.speed,
-           "assumptions": ASSUMPTIONS}
+           "crank_acceleration_rad_s2": at.crank_acceleration, "assumptions": ASSUMPTIONS}
     if at.torque is None:
         out["torque"] = {"unavailable": at.torque_unavailable}
     else:

@@ -9,6 +9,7 @@ import dataclasses
 import numpy as np
 
 from flexlink.analysis.families import elastic_modes
+from flexlink.fe.beams import BeamTheory
 from flexlink.scene import Scene, load_scene
 from flexlink.studies.array_shapes import check_shape
 from flexlink.units import percent_error
@@ -73,7 +74,7 @@ def other_shear_source(scene: Scene, n_modes: int, elements: int | None,
                        overrides: dict | None = None) -> Alternative | None:
     """For Timoshenko links of a composite: the frequencies with the other shear modulus
     source (printed Table I G, or E / 2 (1 + nu) of each constituent); None otherwise."""
-    if scene.composite is None or all(l.section.beam != "timoshenko" for l in scene.links):
+    if scene.composite is None or all(l.section.beam is not BeamTheory.TIMOSHENKO for l in scene.links):
         return None
     used = scene.composite.shear_modulus
     out = _alternative(scene, "material.composite.shear_modulus", OTHER_SHEAR[used], n_modes,
@@ -86,6 +87,6 @@ def timoshenko_alternative(scene: Scene, n_modes: int, elements: int | None,
     """The scene's frequencies with Timoshenko links (shear and rotary inertia), for scenes
     built with Euler-Bernoulli links; None otherwise. The computed difference a
     slenderness warning points to."""
-    if all(link.section.beam == "timoshenko" for link in scene.links):
+    if all(link.section.beam is BeamTheory.TIMOSHENKO for link in scene.links):
         return None
     return _alternative(scene, "model.beam", "timoshenko", n_modes, elements, overrides)

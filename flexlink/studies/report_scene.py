@@ -23,11 +23,13 @@ TORQUE_POSES = 72
 
 @dataclasses.dataclass(frozen=True)
 class AtSpeed:
-    """A scene at its declared operating ``speed`` [rad/s]: the driving ``torque`` over the
-    cycle, and the operating ``points`` at the scene's pose at ``speeds`` [rad/s] from rest to
-    the operating speed; where either could not be made, None (no points) and the reason."""
+    """A scene at its declared operating ``speed`` [rad/s] and ``crank_acceleration``
+    [rad/s^2]: the driving ``torque`` over the cycle, and the operating ``points`` at the
+    scene's pose at ``speeds`` [rad/s] from rest to the operating speed, each with that
+    acceleration; where either could not be made, None (no points) and the reason."""
 
     speed: float
+    crank_acceleration: float
     torque: TorqueCurve | None
     torque_unavailable: str | None
     speeds: np.ndarray
@@ -45,22 +47,25 @@ class AtSpeed:
 
 
 def at_speed(scene: Scene, n_modes: int, elements_per_link: int) -> AtSpeed | None:
-    """``scene`` at its declared operating speed ([operation] crank_speed) on
+    """``scene`` at its declared operating point ([operation] crank_speed, and
+    crank_acceleration, 0 if not given) on
     ``elements_per_link``, its lowest ``n_modes`` modes; None when it declares no speed."""
     speed = scene.options.crank_speed
     if speed is None:
         return None
+    acc = scene.options.crank_acceleration or 0.0
     speeds = np.linspace(0.0, speed, SPEED_STEPS)
     torque, torque_unavailable = None, None
     try:
-        torque = torque_study(scene, speed, poses=TORQUE_POSES)
+        torque = torque_study(scene, speed, acc, poses=TORQUE_POSES)
     except FlexlinkError as exc:
         torque_unavailable = str(exc)
     try:
-        points = tuple(operating_modes(scene, w, n_modes, elements_per_link) for w in speeds)
+        points = tuple(operating_modes(scene, w, n_modes, elements_per_link, crank_acceleration=acc)
+                       for w in speeds)
     except FlexlinkError as exc:
-        return AtSpeed(speed, torque, torque_unavailable, speeds, (), str(exc))
-    return AtSpeed(speed, torque, torque_unavailable, speeds, points)
+        return AtSpeed(speed, acc, torque, torque_unavailable, speeds, (), str(exc))
+    return AtSpeed(speed, acc, torque, torque_unavailable, speeds, points)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -81,12 +86,12 @@ class ReportScene:
                              "expected at most one")
 
 
-def report_scene(path, n_modes: int, elements: int | None, tol: float | None, method: str,
+def report_scene(path, n_modes: int, elements: int | None, tol: float | None, solver,
                  cycle_poses: int, sensitivity: SensitivityRun | None = None) -> ReportScene:
     """The scene file at ``path`` summarised (``scene_summary``, its in-plane modes) with its
     modal map over ``cycle_poses`` crank angles (none for 0) and its operating speed, on the
     same mesh."""
-    summary = scene_summary(path, n_modes, elements, tol, method, in_plane_only="this page",
+    summary = scene_summary(path, n_modes, elements, tol, solver, in_plane_only="this page",
                             sensitivity=sensitivity)
     scene, elements = summary.case.scene, summary.mesh.elements
     cycle, unavailable = None, None

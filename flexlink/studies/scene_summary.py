@@ -17,11 +17,14 @@ import dataclasses
 import numpy as np
 
 from flexlink.analysis.damping import damping_source, modal_damping_ratios
+from flexlink.analysis.eigensolver import DEFAULT_SOLVER, EigenSolver
 from flexlink.analysis.families import elastic_modes, in_plane_only_note, scene_family
 from flexlink.analysis.identity import (DIRECTIONS, mode_identity, participating_mass,
                                         total_mass)
 from flexlink.analysis.mesh import MeshRule, choose_mesh
 from flexlink.analysis.modal import CaseResult, analyze
+from flexlink.analysis.solve import ELASTIC
+from flexlink.fe.motions import ModelFamily
 from flexlink.scene import load_scene
 from flexlink.studies.alternatives import (Alternative, other_orientation, other_shear_source,
                                            timoshenko_alternative)
@@ -68,7 +71,7 @@ class SceneSummary:
     modes are the in-plane ones of another family."""
 
     case: CaseResult
-    family: str
+    family: ModelFamily
     frequencies: np.ndarray
     kinds: tuple[str, ...] | None
     identity: tuple[dict, ...]
@@ -118,19 +121,20 @@ class SceneSummary:
 
 
 def scene_summary(path, n_modes: int, elements: int | None = None, tol: float | None = None,
-                  method: str = "auto", *, in_plane_only: str | None = None,
+                  solver: EigenSolver = DEFAULT_SOLVER, *, in_plane_only: str | None = None,
                   alternatives: bool = False, sensitivity: SensitivityRun | None = None
                   ) -> SceneSummary:
     """The summary of the scene file at ``path``: on ``elements`` per link if given, else the
     scene's pinned mesh, else the mesh rule at ``tol``; the rest as ``summary_of``."""
     scene = load_scene(path)
     mesh = choose_mesh(scene, n_modes, elements, tol)
-    return summary_of(analyze(scene, n_modes, mesh.elements, method), n_modes, mesh, method,
+    return summary_of(analyze(scene, n_modes, mesh.elements, solver), n_modes, mesh, solver,
                       in_plane_only=in_plane_only, alternatives=alternatives,
                       sensitivity=sensitivity)
 
 
-def summary_of(case: CaseResult, n_modes: int, mesh: MeshRule, method: str = "auto", *,
+def summary_of(case: CaseResult, n_modes: int, mesh: MeshRule,
+               solver: EigenSolver = DEFAULT_SOLVER, *,
                in_plane_only: str | None = None, alternatives: bool = False,
                sensitivity: SensitivityRun | None = None) -> SceneSummary:
     """The summary of the planar analysis ``case`` on ``mesh``. ``in_plane_only``: what is
@@ -138,23 +142,23 @@ def summary_of(case: CaseResult, n_modes: int, mesh: MeshRule, method: str = "au
     so when the scene's family is another; else the family's own modes. ``alternatives``: also
     the other value of each modelling choice; ``sensitivity``: also the sensitivity study."""
     scene, modes = case.scene, case.modes
-    family = "planar" if in_plane_only else scene_family(scene)
+    family = ModelFamily.PLANAR if in_plane_only else scene_family(scene)
     frequencies, kinds = case.elastic_frequencies(n_modes), None
     identity, damping = (), np.zeros(0)
-    if family == "planar":
+    if family is ModelFamily.PLANAR:
         shapes = modes.shapes[:, modes.elastic[:n_modes]]
         identity = tuple(mode_identity(case.model, shapes))
         damping = np.asarray(modal_damping_ratios(
             case.model, shapes, 2 * np.pi * frequencies, scene.loss_factors,
             scene.options.damping), dtype=float)
     else:
-        frequencies, kinds = elastic_modes(scene, n_modes, mesh.elements, method)
+        frequencies, kinds = elastic_modes(scene, n_modes, mesh.elements, solver)
     frequencies = np.asarray(frequencies, dtype=float)
     columns = scene.reference.columns if scene.reference else {}
     reference = {name: tuple(values[:len(frequencies)]) for name, values in columns.items()}
     errors = {name: np.array([percent_error(float(f), v) for f, v in zip(frequencies, values)])
               for name, values in reference.items()}
-    mechanism = np.array([f for f, k in zip(modes.frequencies, modes.kinds) if k != "elastic"],
+    mechanism = np.array([f for f, k in zip(modes.frequencies, modes.kinds) if k != ELASTIC],
                          dtype=float)
     return SceneSummary(
         case=case, family=family, frequencies=frequencies, kinds=kinds, identity=identity,

@@ -16,7 +16,7 @@ from flexlink.analysis.damping import damping_ratios
 from flexlink.analysis.modal import analyze
 from flexlink.cli import main
 from flexlink.errors import InputError
-from flexlink.fe.assembly import assemble, reduction
+from flexlink.fe.assembly import assemble, rigid_elimination
 from flexlink.fe.model import build_model
 from flexlink.scene import load_scene
 
@@ -73,7 +73,7 @@ def _complex_modulus_zeta(scene, frequencies):
         K2 = assemble(build_model(dataclasses.replace(topology, links=tuple(links)),
                                   pose.joints))[0].toarray()
         lossy += scene.loss_factors[link.name] * (K2 - K)
-    T = reduction(model)
+    T = rigid_elimination(model)
     T = np.eye(K.shape[0]) if T is None else T.toarray()
     lam = la.eigvals(T.T @ (K + 1j * lossy) @ T, T.T @ M @ T)
     lam = lam[np.isfinite(lam)]
@@ -181,7 +181,7 @@ def test_rayleigh_damping_matches_the_damped_eigenvalues(tmp_path):
     pose = scene.rigid_pose()
     model = build_model(scene.topology(ELEMENTS), pose.joints)
     K, M = (m.toarray() for m in assemble(model))
-    T = reduction(model)
+    T = rigid_elimination(model)
     T = np.eye(K.shape[0]) if T is None else T.toarray()
     K, M = T.T @ K @ T, T.T @ M @ T
     n = K.shape[0]

@@ -14,12 +14,12 @@ from hypothesis import given
 from hypothesis import strategies as st
 from strategies import fewer, linkages, load, write_scene
 
-from flexlink.analysis.modal import MASSES, analyze
+from flexlink.analysis.modal import Mass, analyze
 from flexlink.analysis.solve import ELASTIC, MECHANISM
 from flexlink.cli import main
 
 
-@given(linkages(), st.integers(1, 5), st.sampled_from(MASSES))
+@given(linkages(), st.integers(1, 5), st.sampled_from(tuple(Mass)))
 def test_modes_come_sorted_complete_and_finite(spec, n, mass):
     modes = analyze(load(spec), n, mass=mass).modes
     k = len(modes.kinds)

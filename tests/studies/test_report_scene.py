@@ -10,13 +10,13 @@ from flexlink.studies.report_scene import SPEED_STEPS, AtSpeed, ReportScene
 
 def test_at_speed_refuses_a_wrong_speed_grid_or_missing_parts():
     speeds = np.linspace(0.0, 60.0, SPEED_STEPS)
-    AtSpeed(60.0, None, "no masses", speeds, (), "no pose")  # both parts explained: fine
+    AtSpeed(60.0, 0.0, None, "no masses", speeds, (), "no pose")  # both parts explained: fine
     with pytest.raises(ValueError, match=r"AtSpeed\.speeds"):
-        AtSpeed(60.0, None, "no masses", speeds[:-1], (), "no pose")
+        AtSpeed(60.0, 0.0, None, "no masses", speeds[:-1], (), "no pose")
     with pytest.raises(ValueError, match="torque curve or the reason"):
-        AtSpeed(60.0, None, None, speeds, (), "no pose")
+        AtSpeed(60.0, 0.0, None, None, speeds, (), "no pose")
     with pytest.raises(ValueError, match="operating points"):
-        AtSpeed(60.0, None, "no masses", speeds, ())
+        AtSpeed(60.0, 0.0, None, "no masses", speeds, ())
 
 
 def test_report_scene_has_a_cycle_map_or_its_reason_not_both():
