@@ -17,15 +17,12 @@ from pathlib import Path
 import numpy as np
 
 from flexlink.analysis.modal import CaseResult
-from flexlink.errors import FlexlinkError
 from flexlink.output.counts import counted
 from flexlink.output.export_vtk import ModeSet, mode_set
 from flexlink.output.report import summary_document
-from flexlink.scene import Scene
 from flexlink.studies.cycle import ModalMap
-from flexlink.studies.operating_point import ASSUMPTIONS, operating_modes
-from flexlink.studies.report_scene import ReportScene
-from flexlink.studies.torque import torque_study
+from flexlink.studies.operating_point import ASSUMPTIONS
+from flexlink.studies.report_scene import AtSpeed, ReportScene
 
 MM = 1e3  # m -> mm
 DIGITS = 5  # significant digits kept in the page's coordinates: far below a pixel
@@ -102,47 +99,37 @@ def cycle_data(cycle: ModalMap | None, crank_angle: float, reason: str | None = 
     return data
 
 
-SPEED_STEPS = 11  # crank speeds from rest to the operating speed in the frequency diagram
-TORQUE_POSES = 72
-
-
-def at_speed_data(scene: Scene, n_modes: int, elements_per_link: int) -> dict | None:
-    """The scene at its declared operating point ([operation] crank_speed and
-    crank_acceleration, 0 if not given): the driving torque over the cycle [N m], the
-    operating-point frequencies at the scene's pose from rest to that speed, with that
-    acceleration at every speed [Hz] (None where a mode diverges) and each link's largest
-    tension and compression of the preload there [N]; None when the scene declares no speed.
-    A part the scene cannot give is {"unavailable": reason}."""
-    speed = scene.options.crank_speed
-    if speed is None:
+def at_speed_data(at: AtSpeed | None) -> dict | None:
+    """The scene at its declared operating point (``report_scene.AtSpeed``): the driving torque
+    over the cycle [N m], the operating-point frequencies at the scene's pose from rest to that
+    speed, with the declared crank acceleration at every speed [Hz] (None where a mode
+    diverges) and each link's largest tension and compression of the preload there [N]; None
+    when the scene declares no speed. A part the scene cannot give is {"unavailable": reason}."""
+    if at is None:
         return None
-    acc = scene.options.crank_acceleration or 0.0
-    out = {"rev_per_min": speed * 30 / math.pi, "rad_per_s": speed,
-           "crank_acceleration_rad_s2": acc, "assumptions": ASSUMPTIONS}
-    try:
-        curve = torque_study(scene, speed, acc, poses=TORQUE_POSES)
+    out = {"rev_per_min": at.speed * 30 / math.pi, "rad_per_s": at.speed,
+           "crank_acceleration_rad_s2": at.crank_acceleration, "assumptions": ASSUMPTIONS}
+    if at.torque is None:
+        out["torque"] = {"unavailable": at.torque_unavailable}
+    else:
+        curve = at.torque
         order = np.argsort(np.degrees(curve.q) % 360.0)
         out["torque"] = {"crank_deg": _rounded(np.degrees(curve.q[order]) % 360.0),
                          "torque_N_m": [float(t) for t in curve.torque[order]],
                          "summary": curve.summary()}
-    except FlexlinkError as exc:
-        out["torque"] = {"unavailable": str(exc)}
-    try:
-        speeds = np.linspace(0.0, speed, SPEED_STEPS)
-        points = [operating_modes(scene, w, n_modes, elements_per_link, crank_acceleration=acc)
-                  for w in speeds]
-    except FlexlinkError as exc:
-        out["modes"] = {"unavailable": str(exc)}
+    if at.points_unavailable is not None:
+        out["modes"] = {"unavailable": at.points_unavailable}
         return out
+    points = at.points
     lines = []
-    for j in range(n_modes):
+    for j in range(len(points[0].frequencies)):
         line = []
         for p in points:
             s = p.modes.eigenvalues[j]
             line.append(float(p.frequencies[j]) if s.imag > 1e-9 * abs(s) else None)
         lines.append(line)
     last = points[-1]
-    out["modes"] = {"rev_per_min": [float(w * 30 / math.pi) for w in speeds],
+    out["modes"] = {"rev_per_min": [float(w * 30 / math.pi) for w in at.speeds],
                     "frequencies_Hz": lines,
                     "static_Hz": [float(f) for f in last.static_frequencies],
                     "diverges": bool(last.modes.negative_stiffness),
@@ -154,8 +141,8 @@ def at_speed_data(scene: Scene, n_modes: int, elements_per_link: int) -> dict | 
 
 def scene_page(scene: ReportScene, files: dict, out: Path) -> dict:
     """Everything the report shows for one scene (``studies.report_scene``), its modes drawn
-    on the mesh they were solved on and its operating point (``at_speed_data``); ``files``:
-    ``export.export_case``'s answer, linked relative to ``out``."""
+    on the mesh they were solved on; ``files``: ``export.export_case``'s answer, linked
+    relative to ``out``."""
     def relative(paths):
         return [Path(p).relative_to(out).as_posix() for p in paths]
 
@@ -166,7 +153,7 @@ def scene_page(scene: ReportScene, files: dict, out: Path) -> dict:
             "drawing": linkage_drawing(result),
             "shapes": mode_shapes(mode_set(result, len(summary.frequencies))),
             "cycle": cycle_data(scene.cycle, result.pose.crank_angle, scene.cycle_unavailable),
-            "at_speed": at_speed_data(result.scene, len(summary.frequencies), mesh.elements),
+            "at_speed": at_speed_data(scene.at_speed),
             "files": {"vtu": relative(files.get("vtu", [])),
                       "pvd": relative(files.get("pvd", []))}}
 

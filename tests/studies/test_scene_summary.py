@@ -11,7 +11,6 @@ from flexlink.analysis.mesh import COMMAND_LINE, MeshRule
 from flexlink.analysis.modal import analyze
 from flexlink.scene import load_scene
 from flexlink.studies.alternatives import Alternative
-from flexlink.studies.report_scene import ReportScene
 from flexlink.studies.scene_summary import overall_mean_abs_error, scene_summary, summary_of
 
 from conftest import CASES_DIR
@@ -63,11 +62,9 @@ def test_per_mode_fields_may_be_empty_for_another_family(summary):
     assert other.kinds == ("out-of-plane",) * N
 
 
-def test_alternative_and_report_scene_check_themselves(summary):
+def test_an_alternative_checks_its_frequencies():
     with pytest.raises(ValueError, match=r"Alternative\.frequencies"):
         Alternative("model.beam", "timoshenko", np.zeros((2, 2)), {})
-    with pytest.raises(ValueError, match="at most one"):
-        ReportScene(summary, cycle=object(), cycle_unavailable="no cycle")
 
 
 def test_overall_error_is_the_mean_over_every_paired_mode(summary):
