@@ -17,12 +17,12 @@ from pathlib import Path
 import numpy as np
 
 from flexlink.analysis.modal import CaseResult
-from flexlink.errors import FlexlinkError
-from flexlink.output.export_vtk import ModeSet
-from flexlink.scene import Scene
+from flexlink.output.counts import counted
+from flexlink.output.export_vtk import ModeSet, mode_set
+from flexlink.output.report import summary_document
 from flexlink.studies.cycle import ModalMap
-from flexlink.studies.operating_point import ASSUMPTIONS, operating_modes
-from flexlink.studies.torque import torque_study
+from flexlink.studies.operating_point import ASSUMPTIONS
+from flexlink.studies.report_scene import AtSpeed, ReportScene
 
 MM = 1e3  # m -> mm
 DIGITS = 5  # significant digits kept in the page's coordinates: far below a pixel
@@ -99,43 +99,37 @@ def cycle_data(cycle: ModalMap | None, crank_angle: float, reason: str | None = 
     return data
 
 
-SPEED_STEPS = 11  # crank speeds from rest to the operating speed in the frequency diagram
-TORQUE_POSES = 72
-
-
-def at_speed_data(scene: Scene, n_modes: int, elements_per_link: int) -> dict | None:
-    """The scene at its declared operating speed ([operation] crank_speed): the driving torque
+def at_speed_data(at: AtSpeed | None) -> dict | None:
+    """The scene at its declared operating point (``report_scene.AtSpeed``): the driving torque
     over the cycle [N m], the operating-point frequencies at the scene's pose from rest to that
-    speed [Hz] (None where a mode diverges) and each link's largest tension and compression of
-    the preload there [N]; None when the scene declares no speed. A part the scene cannot give
-    is {"unavailable": reason}."""
-    speed = scene.options.crank_speed
-    if speed is None:
+    speed, with the declared crank acceleration at every speed [Hz] (None where a mode
+    diverges) and each link's largest tension and compression of the preload there [N]; None
+    when the scene declares no speed. A part the scene cannot give is {"unavailable": reason}."""
+    if at is None:
         return None
-    out = {"rev_per_min": speed * 30 / math.pi, "rad_per_s": speed, "assumptions": ASSUMPTIONS}
-    try:
-        curve = torque_study(scene, speed, poses=TORQUE_POSES)
+    out = {"rev_per_min": at.speed * 30 / math.pi, "rad_per_s": at.speed,
+           "crank_acceleration_rad_s2": at.crank_acceleration, "assumptions": ASSUMPTIONS}
+    if at.torque is None:
+        out["torque"] = {"unavailable": at.torque_unavailable}
+    else:
+        curve = at.torque
         order = np.argsort(np.degrees(curve.q) % 360.0)
         out["torque"] = {"crank_deg": _rounded(np.degrees(curve.q[order]) % 360.0),
                          "torque_N_m": [float(t) for t in curve.torque[order]],
                          "summary": curve.summary()}
-    except FlexlinkError as exc:
-        out["torque"] = {"unavailable": str(exc)}
-    try:
-        speeds = np.linspace(0.0, speed, SPEED_STEPS)
-        points = [operating_modes(scene, w, n_modes, elements_per_link) for w in speeds]
-    except FlexlinkError as exc:
-        out["modes"] = {"unavailable": str(exc)}
+    if at.points_unavailable is not None:
+        out["modes"] = {"unavailable": at.points_unavailable}
         return out
+    points = at.points
     lines = []
-    for j in range(n_modes):
+    for j in range(len(points[0].frequencies)):
         line = []
         for p in points:
             s = p.modes.eigenvalues[j]
             line.append(float(p.frequencies[j]) if s.imag > 1e-9 * abs(s) else None)
         lines.append(line)
     last = points[-1]
-    out["modes"] = {"rev_per_min": [float(w * 30 / math.pi) for w in speeds],
+    out["modes"] = {"rev_per_min": [float(w * 30 / math.pi) for w in at.speeds],
                     "frequencies_Hz": lines,
                     "static_Hz": [float(f) for f in last.static_frequencies],
                     "diverges": bool(last.modes.negative_stiffness),
@@ -145,17 +139,69 @@ def at_speed_data(scene: Scene, n_modes: int, elements_per_link: int) -> dict | 
     return out
 
 
-def scene_page(result: CaseResult, summary: dict, mesh: dict, modes: ModeSet,
-               cycle: dict | None, files: dict, out: Path, at_speed: dict | None = None) -> dict:
-    """Everything the report shows for one scene. ``summary``: ``report.case_summary`` (with
-    its "warnings"); ``mesh``: ``MeshRule.as_dict()`` with "describe"; ``cycle``:
-    ``cycle_data``; ``files``: ``export.export_case``'s answer, linked relative to ``out``;
-    ``at_speed``: ``at_speed_data``."""
+def scene_page(scene: ReportScene, files: dict, out: Path) -> dict:
+    """Everything the report shows for one scene (``studies.report_scene``), its modes drawn
+    on the mesh they were solved on; ``files``: ``export.export_case``'s answer, linked
+    relative to ``out``."""
     def relative(paths):
         return [Path(p).relative_to(out).as_posix() for p in paths]
 
-    stem = Path(result.scene.path).stem
-    return {"id": stem, "summary": summary, "mesh": mesh, "drawing": linkage_drawing(result),
-            "shapes": mode_shapes(modes), "cycle": cycle, "at_speed": at_speed,
+    summary = scene.summary
+    result, mesh = summary.case, summary.mesh
+    return {"id": Path(result.scene.path).stem, "summary": summary_document(summary),
+            "mesh": {**mesh.as_dict(), "describe": mesh.describe(), "history": list(mesh.history)},
+            "drawing": linkage_drawing(result),
+            "shapes": mode_shapes(mode_set(result, len(summary.frequencies))),
+            "cycle": cycle_data(scene.cycle, result.pose.crank_angle, scene.cycle_unavailable),
+            "at_speed": at_speed_data(scene.at_speed),
             "files": {"vtu": relative(files.get("vtu", [])),
                       "pvd": relative(files.get("pvd", []))}}
+
+
+def report_document(report: Path, page: str, pages: list[dict], out: Path,
+                    failures: list[dict]) -> dict:
+    """The JSON document of ``flexlink report``: the page written to ``report`` and its size,
+    per scene (``scene_page`` each, its files in ``out``) its mesh, frequencies [Hz] and
+    whether it has a cycle map, every file written, and the scenes that failed."""
+    def scene(p: dict) -> dict:
+        summary, cycle = p["summary"], p["cycle"]
+        entry = {"scene": summary["scene"], "file": summary["file"],
+                 "mesh": p["mesh"]["elements_per_link"],
+                 "frequencies_Hz": [r["computed_Hz"] for r in summary["modes"]],
+                 "cycle_map": cycle is not None and "unavailable" not in cycle}
+        if "note" in summary:
+            entry["note"] = summary["note"]
+        if cycle and "note" in cycle:
+            entry["cycle_map_note"] = cycle["note"]
+        return entry
+
+    return {"command": "report", "report": str(report), "bytes": len(page.encode()),
+            "scenes": [scene(p) for p in pages],
+            "files": [str(report)] + [str(out / f) for p in pages
+                                      for f in p["files"]["vtu"] + p["files"]["pvd"]],
+            "failures": failures}
+
+
+def report_html(pages: list[dict], failures: list[dict], n_modes: int) -> str:
+    """The self-contained page of ``pages`` (``scene_page`` each) with plotly.js inlined, the
+    scenes that failed listed at the top, and under the title flexlink's version, when, and
+    what the page holds."""
+    import datetime
+    import importlib.metadata
+
+    import plotly.offline
+
+    from flexlink.output.html_report import render_page
+
+    stamp = datetime.datetime.now().astimezone().strftime("%Y-%m-%d %H:%M %Z")
+    version = importlib.metadata.version("flexlink")
+    subtitle = (f"flexlink {version}, {stamp}: {counted(len(pages), 'scene')}, first "
+                f"{counted(n_modes, 'elastic mode')}")
+    return render_page(pages, plotly.offline.get_plotlyjs(), subtitle=subtitle,
+                       failures=[f["error"] for f in failures])
+
+
+def report_text(document: dict) -> str:
+    """The line ``flexlink report`` prints: how many scenes, how large, where."""
+    return (f"report: {counted(len(document['scenes']), 'scene')}, "
+            f"{document['bytes'] / 1e6:.1f} MB -> {document['report']}")

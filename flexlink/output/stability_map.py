@@ -118,3 +118,13 @@ def plot_stability(result, model, path, title: str, harmonics: int = 6) -> None:
     modulus.grid(alpha=0.3, which="both")
     fig.tight_layout()
     write_figure(fig, path)
+
+
+def write_stability(result, model, folder, title: str) -> list:
+    """stability-map.png and .csv in ``folder`` (atomically); returns their paths."""
+    from flexlink.fileio import write_atomic
+
+    paths = [folder / "stability-map.png", folder / "stability-map.csv"]
+    plot_stability(result, model, paths[0], title)
+    write_atomic(paths[1], stability_csv(result))
+    return paths

@@ -27,9 +27,9 @@ from flexlink.analysis.modal import pose_modes
 from flexlink.analysis.pose_basis import DEFAULT_TOLERANCE, PoseBasis, pose_basis
 from flexlink.analysis.solve import MECHANISM
 from flexlink.errors import InputError, NumericalError
-from flexlink.fe.assembly import reduced_columns, reduction
+from flexlink.fe.assembly import reduced_columns, rigid_elimination
 from flexlink.fe.geometric import GeometricForm, geometric_entries
-from flexlink.fe.pose import pose_model
+from flexlink.fe.model_at_pose import pose_model
 from flexlink.fe.preload import axial_forces, inertia_loads, static_displacement
 from flexlink.fe.rotating import node_owners, rotating_entries
 from flexlink.kinematics.dynamics import rigid_motion
@@ -150,7 +150,7 @@ def periodic_model(scene: Scene, n_modes: int = 6, poses: int = 37,
     if MECHANISM in static.kinds:
         raise NumericalError(f"{scene.path}: the frame has a mechanism mode at its pose: the "
                              "stability map needs the crank held by its drive")
-    T = reduction(model0)
+    T = rigid_elimination(model0)
     column, n = reduced_columns(T, model0.n_dofs)
     reduce = reducer(column, n, dense=True)
     angles = state0.q + 2.0 * np.pi * np.arange(poses) / poses
@@ -270,19 +270,19 @@ class StabilityMap:
 
 
 def stability_map(model: PeriodicModel, speeds: np.ndarray, steps: int = 200,
-                  harmonics: int = 6, progress: bool = False,
+                  harmonics: int = 6, show_progress: bool = False,
                   step_phase: float = STEP_PHASE) -> StabilityMap:
     """The largest Floquet multiplier over ``speeds`` [rad/s]. At zero speed the equations do
     not vary: nothing is parametrically excited, the modulus is 1 and the rate 0 by definition
     (the damped modes decay). The speeds go out in chunks through ``parallel.run_tasks``: in
     this process, or on the dask cluster of ``parallel.use_scheduler`` (each speed is
-    computed alone, so the result is the same wherever it runs); ``progress``: a bar."""
+    computed alone, so the result is the same wherever it runs); ``show_progress``: a bar."""
     speeds = np.asarray(speeds, dtype=float)
     # on a cluster a few chunks per worker; here one speed a chunk, for the bar
     count = 4 * workers(n_jobs=1) if on_cluster() else len(speeds)
     chunks = np.array_split(np.arange(len(speeds)), max(1, min(len(speeds), count)))
     parts = run_tasks(_speed_chunk, [(model, speeds[c], steps, step_phase) for c in chunks],
-                      n_jobs=1, progress=progress, label="speed chunks")
+                      n_jobs=1, show_progress=show_progress, label="speed chunks")
     modulus = np.concatenate([p[0] for p in parts])
     rate = np.concatenate([p[1] for p in parts])
     floor = np.array([model.stiffness_floor(w) for w in speeds])
