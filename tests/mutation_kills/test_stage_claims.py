@@ -9,6 +9,7 @@ import pytest
 
 from conftest import CASES_DIR
 from flexlink.analysis.sweep import craig_bampton_refusal
+from flexlink.errors import InputError
 from flexlink.fe.truncation import _horner
 from flexlink.scene import load_scene
 from flexlink.scene.parts import tube_shear_factor
@@ -63,3 +64,18 @@ def test_whole_number_keys_are_integers_in_the_editor_schema():
     (choice,) = [c for c in props["elements_per_link"]["anyOf"] if c.get("type") != "null"]
     assert choice["type"] == "integer" and choice["minimum"] == 1
     assert math.isfinite(choice["maximum"])
+
+
+@pytest.mark.parametrize("written, words", [('"5"', "a plain number, no unit"),
+                                            ('"5 mm"', "a plain number, no unit"),
+                                            ("true", "expected a whole number")])
+def test_a_plain_number_key_refuses_text_and_booleans(tmp_path, written, words):
+    """The schema's plain numbers (here the ply count) take a TOML number only: text, even a
+    number in quotes, and true/false are refused in one line naming the key."""
+    path = tmp_path / "plies.toml"
+    path.write_text(f'base = "{(CASES_DIR / "case1.toml").as_posix()}"\n[section]\n'
+                    f"plies = {written}\n")
+    with pytest.raises(InputError) as info:
+        load_scene(path)
+    message = str(info.value)
+    assert "section.plies" in message and words in message and "\n" not in message, message
