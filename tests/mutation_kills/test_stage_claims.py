@@ -79,3 +79,20 @@ def test_a_plain_number_key_refuses_text_and_booleans(tmp_path, written, words):
         load_scene(path)
     message = str(info.value)
     assert "section.plies" in message and words in message and "\n" not in message, message
+
+
+def test_a_craig_bampton_sweep_solves_the_poses_outside_its_sample(monkeypatch):
+    """A sweep longer than its sample (SAMPLE poses set the basis of the others) must answer
+    at every pose as the full model does: within 1e-6, the reduction's tolerance (the mesh
+    rule's own discretisation error; tests/fe/test_craig_bampton.py). Six poses with a
+    sample of two leave four to the second pass."""
+    from flexlink.analysis import sweep
+
+    monkeypatch.setattr(sweep, "SAMPLE", 2)
+    scene = load_scene(CASES_DIR / "case1.toml")
+    poses = [scene.rigid_pose(t).joints for t in np.radians(np.arange(6) * 60.0 + 0.5)]
+    topology = scene.topology(8)
+    full = sweep.modal_sweep(topology, poses, 4).frequencies
+    reduced = sweep.modal_sweep(topology, poses, 4, reduction="craig-bampton").frequencies
+    assert np.isfinite(reduced).all()
+    np.testing.assert_allclose(reduced, full, rtol=1e-6)
