@@ -96,3 +96,15 @@ def test_a_craig_bampton_sweep_solves_the_poses_outside_its_sample(monkeypatch):
     reduced = sweep.modal_sweep(topology, poses, 4, reduction="craig-bampton").frequencies
     assert np.isfinite(reduced).all()
     np.testing.assert_allclose(reduced, full, rtol=1e-6)
+
+
+def test_a_folder_of_base_files_only_says_what_would_run(tmp_path):
+    """Base files (names starting with '_') are never run alone: a folder holding only those
+    is refused naming the folder, the base files and what it should hold instead."""
+    from flexlink.scene.load import scene_files
+
+    (tmp_path / "_shared.toml").write_text("")
+    with pytest.raises(InputError) as info:
+        scene_files([tmp_path])
+    assert info.value.source == str(tmp_path) and "_shared.toml" in str(info.value)
+    assert info.value.expected and "not starting with '_'" in info.value.expected
