@@ -45,7 +45,7 @@ targets=("$@")
     flexlink/fe flexlink/analysis flexlink/studies flexlink/output)
 
 # Everything the tests read besides flexlink/ and tests/ (which mutmut copies itself).
-extras=(cases materials scenes benchmarks docs scripts README.md)
+extras=(cases materials scenes benchmarks docs scripts README.md .taplo.toml)
 
 if [ "${KEEP:-0}" != 1 ] || [ ! -d "$OUT/mutants" ]; then
     rm -rf "$OUT" && mkdir -p "$OUT"

@@ -1,7 +1,8 @@
 """Helpers of scripts/mutation.sh, run inside the scratch copy (reads mutmut's mutants/*.meta).
 
     python mutation_table.py pick TARGET N SEED   N mutant names of TARGET drawn at random
-    python mutation_table.py table TARGET         per-module counts of the mutants run so far
+    python mutation_table.py table TARGET [N SEED]  per-module counts of the mutants run so
+                                                  far (of those N drawn, if given)
     python mutation_table.py run JOBS NAME...     `mutmut run` without its clean test run
 
 TARGET is a package folder (flexlink/fe) or a module (flexlink/units.py). A random sample
@@ -31,10 +32,15 @@ def exit_codes(meta: Path) -> dict:
     return json.loads(meta.read_text())["exit_code_by_key"]
 
 
-def pick(target: str, n: int, seed: int) -> None:
+def drawn(target: str, n: int, seed: int) -> list[str]:
+    """N mutant names of TARGET in the order drawn: the first k of N are the draw of k (the
+    same seed), so a sample cut short is still a random sample of its completed prefix."""
     names = sorted(name for meta in metas(target) for name in exit_codes(meta))
-    chosen = random.Random(seed).sample(names, min(n, len(names)))
-    print("\n".join(sorted(chosen)))
+    return random.Random(seed).sample(names, min(n, len(names)))
+
+
+def pick(target: str, n: int, seed: int) -> None:
+    print("\n".join(sorted(drawn(target, n, seed))))
 
 
 def wilson(k: int, n: int, z: float = 1.96) -> tuple[float, float]:
@@ -57,7 +63,7 @@ def row(name: str, counts: dict, wall: float | None) -> str:
     return f"{name:40} {cells}  {rate} {time}"
 
 
-def table(target: str) -> None:
+def table(target: str, only: set[str] | None = None) -> None:
     """Killed includes timeouts (as in mutmut's own score); "other" is suspicious, segfault,
     interrupted. The rate is killed over checked, so "no tests" counts against it. Wall: the
     sum of the module's mutant run times (the wall time spent on it when JOBS=1)."""
@@ -68,9 +74,9 @@ def table(target: str) -> None:
     for meta in metas(target):
         data = json.loads(meta.read_text())
         counts = dict.fromkeys(COLUMNS, 0)
-        for code in data["exit_code_by_key"].values():
+        for name, code in data["exit_code_by_key"].items():
             counts["mutants"] += 1
-            if code is None:
+            if code is None or (only is not None and name not in only):
                 continue
             counts["checked"] += 1
             status = status_by_exit_code[code]
@@ -78,7 +84,8 @@ def table(target: str) -> None:
             counts[status if status in COLUMNS else "other"] += 1
         if not counts["mutants"]:
             continue
-        wall = sum(data.get("durations_by_key", {}).values())
+        wall = sum(t for name, t in data.get("durations_by_key", {}).items()
+                   if only is None or name in only)
         total_wall += wall
         for c in COLUMNS:
             total[c] += counts[c]
@@ -111,4 +118,4 @@ if __name__ == "__main__":
     elif command == "pick":
         pick(target, int(rest[0]), int(rest[1]))
     else:
-        table(target)
+        table(target, set(drawn(target, int(rest[0]), int(rest[1]))) if rest else None)

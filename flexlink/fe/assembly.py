@@ -50,14 +50,6 @@ def rotated_entries(rows, cols, values, cos, sin):
             spread.reshape(spread.shape[0], -1))
 
 
-def _rotated(matrix, angle: float, nodes: int):
-    coo = sp.coo_matrix(matrix)
-    c, s = np.full(coo.nnz, math.cos(angle)), np.full(coo.nnz, math.sin(angle))
-    rows, cols, values = rotated_entries(coo.row, coo.col, coo.data[None], c, s)
-    n = 3 * nodes
-    return sp.coo_matrix((values[0], (rows, cols)), shape=(n, n)).tocsr()
-
-
 def placed_link_entries(model: FrameModel):
     """All links' local entries at their global node offsets, not yet rotated:
     (rows, cols, values (2, e) = K and M, cos, sin (e,) of each entry's link)."""

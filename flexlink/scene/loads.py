@@ -24,14 +24,15 @@ COLUMNS = {"torque": ("torque",), "force": ("Fx", "Fy")}
 
 
 def _rows(path: Path, field: str, width: int) -> tuple[list[str], np.ndarray]:
+    expected = f"a header row, then crank_angle_deg and {width} value column(s) per row"
     if not path.is_file():
-        raise InputError("no such file", source=str(path), field=field)
+        raise InputError("no such file", source=str(path), field=field,
+                         expected=f"a CSV file beside the scene: {expected}")
     with path.open(newline="") as handle:
         rows = [r for r in csv.reader(handle) if any(cell.strip() for cell in r)]
     if not rows:
-        raise InputError("the file is empty", source=str(path), field=field)
+        raise InputError("the file is empty", source=str(path), field=field, expected=expected)
     header, body = rows[0], rows[1:]
-    expected = f"a header row, then crank_angle_deg and {width} value column(s) per row"
     if len(header) != 1 + width:
         raise InputError(f"the header has {len(header)} column(s)", source=str(path),
                          field=field, expected=expected)

@@ -11,6 +11,7 @@ from flexlink.materials.mixtures import (
     isotropic,
     isotropic_shear,
     load_constituent,
+    rule_of_mixtures,
     woven_composite,
 )
 
@@ -144,3 +145,44 @@ def test_an_unknown_material_says_what_would_be_accepted():
     with pytest.raises(InputError) as info:
         load_constituent("unobtainium")
     assert info.value.expected and "material" in info.value.expected
+
+
+@pytest.mark.parametrize("key, broken", [
+    ("E", GOOD.replace('mean = "3 GPa"', 'mean = "3 mm"')),
+    ("G", GOOD.replace('mean = "1.1 GPa"', 'mean = "1.1 kg/m^3"')),
+    ("density", GOOD.replace('mean = "1.2 g/cm^3"', 'mean = "1.2 GPa"')),
+])
+def test_a_mean_in_the_wrong_unit_kind_names_the_file_and_its_key(tmp_path, key, broken):
+    """The schema gives each value a unit kind (modulus, density); a value of another kind is
+    refused with the file and the dotted key, so the user knows which line to fix."""
+    path = tmp_path / "resin.toml"
+    path.write_text(broken)
+    with pytest.raises(InputError) as info:
+        load_constituent(path)
+    assert (info.value.source, info.value.field) == (str(path), f"{key}.mean")
+    assert str(path) in str(info.value) and f"{key}.mean" in str(info.value)
+
+
+def test_a_spread_in_the_wrong_unit_kind_names_the_file(tmp_path):
+    path = tmp_path / "resin.toml"
+    path.write_text(GOOD.replace('spread = "0.1 GPa"', 'spread = "2 mm"'))
+    with pytest.raises(InputError) as info:
+        load_constituent(path)
+    assert (info.value.source, info.value.field) == (str(path), "E.spread")
+
+
+@pytest.mark.parametrize("field", ["E", "G", "density"])
+def test_any_positive_modulus_or_density_is_admissible(field):
+    """Positivity is the only physical bound: a graphene aerogel weighs 0.16 kg/m^3, and a
+    value below 1 in SI units must not be taken for a non-positive one."""
+    assert getattr(Constituent(**{**STEEL, field: 0.16}), field) == 0.16
+
+
+@pytest.mark.parametrize("fraction", [0.0, 1.0, -0.1, 1.5])
+def test_a_fibre_fraction_outside_the_open_unit_interval_names_its_field(fraction):
+    """A volume fraction of 0 or 1 leaves one constituent absent, and the harmonic means of
+    the rule of mixtures then divide by zero."""
+    steel = Constituent(**STEEL)
+    with pytest.raises(InputError) as info:
+        rule_of_mixtures(steel, steel, fraction)
+    assert info.value.field == "fiber_volume_fraction"
