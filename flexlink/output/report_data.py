@@ -22,6 +22,7 @@ from flexlink.output.export_vtk import ModeSet
 from flexlink.scene import Scene
 from flexlink.studies.cycle import ModalMap
 from flexlink.studies.operating_point import ASSUMPTIONS, operating_modes
+from flexlink.studies.steady_response import forced_model, steady_response
 from flexlink.studies.torque import torque_study
 
 MM = 1e3  # m -> mm
@@ -121,6 +122,7 @@ def at_speed_data(scene: Scene, n_modes: int, elements_per_link: int) -> dict | 
                          "summary": curve.summary()}
     except FlexlinkError as exc:
         out["torque"] = {"unavailable": str(exc)}
+    out["response"] = steady_response_data(scene, speed, elements_per_link)
     try:
         speeds = np.linspace(0.0, speed, SPEED_STEPS)
         points = [operating_modes(scene, w, n_modes, elements_per_link) for w in speeds]
@@ -143,6 +145,22 @@ def at_speed_data(scene: Scene, n_modes: int, elements_per_link: int) -> dict | 
                                  "compression": float(min(f.min(), 0.0))}
                                 for name, f in last.axial_forces.items()]}
     return out
+
+
+def steady_response_data(scene: Scene, speed: float, elements_per_link: int) -> dict:
+    """Each link's midspan bending strain over one turn at ``speed`` [rad/s] in the steady
+    state (``studies.steady_response``, 6 modes), or {"unavailable": reason}."""
+    try:
+        model = forced_model(scene, n_modes=6, elements_per_link=elements_per_link)
+        result = steady_response(model, speed)
+    except FlexlinkError as exc:
+        return {"unavailable": str(exc)}
+    order = np.argsort(np.degrees(result.angles) % 360.0)
+    return {"crank_deg": _rounded(np.degrees(result.angles[order]) % 360.0),
+            "points": [{"label": p.label, "strain": [float(x) for x in result.strain[order, k]],
+                        "peak_strain": float(result.peak_strain[k]),
+                        "peak_deflection_m": float(result.peak_deflection[k])}
+                       for k, p in enumerate(model.points)]}
 
 
 def scene_page(result: CaseResult, summary: dict, mesh: dict, modes: ModeSet,
