@@ -34,7 +34,7 @@ import scipy.linalg as la  # noqa: E402
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from flexlink.fe.assembly import reduction  # noqa: E402
+from flexlink.fe.assembly import rigid_elimination  # noqa: E402
 from flexlink.fe.model import build_model  # noqa: E402
 from flexlink.scene import load_scene  # noqa: E402
 from flexlink.analysis.sweep import _DensePlan, modal_sweep  # noqa: E402
@@ -94,7 +94,7 @@ def per_pose(repeats: int) -> bool:
         print(f"  frequencies vs OpenSees eigen {solver}: max relative difference "
               f"{worst[solver]:.2e} (tolerance {TOLERANCE:g})")
 
-    plan = _DensePlan(models[0], reduction(models[0]))
+    plan = _DensePlan(models[0], rigid_elimination(models[0]))
     matrices = [plan.matrices(m) for m in models]
     n = matrices[0][0].shape[0]
 
@@ -184,7 +184,7 @@ def whole_cycle(repeats: int) -> None:
     bare = 0.0
     for scene in scenes:  # the bare LAPACK call alone on the same 1440 pencils
         models = [build_model(scene.topology(), p) for p in cycle_poses(scene, 360)]
-        plan = _DensePlan(models[0], reduction(models[0]))
+        plan = _DensePlan(models[0], rigid_elimination(models[0]))
         pencils = [plan.matrices(m) for m in models]
         bare += median_time(lambda pencils=pencils: [la.eigh(K, M, subset_by_index=[0, N_MODES - 1])
                                                      for K, M in pencils], repeats)
@@ -254,10 +254,11 @@ def scaling_point(spans: int) -> dict:
     stability suite's row of graded pinned spans (``stability.graded_spans``): well conditioned
     at any size, with a closed-form lowest frequency, unlike one link cut ever finer (which
     flexlink refuses past double precision)."""
-    from flexlink.fe.pose import in_plane_eigen_scale
-    from flexlink.fe.assembly import assemble, reduction
+    from flexlink.fe.model_at_pose import in_plane_eigen_scale
+    from flexlink.fe.assembly import assemble, rigid_elimination
     from flexlink.fe.energy import twice_strain_energy
     from flexlink.fe.model import build_model
+    from flexlink.analysis.eigensolver import EigenSolver
     from flexlink.analysis.solve import solve_modes
     from flexlink.studies.stability import LONG_SPANS, graded_spans
 
@@ -267,8 +268,8 @@ def scaling_point(spans: int) -> dict:
         topology, points = graded_spans(section, n)
         model = build_model(topology, points)
         K, M = assemble(model)
-        return solve_modes(K, M, N_MODES, T=reduction(model), lambda_ref=in_plane_eigen_scale(model),
-                           method="sparse", energy=lambda U: twice_strain_energy(model, U))
+        return solve_modes(K, M, N_MODES, T=rigid_elimination(model), lambda_ref=in_plane_eigen_scale(model),
+                           solver=EigenSolver("sparse"), energy=lambda U: twice_strain_energy(model, U))
 
     solve(2)  # load the code paths first
     rss = lambda key: int(next(line.split()[1] for line in  # noqa: E731  [kB]

@@ -18,7 +18,7 @@ import numpy as np  # noqa: E402
 from pyinstrument import Profiler  # noqa: E402
 
 from flexlink.scene import load_scene  # noqa: E402
-from flexlink.analysis.sweep import REDUCTIONS, modal_sweep  # noqa: E402
+from flexlink.analysis.sweep import Reduction, modal_sweep  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -26,8 +26,8 @@ ROOT = Path(__file__).resolve().parent.parent
 def main():
     elements = int(sys.argv[1]) if len(sys.argv) > 1 else 8
     reduction = sys.argv[2] if len(sys.argv) > 2 else None
-    if reduction not in REDUCTIONS:
-        sys.exit(f"reduction: one of {REDUCTIONS[1:]} or nothing")
+    if reduction is not None and reduction not in tuple(Reduction):
+        sys.exit(f"reduction: one of {', '.join(Reduction)} or nothing")
     scene = load_scene(ROOT / "cases" / "case2.toml")
     topology = scene.topology(elements)
     poses = [scene.rigid_pose(t).joints for t in np.radians(np.arange(360) + 0.5)]

@@ -13,13 +13,14 @@ import importlib
 from flexlink.errors import FlexlinkError, InputError, KinematicsError, NumericalError, OutputError
 
 _EXPORTS = {
-    "FourBar": "kinematics.fourbar", "Pose": "kinematics.fourbar",
+    "FourBar": "kinematics.fourbar", "FourBarPose": "kinematics.fourbar",
     "load_constituent": "materials.mixtures", "rule_of_mixtures": "materials.mixtures",
     "woven_composite": "materials.mixtures",
     "FrameModel": "fe.model", "JointSpec": "fe.model", "LinkSpec": "fe.model",
     "Section": "fe.model", "Topology": "fe.model", "build_model": "fe.model",
-    "assemble": "fe.assembly", "reduction": "fe.assembly",
+    "assemble": "fe.assembly", "rigid_elimination": "fe.assembly",
     "ModalResult": "analysis.solve", "solve_modes": "analysis.solve",
+    "EigenSolver": "analysis.eigensolver",
     "Scene": "scene.load", "load_scene": "scene.load",
     "CaseResult": "analysis.modal", "analyze": "analysis.modal",
     "modal_sweep": "analysis.sweep",

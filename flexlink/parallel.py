@@ -85,15 +85,15 @@ def _collecting_call(function: Callable, task: tuple):
 
 
 def run_tasks(function: Callable, tasks: Sequence[tuple], *, n_jobs: int = -1,
-              progress: bool = False, label: str = "tasks") -> list:
+              show_progress: bool = False, label: str = "tasks") -> list:
     """[function(*task) for task in tasks], on ``n_jobs`` workers (-1 = all cores; 1 = in this
     process, no pool) or on the dask cluster of ``use_scheduler``, showing a tqdm bar on stderr
-    when ``progress``. ``label`` names the tasks (plural) in the bar and in the warnings'
+    when ``show_progress``. ``label`` names the tasks (plural) in the bar and in the warnings'
     summary."""
     from joblib import Parallel, delayed
     from tqdm import tqdm
 
-    bar = tqdm(total=len(tasks), desc=label, disable=not progress, leave=False)
+    bar = tqdm(total=len(tasks), desc=label, disable=not show_progress, leave=False)
     on_dask = _client is not None
     if on_dask:
         calls = _on_dask(function, tasks, bar)  # advances the bar as tasks finish

@@ -27,7 +27,7 @@ RUNS = (
     ("campbell", ["campbell", "--poses", "12", "--speeds", "0:3000 rev/min"], False),
     ("converge", ["converge", "--max-elements", "8", "--repeats", "1"], False),
     ("export", ["export", "--no-pictures", "--phases", "4"], False),
-    ("mac-out-of-plane", ["mac", "--family", "out-of-plane", "-e", "4"], False),
+    ("mac-out-of-plane", ["mac", "--part", "out-of-plane", "-e", "4"], False),
     ("kinematics", ["kinematics", "--poses", "36"], False),
     ("prb", ["prb"], True),
     ("report", ["report", "--cycle-poses", "4"], False),

@@ -4,8 +4,9 @@ import math
 
 import numpy as np
 
-from flexlink.fe.pose import in_plane_eigen_scale
-from flexlink.fe.assembly import assemble, reduction
+from flexlink.analysis.eigensolver import EigenSolver
+from flexlink.fe.model_at_pose import in_plane_eigen_scale
+from flexlink.fe.assembly import assemble, rigid_elimination
 from flexlink.fe.model import JointSpec, LinkSpec, Section, Topology, build_model
 from flexlink.analysis.solve import solve_modes
 
@@ -40,7 +41,7 @@ def single_beam(support, elements, angle=0.0, section=SECTION, length=LENGTH):
 
 def modes_of(model, n, method="dense"):
     K, M = assemble(model)
-    return solve_modes(K, M, n, T=reduction(model), lambda_ref=in_plane_eigen_scale(model), method=method)
+    return solve_modes(K, M, n, T=rigid_elimination(model), lambda_ref=in_plane_eigen_scale(model), solver=EigenSolver(method))
 
 
 def bending_frequencies(result, n):

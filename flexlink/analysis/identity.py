@@ -21,7 +21,7 @@ import math
 
 import numpy as np
 
-from flexlink.fe.assembly import assemble, reduction
+from flexlink.fe.assembly import assemble, rigid_elimination
 from flexlink.fe.joints import spring_energies
 from flexlink.fe.model import FrameModel
 
@@ -100,7 +100,7 @@ def energy_parts(model: FrameModel, shapes: np.ndarray) -> EnergyParts:
 
 def ground_motion(model: FrameModel, T=None) -> np.ndarray:
     """(n_dofs, 2): rigid translation in x and in y of every DOF not fixed to the ground
-    (``T``: ``assembly.reduction``; grounded DOFs have no column in it)."""
+    (``T``: ``assembly.rigid_elimination``; grounded DOFs have no column in it)."""
     r = np.zeros((model.n_dofs, 2))
     r[0::3, 0] = 1.0
     r[1::3, 1] = 1.0
@@ -114,7 +114,7 @@ def effective_masses(model: FrameModel, shapes: np.ndarray, M=None) -> np.ndarra
     ``shapes``; ``M``: the model's consistent mass (assembled when not given)."""
     if M is None:
         M = assemble(model)[1]
-    gamma = np.asarray(shapes).T @ (M @ ground_motion(model, reduction(model)))
+    gamma = np.asarray(shapes).T @ (M @ ground_motion(model, rigid_elimination(model)))
     return gamma**2
 
 
@@ -122,7 +122,7 @@ def participating_mass(model: FrameModel, M=None) -> np.ndarray:
     """(2,) r^T M r [kg] in x and y: what the effective masses of all modes sum to."""
     if M is None:
         M = assemble(model)[1]
-    r = ground_motion(model, reduction(model))
+    r = ground_motion(model, rigid_elimination(model))
     return np.einsum("ij,ij->j", r, M @ r)
 
 

@@ -34,6 +34,7 @@ import scipy.sparse as sp
 from flexlink.errors import InputError
 from flexlink.fe.model import FrameModel
 from flexlink.fe.modeshape import hermite_weights
+from flexlink.fe.motions import Part
 
 STATIONS = 20  # segments per link for comparing different meshes
 
@@ -145,20 +146,17 @@ def out_of_plane_stations(model: FrameModel, shapes: np.ndarray, per_link: int =
     return np.vstack(values), np.concatenate(weights), tuple(l.name for l in model.links)
 
 
-FAMILY_STATIONS = {"in-plane": stations, "out-of-plane": out_of_plane_stations}
+PART_STATIONS = {Part.IN_PLANE: stations, Part.OUT_OF_PLANE: out_of_plane_stations}
 
 
 def compare_models(model_a: FrameModel, shapes_a: np.ndarray, model_b: FrameModel,
                    shapes_b: np.ndarray, per_link: int = STATIONS,
-                   family: str = "in-plane") -> np.ndarray:
+                   part: Part = Part.IN_PLANE) -> np.ndarray:
     """MAC of the modes of two models with the same link names (any meshes, poses, sections),
     compared at link stations weighted by the first model's link masses (and, out of plane,
-    rotary inertias). ``family``: "in-plane" (``stations``) or "out-of-plane"
-    (``out_of_plane_stations``); both shape sets must be of that family."""
-    if family not in FAMILY_STATIONS:
-        raise InputError(f"got {family!r}", field="family",
-                         expected=f"one of {', '.join(FAMILY_STATIONS)}")
-    sample = FAMILY_STATIONS[family]
+    rotary inertias). ``part``: IN_PLANE (``stations``) or OUT_OF_PLANE
+    (``out_of_plane_stations``); both shape sets must be of that part."""
+    sample = PART_STATIONS[part]
     va, wa, names_a = sample(model_a, shapes_a, per_link)
     vb, _, names_b = sample(model_b, shapes_b, per_link)
     if names_a != names_b:

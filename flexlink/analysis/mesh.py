@@ -20,6 +20,7 @@ import dataclasses
 
 import numpy as np
 
+from flexlink.analysis.eigensolver import EigenSolver, Method
 from flexlink.analysis.modal import pose_modes
 from flexlink.analysis.precision import roundoff_ratio
 from flexlink.analysis.solve import LOST_LIMIT
@@ -27,6 +28,8 @@ from flexlink.errors import NumericalError
 
 ORDER = 2  # leading order of the frequency error in h (module docstring)
 DEFAULT_TOL = 1e-6  # relative frequency tolerance of the default mesh rule
+# the energy-refined frequencies do not depend on the eigen solver, so the fast one serves
+SPARSE_SOLVER = EigenSolver(Method.SPARSE)
 COMMAND_LINE, SCENE, TOLERANCE = "command line (-e)", "scene (mesh.elements_per_link)", "tolerance"
 
 
@@ -74,7 +77,8 @@ def choose_mesh(scene, n_modes: int, elements: int | None = None,
     return mesh_for_tolerance(scene, n_modes, DEFAULT_TOL if tol is None else tol)
 
 
-def mesh_for_tolerance(scene, n_modes: int, tol: float = DEFAULT_TOL, method: str = "sparse",
+def mesh_for_tolerance(scene, n_modes: int, tol: float = DEFAULT_TOL,
+                       solver: EigenSolver = SPARSE_SOLVER,
                        start: int = 4, max_elements: int = 4096) -> MeshRule:
     """Refine by doubling from ``start`` until the estimated relative error <= ``tol``.
 
@@ -89,7 +93,7 @@ def mesh_for_tolerance(scene, n_modes: int, tol: float = DEFAULT_TOL, method: st
         if roundoff_ratio(topology, points) > LOST_LIMIT:
             return None
         try:
-            modes = pose_modes(topology, points, n_modes, method)[1]
+            modes = pose_modes(topology, points, n_modes, solver)[1]
         except NumericalError:  # past the precision limit: the solver's own check refused it
             return None
         return modes.elastic_frequencies[:n_modes]

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import dataclasses
+import enum
 import functools
 import logging
 import time
@@ -11,25 +12,33 @@ from collections.abc import Mapping
 import numpy as np
 
 from flexlink.analysis.precision import refuse_too_fine
-from flexlink.analysis.solve import (AUTO_DENSE_MAX, LOST_LIMIT, ModalResult, lowest_elastic,
-                                     require_elastic, solve_modes)
-from flexlink.fe.assembly import assemble, assemble_reduced_dense, reduction
+from flexlink.choices import parse_choice
+from flexlink.analysis.eigensolver import DEFAULT_SOLVER, EigenSolver
+from flexlink.analysis.solve import (LOST_LIMIT, ModalResult, lowest_elastic, require_elastic,
+                                     solve_eliminated_modes, solve_modes)
+from flexlink.fe.assembly import assemble, assemble_reduced_dense, rigid_elimination
 from flexlink.fe.energy import lumped_mass, twice_strain_energy
 from flexlink.fe.model import FrameModel, Topology
-from flexlink.fe.pose import in_plane_eigen_scale, pose_model
-from flexlink.kinematics.fourbar import Pose
-from flexlink.scene import Scene
+from flexlink.fe.model_at_pose import in_plane_eigen_scale, pose_model
+from flexlink.scene import RigidPose, Scene
 from flexlink.scene.plausibility import model_warnings, pose_warnings
 
 log = logging.getLogger(__name__)
 
-MASSES = ("consistent", "lumped")
+
+
+class Mass(enum.StrEnum):
+    """The mass matrix: the element's own (consistent) or the HRZ diagonal (lumped,
+    ``energy.lumped_mass``)."""
+
+    CONSISTENT = "consistent"
+    LUMPED = "lumped"
 
 
 @dataclasses.dataclass(frozen=True)
 class CaseResult:
     scene: Scene
-    pose: Pose
+    pose: RigidPose
     model: FrameModel
     modes: ModalResult
     elements_per_link: int
@@ -40,52 +49,79 @@ class CaseResult:
         return self.modes.elastic_frequencies[:n]
 
 
+@dataclasses.dataclass(frozen=True)
+class PoseSystem:
+    """A pose's model, its assembled K and M and its modes (``pose_system``): K, M are
+    T^T K T and T^T M T when ``eliminated`` (dense), else full size; T from
+    ``assembly.rigid_elimination`` (None: nothing rigid)."""
+
+    model: FrameModel
+    modes: ModalResult
+    K: object
+    M: object
+    T: object
+    eliminated: bool
+    seconds: dict[str, float]
+
+
 def pose_modes(topology: Topology, points: Mapping[str, tuple[float, float]], n_modes: int,
-               method: str = "auto", mass: str = "consistent", refine: bool = True
-               ) -> tuple[FrameModel, ModalResult, dict[str, float]]:
-    """(model, modes, seconds) of ``topology`` with its joints at ``points`` [m]: the lowest
-    ``n_modes`` elastic modes and every rigid-body/mechanism mode below them, labelled.
+               solver: EigenSolver = DEFAULT_SOLVER, mass: Mass = Mass.CONSISTENT,
+               refine: bool = True) -> tuple[FrameModel, ModalResult, dict[str, float]]:
+    """(model, modes, seconds) of ``pose_system``."""
+    system = pose_system(topology, points, n_modes, solver, mass, refine)
+    return system.model, system.modes, system.seconds
+
+
+def pose_system(topology: Topology, points: Mapping[str, tuple[float, float]], n_modes: int,
+                solver: EigenSolver = DEFAULT_SOLVER, mass: Mass = Mass.CONSISTENT,
+                refine: bool = True) -> PoseSystem:
+    """``topology`` with its joints at ``points`` [m], assembled, and its lowest ``n_modes``
+    elastic modes and every rigid-body/mechanism mode below them, labelled.
 
     Refuses, before assembling, a mesh too fine for double precision
     (``precision.refuse_too_fine``), and asking for more elastic modes than the model has
     (``solve.require_elastic``). ``mass`` and ``refine`` as in ``analyze``."""
-    if mass not in MASSES:
-        raise ValueError(f"unknown mass {mass!r}: one of {MASSES}")
     t0 = time.perf_counter()
     refuse_too_fine(topology, points, LOST_LIMIT)
     model = pose_model(topology, points)
-    T = reduction(model)
+    T = rigid_elimination(model)
     n = model.n_dofs if T is None else T.shape[1]
-    # Small models, which the dense solver takes anyway (solve.pick_method), are assembled
-    # straight into dense reduced K and M: scipy.sparse's bookkeeping (COO -> CSR, T^T K T)
+    # Small models, which the dense solver takes anyway, are assembled straight into dense
+    # K and M with the constraints eliminated: scipy.sparse's bookkeeping (COO -> CSR, T^T K T)
     # costs several times their eigen solve. Same matrices, same checks.
-    dense = mass == "consistent" and method in ("auto", "dense") and n <= AUTO_DENSE_MAX
-    if dense:
+    eliminated = mass is Mass.CONSISTENT and solver.assembles_dense(n)
+    if eliminated:
+        solve_model = solve_eliminated_modes
         K, M = assemble_reduced_dense(model, T)
     else:
+        solve_model = solve_modes
         K, M = assemble(model)
-        if mass == "lumped":
+        if mass is Mass.LUMPED:
             M = lumped_mass(model)
     t1 = time.perf_counter()
     energy = (lambda shapes: twice_strain_energy(model, shapes)) if refine else None
-    solve = functools.partial(solve_modes, K, M, T=T, lambda_ref=in_plane_eigen_scale(model),
-                              method=method, energy=energy, reduced=dense)
+    solve = functools.partial(solve_model, K, M, T=T, lambda_ref=in_plane_eigen_scale(model),
+                              solver=solver, energy=energy)
     modes = require_elastic(lowest_elastic(solve, n_modes), n_modes)
     t2 = time.perf_counter()
-    return model, modes, {"assembly": t1 - t0, "solve": t2 - t1}
+    return PoseSystem(model, modes, K, M, T, eliminated, {"assembly": t1 - t0, "solve": t2 - t1})
 
 
 def analyze(scene: Scene, n_modes: int = 4, elements_per_link: int | None = None,
-            method: str = "auto", mass: str = "consistent", refine: bool = True) -> CaseResult:
+            solver: EigenSolver = DEFAULT_SOLVER, mass: Mass = Mass.CONSISTENT,
+            refine: bool = True) -> CaseResult:
     """Natural frequencies of ``scene`` at its pose: the lowest ``n_modes`` elastic modes
     (plus any rigid-body/mechanism modes below them, labelled as such).
 
-    ``mass``: "consistent" (the element's own) or "lumped" (HRZ diagonal, ``energy.py``).
+    ``solver``: the eigen solver (``eigensolver.EigenSolver``, or its method's text: "auto",
+    "dense" or "sparse"). ``mass``: a ``Mass`` (its text accepted: "consistent" or "lumped").
     ``refine``: eigenvalues as Rayleigh quotients of the strain energy computed from element
     deformations (``energy.py``), so fine meshes are not limited by the round-off of K."""
+    mass = parse_choice(Mass, mass, "mass")
+    solver = solver if isinstance(solver, EigenSolver) else EigenSolver(solver)
     pose = scene.rigid_pose()
     topology = scene.topology(elements_per_link)
-    model, modes, seconds = pose_modes(topology, pose.joints, n_modes, method, mass, refine)
+    model, modes, seconds = pose_modes(topology, pose.joints, n_modes, solver, mass, refine)
     warnings = tuple(pose_warnings(scene.four_bar, pose) + model_warnings(model))
     for w in warnings:  # once per kind and run: the CLI's logbook filter counts the repeats
         log.warning("%s: %s", scene.path, w)

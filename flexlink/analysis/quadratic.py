@@ -36,7 +36,7 @@ from flexlink.errors import NumericalError
 
 GROWTH_TOL = 1e-8  # Re(s) / |s| above which a mode is reported as growing
 BACKWARD_TOL = 1e-10  # normwise backward error a mode must meet
-DENSE_MAX = 250  # DOFs: dense LU up to here, sparse LU above (as solve.AUTO_DENSE_MAX)
+DENSE_MAX = 250  # DOFs: dense LU up to here, sparse LU above (as eigensolver.AUTO_DENSE_MAX)
 FULL_MAX = 24  # DOFs: below this the whole first-order pencil is solved densely
 # Ritz residual ARPACK stops at, relative: a few ulps above its machine-precision default, which
 # spends a restart more; the backward-error check and the Rayleigh refinement stay as they are

@@ -13,6 +13,7 @@ the round-off floor 100 eps lambda_max) are rigid-body or mechanism modes; they 
 from __future__ import annotations
 
 import dataclasses
+import enum
 import logging
 import warnings
 
@@ -21,16 +22,12 @@ import scipy.linalg as la
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
+from flexlink.analysis.eigensolver import DEFAULT_SOLVER, EigenSolver, Method, lowest_pairs
 from flexlink.errors import InputError, NumericalError
 
 log = logging.getLogger(__name__)
 
 DENSE_LIMIT = 4000  # DOFs; largest dense problem a sweep or a convergence study builds
-# "auto" in solve_modes: dense only up to here. Measured with `flexlink converge` on case 1
-# (2026-11-22): dense 3.5 ms vs sparse 4.1 ms at 152 DOFs, 7.8 vs 5.2 ms at 296, 37 vs 7 ms at 584.
-AUTO_DENSE_MAX = 250
-DENSE_REFUSE = 20000  # DOFs; a dense solve would need > 3 GB and minutes: refused
-ELASTIC, MECHANISM = "elastic", "rigid-body/mechanism"
 LOST_LIMIT = 10.0  # eps lambda_max / lambda_1 beyond which the lowest mode shapes are lost
 SPARE_MODES = 4  # solved beyond the elastic modes asked for, for mechanism modes below them
 # The checks on every eigen answer (``check``, and ``stacked.stacked_modes`` for a stack):
@@ -40,6 +37,17 @@ ZERO_TOL = 1e-6  # modes below ZERO_TOL * lambda_ref are rigid-body/mechanism mo
 ROUNDOFF_WARN = 1e-6  # eps lambda_max / lambda_1 above this: warn (the default frequency tol)
 
 
+class ModeKind(enum.StrEnum):
+    """What a mode is: elastic, or a rigid-body/mechanism mode (eigenvalue below the zero
+    threshold), which must never be paired with a measured frequency."""
+
+    ELASTIC = "elastic"
+    MECHANISM = "rigid-body/mechanism"
+
+
+ELASTIC, MECHANISM = ModeKind.ELASTIC, ModeKind.MECHANISM
+
+
 @dataclasses.dataclass(frozen=True)
 class ModalResult:
     """Lowest modes of a model. eigenvalues [rad^2/s^2], frequencies [Hz], shapes (n_full, k)."""
@@ -47,11 +55,11 @@ class ModalResult:
     eigenvalues: np.ndarray
     frequencies: np.ndarray
     shapes: np.ndarray
-    kinds: tuple[str, ...]
+    kinds: tuple[ModeKind, ...]
     residuals: np.ndarray
     backward_errors: np.ndarray
     orthogonality_error: float
-    solver: str
+    solver: Method  # DENSE or SPARSE, the one that solved it
     n_dofs: int
     refined: bool = False  # eigenvalues are energy Rayleigh quotients (see solve_modes)
     condensed: int = 0  # massless DOFs condensed statically before the eigen solve
@@ -64,41 +72,6 @@ class ModalResult:
     @property
     def elastic_frequencies(self) -> np.ndarray:
         return self.frequencies[self.elastic]
-
-
-def _dense(K, M, k, shift):
-    # The same spectral transformation as the sparse path, done densely: solve
-    # M v = mu (K - shift M) v for the k largest mu, then lambda = shift + 1/mu. LAPACK's error is
-    # about eps times the largest eigenvalue of the pencil it sees; here that is the lowest mode,
-    # so the low modes come out accurate to round-off. Plain eigh(K, M) loses about
-    # eps * lambda_max / lambda_1 (1e-7 relative on a 32-element four-bar).
-    Kd = K.toarray() if sp.issparse(K) else np.asarray(K)
-    Md = M.toarray() if sp.issparse(M) else np.asarray(M)
-    n = Kd.shape[0]
-    try:
-        mu, vecs = la.eigh(Md, Kd - shift * Md, subset_by_index=[n - k, n - 1])
-    except la.LinAlgError as exc:
-        raise NumericalError(f"dense eigen solve failed: {exc}; K - shift M is not positive "
-                             "definite (K indefinite?)") from exc
-    order = np.argsort(-mu)
-    return shift + 1.0 / mu[order], vecs[:, order]
-
-
-def _sparse(K, M, k, shift):
-    # Shift-invert about a negative shift: K - shift M is positive definite even when K is
-    # singular (mechanism or rigid-body modes), so the factorisation cannot break down, and the
-    # modes nearest the shift from above are the lowest ones.
-    # ARPACK's own start vector is random anew at every call (scipy >= 1.16), which moves the
-    # eigenvalues in their last bits from run to run; a fixed one makes every run, serial or on
-    # any worker, give the same bits. Uniform in (-1, 1), as ARPACK draws its own.
-    start = np.random.default_rng(0).uniform(-1.0, 1.0, K.shape[0])
-    try:
-        vals, vecs = spla.eigsh(sp.csc_matrix(K), k=k, M=sp.csc_matrix(M), sigma=shift,
-                                which="LM", v0=start)
-    except (RuntimeError, spla.ArpackError) as exc:
-        raise NumericalError(f"sparse eigen solve failed: {exc}") from exc
-    order = np.argsort(vals)
-    return vals[order], vecs[:, order]
 
 
 def _condense_massless(Kr, Mr):
@@ -216,34 +189,19 @@ def roundoff_floor(lambda_max: float) -> float:
     return 100 * np.finfo(float).eps * lambda_max
 
 
-def pick_method(method: str, n_solved: int, k: int) -> str:
-    """"dense" or "sparse" for ``k`` modes of a problem of ``n_solved`` DOFs."""
-    if method not in ("auto", "dense", "sparse"):
-        raise ValueError(f"unknown eigen method {method!r}: dense, sparse or auto")
-    if method == "auto":
-        method = "dense" if n_solved <= AUTO_DENSE_MAX or k >= n_solved - 1 else "sparse"
-    if method == "dense" and n_solved > DENSE_REFUSE:
-        raise NumericalError(f"dense solve refused for {n_solved} DOFs (limit {DENSE_REFUSE}): it "
-                             f"needs {8 * 2 * n_solved * n_solved / 1e9:.1f} GB; use method='sparse'")
-    if method == "sparse" and k >= n_solved - 1:
-        method = "dense"  # ARPACK needs k < n - 1
-    return method
-
-
-def eigen_solve(p: Prepared, k: int, method: str, lambda_ref: float):
-    """The lowest ``k`` eigenpairs of ``p`` by ``method`` ("dense" or "sparse"), vectors
+def eigen_solve(p: Prepared, k: int, method: Method, lambda_ref: float):
+    """The lowest ``k`` eigenpairs of ``p`` by ``method`` (DENSE or SPARSE), vectors
     expanded to the reduced DOFs: (eigenvalues [rad^2/s^2], vectors (n, k))."""
-    solver = _dense if method == "dense" else _sparse
     floor = roundoff_floor(p.lambda_max)
     try:
-        vals, vecs = solver(p.Ks, p.Ms, k, shift=-lambda_ref)
+        vals, vecs = lowest_pairs(method, p.Ks, p.Ms, k, shift=-lambda_ref)
     except NumericalError:
         if floor <= lambda_ref:
             raise
         # On a mesh this fine, K - shift M is singular in floating point unless the shift is at
         # least the round-off floor; retry there (slower to converge, but it factorises), and
         # let the floor check judge what comes out.
-        vals, vecs = solver(p.Ks, p.Ms, k, shift=-floor)
+        vals, vecs = lowest_pairs(method, p.Ks, p.Ms, k, shift=-floor)
     if p.expand is not None:
         vecs = p.expand(vecs)
     return vals, vecs
@@ -281,7 +239,7 @@ class Evidence:
     orthogonality_error: float
 
 
-def check(p: Prepared, vals, vecs, zero: float, method: str,
+def check(p: Prepared, vals, vecs, zero: float, method: Method,
           backward_tol: float = BACKWARD_TOL) -> Evidence:
     """Mass-normalise ``vecs`` and check the answer: NaN, eigenvalues below ``-zero``
     [rad^2/s^2], backward error above ``backward_tol``, lost M-orthogonality (NumericalError)."""
@@ -330,7 +288,7 @@ def refined_eigenvalues(vals, shapes, energy, lambda_ref: float, lambda_max: flo
 
 
 def label(vals, zero: float, lambda_ref: float, zero_tol: float, refined: bool,
-          lambda_max: float) -> tuple[str, ...]:
+          lambda_max: float) -> tuple[ModeKind, ...]:
     """ELASTIC or MECHANISM per eigenvalue: below ``zero`` [rad^2/s^2] a mode is a rigid-body
     or mechanism mode. Unrefined eigenvalues between the physical threshold
     ``zero_tol * lambda_ref`` and ``zero`` (the round-off floor) cannot be told apart from a
@@ -352,25 +310,40 @@ def label(vals, zero: float, lambda_ref: float, zero_tol: float, refined: bool,
     return tuple(MECHANISM if v < zero else ELASTIC for v in vals)
 
 
-def solve_modes(K, M, n_modes: int, *, T=None, lambda_ref: float, method: str = "auto",
-                zero_tol: float = ZERO_TOL, backward_tol: float = BACKWARD_TOL, energy=None,
-                reduced: bool = False) -> ModalResult:
-    """Lowest ``n_modes`` modes of (K, M), optionally reduced by u = T q: ``prepare``,
-    ``eigen_solve``, ``check``, then (optionally) ``refined_eigenvalues`` and ``label``.
+def solve_modes(K, M, n_modes: int, *, T=None, lambda_ref: float,
+                solver: EigenSolver = DEFAULT_SOLVER, zero_tol: float = ZERO_TOL,
+                backward_tol: float = BACKWARD_TOL, energy=None) -> ModalResult:
+    """Lowest ``n_modes`` modes of the model's (K, M), its rigid constraints eliminated by
+    u = T q when T is given: ``prepare``, ``eigen_solve``, ``check``, then (optionally)
+    ``refined_eigenvalues`` and ``label``.
 
     ``lambda_ref`` [rad^2/s^2] is the model's own scale (e.g. the lowest bare-beam eigenvalue);
-    modes below ``zero_tol * lambda_ref`` are labelled rigid-body/mechanism. ``method`` is
-    "dense", "sparse" or "auto" (dense up to AUTO_DENSE_MAX DOFs). DOFs without mass are condensed
-    exactly (never handed to the eigen solver). ``energy``: optional callable giving u^T K u
-    for full-size shapes without cancellation (``energy.twice_strain_energy``); the eigenvalues
-    are then its Rayleigh quotients, free of the round-off of K's large entries. Raises
-    NumericalError on NaN, clearly negative eigenvalues, a backward error above
-    ``backward_tol`` or lost M-orthogonality. ``reduced``: K and M are already T^T K T and
-    T^T M T (``assembly.assemble_reduced_dense``); T then only maps the shapes back.
+    modes below ``zero_tol * lambda_ref`` are labelled rigid-body/mechanism. ``solver`` picks
+    the dense or the sparse eigen solver (``eigensolver.EigenSolver``). DOFs without mass are
+    condensed exactly (never handed to the eigen solver). ``energy``: optional callable giving
+    u^T K u for full-size shapes without cancellation (``energy.twice_strain_energy``); the
+    eigenvalues are then its Rayleigh quotients, free of the round-off of K's large entries.
+    Raises NumericalError on NaN, clearly negative eigenvalues, a backward error above
+    ``backward_tol`` or lost M-orthogonality.
     """
-    p = prepare(K, M, None if reduced else T)
+    return _solved(prepare(K, M, T), T, n_modes, lambda_ref, solver, zero_tol, backward_tol,
+                   energy)
+
+
+def solve_eliminated_modes(Kt, Mt, n_modes: int, *, T, lambda_ref: float,
+                           solver: EigenSolver = DEFAULT_SOLVER, zero_tol: float = ZERO_TOL,
+                           backward_tol: float = BACKWARD_TOL, energy=None) -> ModalResult:
+    """``solve_modes`` of a model whose rigid constraints are already eliminated: ``Kt``,
+    ``Mt`` are T^T K T and T^T M T (``assembly.assemble_reduced_dense``), and T (None: no
+    constraint) only maps the shapes back to the model's DOFs."""
+    return _solved(prepare(Kt, Mt), T, n_modes, lambda_ref, solver, zero_tol, backward_tol,
+                   energy)
+
+
+def _solved(p: Prepared, T, n_modes: int, lambda_ref: float, solver: EigenSolver,
+            zero_tol: float, backward_tol: float, energy) -> ModalResult:
     k = min(n_modes, p.n_solved)
-    method = pick_method(method, p.n_solved, k)
+    method = solver.pick(p.n_solved, k)
     lambda_max = p.lambda_max
     vals, vecs = eigen_solve(p, k, method, lambda_ref)
     zero = max(zero_tol * lambda_ref, roundoff_floor(lambda_max))

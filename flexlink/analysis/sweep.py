@@ -4,7 +4,7 @@ calibration and Monte Carlo.
 The topology (links, sections, joints, mesh) is fixed; only joint positions change from pose to
 pose, so each link's local matrices are built once (cached in ``link.py``) and every pose only
 rotates and assembles them before the eigen solve. Which global entry each rotated link entry
-lands in, and the springs, masses and rigid-joint reduction, depend on the topology alone; for
+lands in, and the springs, masses and rigid-joint elimination, depend on the topology alone; for
 models the dense solver takes, ``_DensePlan`` works them out once and each pose scatters its
 rotated entries straight into the reduced dense K and M (one ``np.bincount``), so the pose costs
 little more than the eigen solve itself.
@@ -13,6 +13,7 @@ little more than the eigen solve itself.
 from __future__ import annotations
 
 import dataclasses
+import enum
 import functools
 import logging
 import math
@@ -20,22 +21,34 @@ from collections.abc import Iterable, Mapping
 
 import numpy as np
 
-from flexlink.fe.pose import in_plane_eigen_scale
+from flexlink.fe.model_at_pose import in_plane_eigen_scale
 from flexlink.fe.assembly import (assemble, dense_slots, dense_sum, placed_link_entries,
                                   point_mass_entries, reduced_columns, spring_entries)
-from flexlink.fe.assembly import reduction as rigid_reduction
+from flexlink.fe.assembly import rigid_elimination
 from flexlink.fe.craig_bampton import CUTOFF, CraigBamptonPlan, fixed_interface_bound
 from flexlink.fe.truncation import CONVERGED, corrected
-from flexlink.fe.beams import link_entries
+from flexlink.fe.beams import BeamTheory, link_entries
 from flexlink.fe.model import FrameModel, Topology, layout
-from flexlink.fe.pose import pose_model
-from flexlink.analysis.solve import (DENSE_LIMIT, DENSE_REFUSE, ELASTIC, SPARE_MODES,
-                                     lowest_elastic, solve_modes)
+from flexlink.fe.model_at_pose import pose_model
+from flexlink.analysis.eigensolver import EigenSolver, Method
+from flexlink.analysis.solve import DENSE_LIMIT, ELASTIC, SPARE_MODES, lowest_elastic, solve_modes
 from flexlink.analysis.stacked import stacked_modes
+from flexlink.choices import parse_choice
 from flexlink.errors import InputError
 from flexlink.parallel import run_tasks, workers
 
 log = logging.getLogger(__name__)
+
+# A sweep's dense solves go through ``_DensePlan``, which makes a pose's dense K and M cheap,
+# so its solver stays dense far beyond a single solve's AUTO_DENSE_MAX.
+SWEEP_SOLVER = EigenSolver(dense_max=DENSE_LIMIT)
+DENSE_SOLVER = EigenSolver(Method.DENSE)
+
+
+class Reduction(enum.StrEnum):
+    """How a sweep cuts each link down before the eigen solve (None: the full model)."""
+
+    CRAIG_BAMPTON = "craig-bampton"  # end nodes and fixed-interface modes (``craig_bampton.py``)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -62,7 +75,7 @@ _PRODUCT = np.array([[0, 1, 3, -1],   # c c, c s, c 1, c 0
 
 class _DensePlan:
     """Where every link entry, spring and point mass goes in the reduced dense K and M of one
-    topology, worked out once (u = T q with T from ``assembly.reduction``: a 0/1 matrix, one 1
+    topology, worked out once (u = T q with T from ``assembly.rigid_elimination``: a 0/1 matrix, one 1
     per kept DOF, so T^T K T only renumbers and drops entries).
 
     A link entry (3a + p, 3b + q) of value v adds v R[p, i] R[q, j] to (3a + i, 3b + j), and
@@ -150,15 +163,12 @@ def _lowest_elastic(solve, n_modes: int, expected_mechanisms: int):
     return result.frequencies[elastic][:n_modes], len(elastic) - int(elastic.sum())
 
 
-REDUCTIONS = (None, "craig-bampton")
-
-
 def craig_bampton_refusal(topology: Topology) -> str | None:
     """Why the Craig-Bampton reduction cannot take ``topology``'s links, None if it can. It
     reduces one unit chain per mesh size and scales it to each link, which is exact for
     Euler-Bernoulli elements only: a Timoshenko element's shear parameter 12 EI / (k G A h^2)
     changes with the element length h, so the scaled chain is another beam."""
-    others = sorted({spec.section.beam for spec in topology.links} - {"euler-bernoulli"})
+    others = sorted({spec.section.beam for spec in topology.links} - {BeamTheory.EULER_BERNOULLI})
     if not others:
         return None
     return (f"the Craig-Bampton reduction takes Euler-Bernoulli links only, not {others[0]} "
@@ -166,16 +176,18 @@ def craig_bampton_refusal(topology: Topology) -> str | None:
 
 
 def modal_sweep(topology: Topology, poses: Iterable[Mapping[str, tuple[float, float]]],
-                n_modes: int, method: str = "auto", progress=None,
-                reduction: str | None = None) -> SweepResult:
+                n_modes: int, solver: EigenSolver = SWEEP_SOLVER, progress=None,
+                reduction: Reduction | None = None) -> SweepResult:
     """Lowest ``n_modes`` elastic frequencies [Hz] at each pose (joint name -> (x, y) [m]).
 
     ``progress``: optional callable wrapping the pose iterable (e.g. a tqdm factory).
-    ``reduction``: None solves the full model; "craig-bampton" solves each link reduced to its
-    end nodes and fixed-interface modes (``craig_bampton.py``; dense solve, ``method`` unused)."""
-    if reduction not in REDUCTIONS:
-        raise ValueError(f"unknown reduction {reduction!r}: one of {REDUCTIONS}")
-    note = craig_bampton_refusal(topology) if reduction == "craig-bampton" else None
+    ``solver``: the eigen solver of the full model (``eigensolver.EigenSolver``).
+    ``reduction``: None solves the full model; CRAIG_BAMPTON (or its text) solves each link
+    reduced to its end nodes and fixed-interface modes (``craig_bampton.py``; its own stacked
+    dense solve, ``solver`` unused)."""
+    if reduction is not None:
+        reduction = parse_choice(Reduction, reduction, "reduction")
+    note = craig_bampton_refusal(topology) if reduction is Reduction.CRAIG_BAMPTON else None
     if note:
         log.info("%s", note)
         reduction = None
@@ -183,7 +195,7 @@ def modal_sweep(topology: Topology, poses: Iterable[Mapping[str, tuple[float, fl
     iterator = progress(poses) if progress else poses
     freqs = np.full((len(poses), n_modes), np.nan)
     mechanism = np.zeros(len(poses), dtype=int)
-    if reduction == "craig-bampton":
+    if reduction is Reduction.CRAIG_BAMPTON:
         _craig_bampton_sweep(topology, iterator, n_modes, freqs, mechanism)
         return SweepResult(frequencies=freqs, mechanism_counts=mechanism)
     plan = None
@@ -193,18 +205,16 @@ def modal_sweep(topology: Topology, poses: Iterable[Mapping[str, tuple[float, fl
         model = pose_model(topology, points, fixed, warn=i == 0)
         lambda_ref = in_plane_eigen_scale(model)
         if i == 0:
-            T = rigid_reduction(model)  # depends on the topology only
+            T = rigid_elimination(model)  # depends on the topology only
             n = model.n_dofs if T is None else T.shape[1]
-            if method == "auto":
-                method = "dense" if n <= DENSE_LIMIT else "sparse"
-            if method == "dense" and n <= DENSE_REFUSE:  # else solve_modes refuses it
+            if solver.pick(n, n_modes) is Method.DENSE:  # refuses a dense solve too large
                 plan = _DensePlan(model, T)
-        if plan is not None:
+        if plan is not None:  # constraints eliminated by the plan
             K, M = plan.matrices(model)
-            solve = functools.partial(solve_modes, K, M, lambda_ref=lambda_ref, method="dense")
+            solve = functools.partial(solve_modes, K, M, lambda_ref=lambda_ref, solver=DENSE_SOLVER)
         else:
             K, M = assemble(model)
-            solve = functools.partial(solve_modes, K, M, T=T, lambda_ref=lambda_ref, method=method)
+            solve = functools.partial(solve_modes, K, M, T=T, lambda_ref=lambda_ref, solver=solver)
         elastic, expected = _lowest_elastic(solve, n_modes, expected)
         freqs[i, :len(elastic)] = elastic
         mechanism[i] = expected
@@ -329,8 +339,8 @@ def _craig_bampton_chunk(plan: CraigBamptonPlan, angles, lengths, lambda_ref, n_
 
 
 def parallel_modal_sweep(topology: Topology, poses: Iterable[Mapping[str, tuple[float, float]]],
-                         n_modes: int, method: str = "auto", n_jobs: int = -1,
-                         reduction: str | None = None) -> SweepResult:
+                         n_modes: int, solver: EigenSolver = SWEEP_SOLVER, n_jobs: int = -1,
+                         reduction: Reduction | None = None) -> SweepResult:
     """``modal_sweep`` with the poses split into one contiguous chunk per worker
     (``parallel.run_tasks``: joblib processes, ``n_jobs`` = -1: one per core, or the dask
     cluster of ``parallel.use_scheduler``). Same result as the serial sweep for the full model;
@@ -339,7 +349,7 @@ def parallel_modal_sweep(topology: Topology, poses: Iterable[Mapping[str, tuple[
     starting the workers costs more."""
     poses = list(poses)
     chunks = [c for c in np.array_split(np.arange(len(poses)), workers(n_jobs)) if len(c)]
-    parts = run_tasks(modal_sweep, [(topology, [poses[i] for i in chunk], n_modes, method, None,
+    parts = run_tasks(modal_sweep, [(topology, [poses[i] for i in chunk], n_modes, solver, None,
                                      reduction) for chunk in chunks], n_jobs=n_jobs)
     return SweepResult(frequencies=np.concatenate([p.frequencies for p in parts]),
                        mechanism_counts=np.concatenate([p.mechanism_counts for p in parts]),

@@ -31,11 +31,11 @@ def settings_options(command):
     return command
 
 
-def study_settings(starts, seed, samples, vf_sd, thickness_sd, elements, jobs, progress):
+def study_settings(starts, seed, samples, vf_sd, thickness_sd, elements, jobs, show_progress):
     """The ``StudySettings`` of the options above (the thickness spread read with its unit)."""
     from flexlink.studies.calibration_study import StudySettings
     from flexlink.units import parse_quantity
 
     sd = parse_quantity(thickness_sd, "length", source="command line", field="--thickness-sd")
     return StudySettings(starts=starts, seed=seed, samples=samples, vf_sd=vf_sd, thickness_sd=sd,
-                         elements=elements, n_jobs=jobs, progress=progress)
+                         elements=elements, n_jobs=jobs, show_progress=show_progress)

@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import click
 
-from flexlink.commands._options import dumps
+from flexlink.commands._options import EnumChoice, dumps
+from flexlink.fe.geometric import GeometricForm
 
 _OPTIONS = (
     click.option("--speed", default=None, metavar="SPEED",
@@ -21,7 +22,7 @@ _OPTIONS = (
                  help="With --speed: leave out the centrifugal softening."),
     click.option("--no-coriolis", is_flag=True,
                  help="With --speed: leave out the Coriolis (gyroscopic) coupling."),
-    click.option("--geometric", type=click.Choice(["consistent", "string"]),
+    click.option("--geometric", type=EnumChoice(GeometricForm),
                  default="consistent", show_default=True,
                  help="With --speed: K_g of the cubic element, or of the chord only (as "
                       "OpenSees's PDelta)."),
@@ -47,7 +48,7 @@ def operating_given(speed, crank_angle, crank_acceleration, no_preload, no_centr
                              expected="--speed without --sensitivity and --method")
         return True
     if crank_angle is not None or crank_acceleration is not None or no_preload or \
-            no_centrifugal or no_coriolis or geometric != "consistent":
+            no_centrifugal or no_coriolis or geometric is not GeometricForm.CONSISTENT:
         raise InputError("--crank-angle, --crank-acceleration, --no-preload, --no-centrifugal, "
                          "--no-coriolis and --geometric need --speed", source="command line",
                          field="--speed", expected="a crank speed such as '2000 rev/min'")
@@ -59,7 +60,6 @@ def run_operating(files, n_modes, elements, tol, speed, crank_angle, crank_accel
     """Modes at speed of each scene file; writes OUT/<scene>/modes_at_speed.json and .csv."""
     from flexlink.analysis.mesh import choose_mesh
     from flexlink.errors import FlexlinkError
-    from flexlink.fe.geometric import GeometricForm
     from flexlink.fileio import write_atomic
     from flexlink.output.operating_report import (format_operating, operating_csv,
                                                   operating_summary)
@@ -78,7 +78,7 @@ def run_operating(files, n_modes, elements, tol, speed, crank_angle, crank_accel
         crank_acceleration, "angular acceleration", source="command line",
         field="--crank-acceleration")
     terms = Terms(preload=not no_preload, centrifugal=not no_centrifugal,
-                  coriolis=not no_coriolis, geometric=GeometricForm(geometric))
+                  coriolis=not no_coriolis, geometric=geometric)
     folders = dict(zip(files, scene_folders(out, files)))
     summaries, written, failures = [], [], []
     for path in files:

@@ -39,12 +39,29 @@ class FiniteFloatRange(click.FloatRange):
         return super().convert(number, param, ctx)
 
 
+class EnumChoice(click.Choice):
+    """click's Choice over the values of an enum ``kind``, giving its member: the edge where a
+    command-line choice becomes the enum the stages compare. ``none``: one more word (such as
+    "auto"), given as None (the stage then picks)."""
+
+    def __init__(self, kind, none: str | None = None):
+        self.kind, self.none = kind, none
+        super().__init__(([none] if none else []) + [member.value for member in kind])
+
+    def convert(self, value, param, ctx):
+        if isinstance(value, self.kind):
+            return value
+        text = super().convert(value, param, ctx)
+        return None if text == self.none else self.kind(text)
+
+
 TOLERANCE = FiniteFloatRange(0, 1, min_open=True)  # a relative frequency tolerance, in (0, 1]
 
 
 def mesh_options(method: bool = True):
     """-e/--elements and --tol (the mesh rule of ``analysis.mesh.choose_mesh``), and with
-    ``method`` the eigen solver's --method: one wording for every command that solves a scene."""
+    ``method`` the eigen solver's --method, given to the command as ``solver`` (an
+    ``analysis.eigensolver.EigenSolver``): one wording for every command that solves a scene."""
     options = [
         click.option("-e", "--elements", default=None, type=click.IntRange(1, 100000),
                      help="Elements per link (default: the scene's mesh.elements_per_link if it "
@@ -55,8 +72,12 @@ def mesh_options(method: bool = True):
                           "[default: 1e-6]."),
     ]
     if method:
-        options.append(click.option("--method", type=click.Choice(["auto", "dense", "sparse"]),
-                                    default="auto", show_default=True, help="Eigen solver."))
+        from flexlink.analysis.eigensolver import EigenSolver, Method
+
+        options.append(click.option("--method", "solver", type=EnumChoice(Method),
+                                    default=Method.AUTO.value, show_default=True,
+                                    callback=lambda ctx, param, method: EigenSolver(method),
+                                    help="Eigen solver."))
 
     def decorate(command):
         for option in reversed(options):
@@ -94,3 +115,45 @@ def map_parallel_options(sorted_map: bool):
             command = option(command)
         return command
     return decorate
+
+
+def speeds_option(help_text: str = "Crank speed range, e.g. '0:3000 rev/min'."):
+    """--speeds LOW:HIGH UNIT, parsed by ``parse_speeds``."""
+    return click.option("--speeds", required=True, help=help_text)
+
+
+def parse_speeds(text: str) -> tuple[float, float]:
+    """"LOW:HIGH UNIT" (or "LOW UNIT:HIGH UNIT") -> (low, high) [rad/s] (``units.parse_range``)."""
+    from flexlink.units import parse_range
+
+    return parse_range(text, "angular speed", source="command line", field="--speeds")
+
+
+def crank_acceleration_option(command):
+    """--crank-acceleration of the bands at speed (``campbell --dynamic``)."""
+    return click.option(
+        "--crank-acceleration", "acceleration", default=None, metavar="ACCELERATION",
+        help="With --dynamic: the crank's angular acceleration at every speed, e.g. "
+             "'50 rad/s^2' [default: 0, constant speed].")(command)
+
+
+def parse_crank_acceleration(text: str | None, dynamic: bool) -> float:
+    """--crank-acceleration [rad/s^2] (0 when not given); it needs --dynamic."""
+    from flexlink.errors import InputError
+    from flexlink.units import parse_quantity
+
+    if text is None:
+        return 0.0
+    if not dynamic:
+        raise InputError("a crank acceleration is for the bands at speed: give --dynamic too",
+                         source="command line", field="--crank-acceleration",
+                         expected="--dynamic with --crank-acceleration")
+    return parse_quantity(text, "angular acceleration", source="command line",
+                          field="--crank-acceleration")
+
+
+def odd_count(ctx, param, value: int) -> int:
+    """Click callback: the option's count must be odd (every harmonic sampled with its pair)."""
+    if value % 2 == 0:
+        raise click.BadParameter(f"must be odd (every harmonic with its pair), got {value}")
+    return value

@@ -6,11 +6,11 @@ import functools
 import sys
 
 
-def progress_bar(description: str, quiet: bool):
-    """A callable wrapping an iterable in a tqdm bar, or None when ``quiet`` (e.g. --json) or
-    when stderr is not a terminal."""
+def progress_bar(description: str, quiet: bool, unit: str = "pose"):
+    """A callable wrapping an iterable of ``unit``s in a tqdm bar, or None when ``quiet`` (e.g.
+    --json) or when stderr is not a terminal."""
     if quiet or not sys.stderr.isatty():
         return None
     from tqdm import tqdm
 
-    return functools.partial(tqdm, desc=description, unit="pose", file=sys.stderr, leave=False)
+    return functools.partial(tqdm, desc=description, unit=unit, file=sys.stderr, leave=False)

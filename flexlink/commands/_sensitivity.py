@@ -37,10 +37,9 @@ def sensitivity_scheduler(sensitivity: bool, scheduler: str | None):
     return use_scheduler(scheduler)
 
 
-def scene_sensitivity(scene, n_modes: int, samples: int, seed: int, jobs: int,
-                      quiet: bool) -> dict:
-    """The sensitivity study of ``scene`` as its JSON document (``output.sensitivity_report``)."""
-    from flexlink.output.sensitivity_report import sensitivity_document
-    from flexlink.studies.sensitivity import sensitivity_study
+def sensitivity_run(sensitivity: bool, samples: int, seed: int, jobs: int, quiet: bool):
+    """The ``studies.scene_summary.SensitivityRun`` the options ask for; None without
+    --sensitivity. ``quiet``: no progress bar (with --json)."""
+    from flexlink.studies.scene_summary import SensitivityRun
 
-    return sensitivity_document(sensitivity_study(scene, n_modes, samples, seed, jobs, not quiet))
+    return SensitivityRun(samples, seed, jobs, not quiet) if sensitivity else None

@@ -23,6 +23,15 @@ def scene_folders(out: Path, scene_paths) -> list[Path]:
     return [prepare_out_dir(Path(out) / s) for s in stems]
 
 
+def folder_and_scene(out_dir, scene_path):
+    """(``OUT/<scene file name>/``, the scene read from ``scene_path``): the folder is made
+    and checked writable first, so a run never fails for want of it after its study."""
+    from flexlink.scene import load_scene
+
+    [folder] = scene_folders(prepare_out_dir(out_dir), [scene_path])
+    return folder, load_scene(scene_path)
+
+
 def run_folder(out: Path, arguments) -> Path:
     """``out/<names>`` for a run over several scene arguments (files or folders), named after
     them: ``cases/`` gives ``out/cases``, ``a.toml b.toml`` gives ``out/a+b``."""
@@ -39,3 +48,19 @@ def announce(paths, quiet: bool) -> list[str]:
         for p in paths:
             click.echo(f"wrote {p}", err=True)
     return paths
+
+
+def publish(path: Path, document: dict, files, text: str, as_json: bool) -> None:
+    """A command's last step: its JSON ``document`` with the list of ``files`` written before
+    it and then ``path`` itself (its ``files``), written to ``path`` atomically; then printed
+    on stdout (``--json``), or else ``text`` printed and the files listed on stderr."""
+    from flexlink.commands._options import dumps
+    from flexlink.fileio import write_atomic
+
+    document = {**document, "files": [str(p) for p in [*files, path]]}
+    write_atomic(path, dumps(document))
+    if as_json:
+        click.echo(dumps(document))
+        return
+    click.echo(text)
+    announce(document["files"], as_json)

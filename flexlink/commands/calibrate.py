@@ -8,7 +8,9 @@ import click
 
 from flexlink.commands._calibration import settings_options, study_settings
 from flexlink.commands._failures import names_scene
-from flexlink.commands._options import dumps, json_option, out_option, scheduler_option
+from flexlink.commands._options import (EnumChoice, dumps, json_option, out_option,
+                                        scheduler_option)
+from flexlink.fe.motions import ModelFamily
 
 
 @click.command("calibrate")
@@ -18,7 +20,7 @@ from flexlink.commands._options import dumps, json_option, out_option, scheduler
               "Kt, Kr, drive, joint_mass, Ktilt. Default: every input that affects the family, "
               "with wide physical bounds.")
 @click.option("--family", "families", multiple=True, default=("scene",), show_default=True,
-              type=click.Choice(["scene", "planar", "out-of-plane", "3d"]), help="Model family "
+              type=EnumChoice(ModelFamily, none="scene"), help="Model family "
               "(repeat to compare; 'scene' = the first scene's [model] family).")
 @settings_options
 @scheduler_option("the fits and the Monte Carlo")
@@ -42,7 +44,7 @@ def command(scenes, free_specs, families, scheduler, as_json, out_dir, **setting
     out = run_folder(prepare_out_dir(out_dir), scenes)
     files = [str(f) for f in scene_files(scenes)]
     free = tuple(parse_free(s) for s in free_specs) or None
-    settings = study_settings(**settings, progress=sys.stderr.isatty() and not as_json)
+    settings = study_settings(**settings, show_progress=sys.stderr.isatty() and not as_json)
     studies, written = [], []
     with use_scheduler(scheduler):
         for family in study_families(families, files):  # each kept as soon as it is done

@@ -2,12 +2,10 @@
 
 from __future__ import annotations
 
-import sys
-
 import click
 
 from flexlink.commands._failures import names_scene
-from flexlink.commands._options import TOLERANCE, dumps, json_option, out_option
+from flexlink.commands._options import TOLERANCE, json_option, out_option
 
 
 @click.command("converge")
@@ -29,32 +27,16 @@ def command(scene_path, n_modes, max_elements, repeats, tol, as_json, out_dir):
     choice; report frequencies, their discretisation error against a Richardson-extrapolated
     reference, their model error against the scene's measured column, and wall times. Writes
     converge.json, converge.csv and converge.png (error against time) to OUT/<scene>/."""
-    from tqdm import tqdm
-
-    from flexlink.fileio import prepare_out_dir, write_atomic
-    from flexlink.output.convergence_report import (convergence_csv, convergence_text,
-                                                   plot_error_time)
-    from flexlink.scene import load_scene
+    from flexlink.output.convergence_report import (convergence_document, convergence_text,
+                                                   write_convergence)
     from flexlink.studies.convergence import DEFAULT_TOL, convergence_study
-    from ._written import announce, scene_folders
+    from ._progress import progress_bar
+    from ._written import folder_and_scene, publish
 
-    [folder] = scene_folders(prepare_out_dir(out_dir), [scene_path])
-    scene = load_scene(scene_path)
-
-    def progress(rounds):
-        return tqdm(rounds, desc="converge (rounds over all levels)", unit="round",
-                    file=sys.stderr, disable=as_json or not sys.stderr.isatty())
-
+    folder, scene = folder_and_scene(out_dir, scene_path)
     study = convergence_study(scene, n_modes, max_elements, repeats,
-                              DEFAULT_TOL if tol is None else tol, progress)
-    paths = [folder / "converge.json", folder / "converge.csv", folder / "converge.png"]
-    document = {**study.document, "files": [str(p) for p in paths]}
-    write_atomic(paths[0], dumps(document))
-    write_atomic(paths[1], convergence_csv(document))
-    plot_error_time(study.levels, study.reference, paths[2],
-                    title=f"{scene.name}: error against run time")
-    if as_json:
-        click.echo(dumps(document))
-        return
-    click.echo(convergence_text(document))
-    announce(paths, as_json)
+                              DEFAULT_TOL if tol is None else tol,
+                              progress_bar("converge (rounds over all levels)", as_json, "round"))
+    document = convergence_document(study)
+    publish(folder / "converge.json", document, write_convergence(study, folder),
+            convergence_text(document), as_json)

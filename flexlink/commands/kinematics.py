@@ -24,10 +24,10 @@ def command(scene_path, poses, speed, as_json, out_dir):
     limit positions, torque ratio 1/K; for a scene with [[family]] tables, every member too.
     Writes kinematics.csv and kinematics.json to OUT/<scene>/."""
     from flexlink.fileio import prepare_out_dir, write_atomic
-    from flexlink.output.kinematics_report import family_text, motion_csv, motion_text
+    from flexlink.output.kinematics_report import variant_text, motion_csv, motion_text
     from flexlink.scene import load_scene
     from flexlink.units import rev_per_min
-    from flexlink.studies.kinematics import family_studies, motion_study
+    from flexlink.studies.kinematics import variant_studies, motion_study
     from flexlink.units import parse_quantity
     from ._progress import progress_bar
     from ._written import announce, scene_folders
@@ -37,7 +37,7 @@ def command(scene_path, poses, speed, as_json, out_dir):
     omega = (scene.options.crank_speed if speed is None else
              parse_quantity(speed, "angular speed", source="command line", field="--speed"))
     cycle, doc = motion_study(scene, poses, omega, progress_bar("kinematics", as_json))
-    members = family_studies(scene_path, scene, poses, omega)
+    members = variant_studies(scene_path, scene, poses, omega)
     paths = [folder / "kinematics.csv", folder / "kinematics.json"]
     document = {"command": "kinematics", "poses": poses,
                 "crank_speed_rev_per_min": rev_per_min(omega) if omega else None,
@@ -50,5 +50,5 @@ def command(scene_path, poses, speed, as_json, out_dir):
         return
     click.echo(motion_text(document, bool(omega)))
     if members:
-        click.echo(family_text(members, bool(omega)))
+        click.echo(variant_text(members, bool(omega)))
     announce(paths, as_json)

@@ -3,8 +3,10 @@
 from __future__ import annotations
 
 import click
+from click.core import ParameterSource
 
-from flexlink.commands._options import dumps, json_option, out_option
+from flexlink.commands._options import EnumChoice, dumps, json_option, out_option
+from flexlink.fe.motions import Part
 
 
 @click.command("mac")
@@ -17,16 +19,17 @@ from flexlink.commands._options import dumps, json_option, out_option
                    "`flexlink modes`].")
 @click.option("--elements-b", default=None, type=click.IntRange(1, 100000),
               help="Elements per link of B, to compare two meshes of one scene.")
-@click.option("--family", type=click.Choice(["auto", "in-plane", "out-of-plane"]),
-              default="auto", show_default=True,
-              help="Model family whose modes are compared: auto = the family both scenes "
-                   "declare (model.family planar -> in-plane); a comparison across families "
-                   "is refused (their shapes move different DOFs).")
+@click.option("--part", type=EnumChoice(Part, none="auto"), default="auto", show_default=True,
+              help="Model part whose modes are compared: auto = the part of the family both "
+                   "scenes declare (model.family planar -> in-plane); a comparison across "
+                   "parts is refused (their shapes move different DOFs).")
+@click.option("--family", "old_part", type=EnumChoice(Part, none="auto"), default=None,
+              hidden=True, help="Deprecated spelling of --part.")
 @json_option
 @out_option
-def command(scene_a, scene_b, n_modes, elements, elements_b, family, as_json, out_dir):
+def command(scene_a, scene_b, n_modes, elements, elements_b, part, old_part, as_json, out_dir):
     """MAC between the lowest elastic modes of scenes A and B at their poses, within one model
-    family (in-plane: the frame model; out-of-plane: the strip model), compared link by link at
+    part (in-plane: the frame model; out-of-plane: the strip model), compared link by link at
     stations along each link, so two meshes, sections or poses of one linkage can be compared;
     the scenes must name the same links. Prints the MAC matrix and pairs the modes; writes
     mac.json and mac.csv to OUT/<A>+<B>/. The mesh is chosen as for in-plane modes."""
@@ -34,15 +37,19 @@ def command(scene_a, scene_b, n_modes, elements, elements_b, family, as_json, ou
     from flexlink.fileio import prepare_out_dir, write_atomic
     from flexlink.scene import load_scene
     from flexlink.output.mac import comparison_json, mac_csv, mac_text
-    from flexlink.studies.mac_comparison import compare_scenes, mac_family
+    from flexlink.studies.mac_comparison import compare_scenes, mac_part
     from ._written import announce, run_folder
 
     folder = run_folder(prepare_out_dir(out_dir), [scene_a, scene_b])
     a, b = load_scene(scene_a), load_scene(scene_b)
-    family = mac_family(a, b, family)
+    if click.get_current_context().get_parameter_source("old_part") is not ParameterSource.DEFAULT:
+        click.echo("flexlink: mac --family is deprecated (it names a model part, not the "
+                   "[model] family): use --part", err=True)
+        part = old_part
+    part = mac_part(a, b, part)
     mesh_a = choose_mesh(a, n_modes, elements, DEFAULT_TOL)
     mesh_b = choose_mesh(b, n_modes, elements if elements_b is None else elements_b, DEFAULT_TOL)
-    result = compare_scenes(a, b, n_modes, mesh_a.elements, mesh_b.elements, family=family)
+    result = compare_scenes(a, b, n_modes, mesh_a.elements, mesh_b.elements, part=part)
     paths = [folder / "mac.json", folder / "mac.csv"]
     document = {"command": "mac", **comparison_json(result, n_modes),
                 "files": [str(p) for p in paths]}

@@ -1,4 +1,4 @@
-"""Global sparse stiffness K and mass M of a FrameModel, and the exact reduction of rigid joints.
+"""Global sparse stiffness K and mass M of a FrameModel, and the exact elimination of rigid joints.
 
 K, M: size 3 N (model.DOF_NAMES per node). Links are rotated from their local frame with
 T^T k T, where T = blockdiag(R) and R maps global (ux, uy, rz) to local (u, v, rz):
@@ -6,7 +6,7 @@ T^T k T, where T = blockdiag(R) and R maps global (ux, uy, rz) to local (u, v, r
          [-s, c, 0],
          [ 0, 0, 1]],  c = cos(angle), s = sin(angle).
 Springs are two-node elements k [[1, -1], [-1, 1]] on a pair of DOFs (or k on one DOF, to
-ground). Infinite springs are not added to K: ``reduction`` turns them into exact constraints.
+ground). Infinite springs are not added to K: ``rigid_elimination`` turns them into exact constraints.
 """
 
 from __future__ import annotations
@@ -79,7 +79,7 @@ def placed_link_entries(model: FrameModel):
 
 def spring_entries(model: FrameModel):
     """(rows, cols, values) of the model's finite springs; rigid ones are left to
-    ``reduction``."""
+    ``rigid_elimination``."""
     return springs_stiffness_entries(model.springs)
 
 
@@ -117,13 +117,13 @@ def assemble(model: FrameModel) -> tuple[sp.csr_matrix, sp.csr_matrix]:
 
 def reduced_columns(T, n_full: int) -> tuple[np.ndarray, int]:
     """(column (n_full,), n_reduced): each full DOF's reduced DOF under u = T q, -1 where it is
-    grounded. T (from ``reduction``, None: nothing rigid) is 0/1 with at most one 1 per row,
+    grounded. T (from ``rigid_elimination``, None: nothing rigid) is 0/1 with at most one 1 per row,
     so T^T A T only renumbers and drops A's entries."""
     if T is None:
         return np.arange(n_full), n_full
     T = T.tocsr()
     if not (np.all(T.data == 1.0) and np.all(np.diff(T.indptr) <= 1)):
-        raise AssertionError("reduction must map each DOF to at most one reduced DOF")
+        raise AssertionError("the rigid elimination must map each DOF to at most one reduced DOF")
     column = np.full(n_full, -1)
     column[np.diff(T.indptr) == 1] = T.indices
     return column, T.shape[1]
@@ -143,7 +143,7 @@ def dense_sum(slots, values, n: int) -> np.ndarray:
 
 
 def reduced_dense_pair(T, n_full: int, stiffness, mass) -> tuple[np.ndarray, np.ndarray]:
-    """Dense (T^T K T, T^T M T), T from ``reduction`` (None: nothing rigid), of K and M of size
+    """Dense (T^T K T, T^T M T), T from ``rigid_elimination`` (None: nothing rigid), of K and M of size
     ``n_full`` given as entries ``stiffness``, ``mass`` = (rows, cols, values), repeated pairs
     summed; one ``np.bincount`` for both (M's slots follow K's)."""
     column, n = reduced_columns(T, n_full)
@@ -156,7 +156,7 @@ def reduced_dense_pair(T, n_full: int, stiffness, mass) -> tuple[np.ndarray, np.
 
 
 def assemble_reduced_dense(model: FrameModel, T) -> tuple[np.ndarray, np.ndarray]:
-    """Dense (T^T K T, T^T M T) of ``assemble``'s K and M, with T from ``reduction``, scattered
+    """Dense (T^T K T, T^T M T) of ``assemble``'s K and M, with T from ``rigid_elimination``, scattered
     straight from the element entries (no sparse matrix built): for the small models the dense
     eigen solver takes, where scipy.sparse's bookkeeping costs more than the solve."""
     column, n = reduced_columns(T, model.n_dofs)
@@ -172,7 +172,7 @@ def assemble_reduced_dense(model: FrameModel, T) -> tuple[np.ndarray, np.ndarray
     return summed[:n * n].reshape(n, n), summed[size:size + n * n].reshape(n, n)
 
 
-def reduction(model: FrameModel) -> sp.csr_matrix | None:
+def rigid_elimination(model: FrameModel) -> sp.csr_matrix | None:
     """T (n_full x n_reduced) with u = T q that enforces the rigid (infinite) springs exactly:
     tied DOFs share one unknown, grounded DOFs have none. None when nothing is rigid."""
     springs = model.springs

@@ -7,6 +7,7 @@ A section (``model.Section``) names its theory in ``section.beam``.
 
 from __future__ import annotations
 
+import enum
 import math
 
 import numpy as np
@@ -29,7 +30,12 @@ def _timoshenko(length, elements, s):
                                     s.rotary_inertia)
 
 
-THEORIES = {"euler-bernoulli": _euler_bernoulli, "timoshenko": _timoshenko}
+class BeamTheory(enum.StrEnum):
+    EULER_BERNOULLI = "euler-bernoulli"
+    TIMOSHENKO = "timoshenko"
+
+
+THEORIES = {BeamTheory.EULER_BERNOULLI: _euler_bernoulli, BeamTheory.TIMOSHENKO: _timoshenko}
 
 
 def link_entries(length: float, elements: int, section):
@@ -48,7 +54,7 @@ def beam_matrices(length: float, elements: int, section):
 
 def shear_parameter(section, h: float) -> float:
     """Phi = 12 EI / (k G A h^2) of an element of length h [m]; 0 for Euler-Bernoulli."""
-    return 12.0 * section.EI / (section.kGA * h * h) if section.beam == "timoshenko" else 0.0
+    return 12.0 * section.EI / (section.kGA * h * h) if section.beam is BeamTheory.TIMOSHENKO else 0.0
 
 
 def pinned_bending_frequencies(section, length: float, elements: int, n: int = 1) -> np.ndarray:

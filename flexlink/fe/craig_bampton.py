@@ -15,7 +15,7 @@ so a pose costs 2 small matrix products per link, one scatter and a dense eigen 
 (``CraigBamptonPlan.stacked``, ``truncation.corrected``). Springs, joint masses and rigid
 constraints act on link end nodes only; they are taken from the full model's layout through a
 "boundary model" (``FrameModel`` with one element per link, whose nodes are the end nodes), so
-``assembly.spring_entries``, ``point_mass_entries`` and ``reduction`` are reused unchanged.
+``assembly.spring_entries``, ``point_mass_entries`` and ``rigid_elimination`` are reused unchanged.
 
 Axial (u) and bending (v, rz) DOFs of a straight link are uncoupled in its frame, so each family
 is reduced on its own; that keeps every kept mode purely axial or purely bending, and lets a
@@ -54,7 +54,7 @@ import numpy as np
 import scipy.linalg as la
 
 from flexlink.errors import NumericalError
-from flexlink.fe.assembly import point_mass_entries, reduction, spring_entries
+from flexlink.fe.assembly import point_mass_entries, rigid_elimination, spring_entries
 from flexlink.fe.link import link_matrices
 from flexlink.fe.model import GROUND, FrameModel, LinkMesh, Springs, _Layout
 
@@ -289,7 +289,7 @@ def boundary_model(lay: _Layout, model: FrameModel) -> FrameModel:
 
 class CraigBamptonPlan:
     """The reduced dense K and M of every pose of one topology (boundary DOFs after the exact
-    rigid-joint reduction, then each link's modal coordinates), for a given cut-off
+    rigid-joint elimination, then each link's modal coordinates), for a given cut-off
     ``lambda_cut`` [rad^2/s^2]. Built from one model of the topology; ``reach``: the lowest
     truncated fixed-interface eigenvalue [rad^2/s^2] (inf: none truncated) at its lengths."""
 
@@ -308,7 +308,7 @@ class CraigBamptonPlan:
         # the same basis for any cut-off in [highest kept, reach) [rad^2/s^2], at these lengths
         self.highest_kept, self.reach = max(kept), min(truncated)
         bmodel = boundary_model(lay, model)
-        T = reduction(bmodel)
+        T = rigid_elimination(bmodel)
         n_b = bmodel.n_dofs
         if T is None:
             column, n_br = np.arange(n_b), n_b

@@ -19,6 +19,7 @@ import math
 import numpy as np
 import scipy.sparse as sp
 
+from flexlink.fe.beams import BeamTheory
 from flexlink.fe.joints import spring_energies
 from flexlink.fe.model import FrameModel
 from flexlink.fe.timoshenko import twice_bending_energy
@@ -27,7 +28,7 @@ from flexlink.fe.timoshenko import twice_bending_energy
 def bending_energy(section, h: float, a, b):
     """Twice the bending strain energy of elements of length h [m] with end rotations a, b
     [rad] relative to their chords, in the section's beam theory."""
-    if section.beam == "timoshenko":
+    if section.beam is BeamTheory.TIMOSHENKO:
         return twice_bending_energy(section.EI, section.kGA, h, a, b)
     return 4 * section.EI / h * (a * a + a * b + b * b)
 

@@ -22,8 +22,9 @@ from flexlink.fe.assembly import (node_rotation, placed_link_entries, rotated_en
 from flexlink.fe.beams import link_entries
 from flexlink.fe.joints import JointDofs, Springs, joint_mass_entries, springs_of_joints
 from flexlink.fe.model import DOF_NAMES as FRAME_DOFS
+from flexlink.fe.motions import Part
 from flexlink.fe.model import IN_PLANE_JOINTS, FrameModel, Topology, in_plane_stiffness, layout
-from flexlink.fe.pose import in_plane_eigen_scale, pose_model
+from flexlink.fe.model_at_pose import in_plane_eigen_scale, pose_model
 from flexlink.fe.rigid import element_stiffness_scale, rigidified
 from flexlink.fe.strip import DOF_NAMES as STRIP_DOFS
 from flexlink.fe.strip import (OUT_OF_PLANE_JOINTS, StripProperties, link_strips,
@@ -48,7 +49,7 @@ class Formulation:
     element_entries(model): (rows, cols, values (2, e) = K and M) in global DOFs;
     link_forms(model, shapes): per shape, the links' s^T K s and s^T M s."""
 
-    part: str
+    part: Part
     dof_names: tuple[str, str, str]
     joints: JointDofs
     joint_stiffness: Callable[[object, Tilt], tuple[float, float, float]]
@@ -131,7 +132,7 @@ def _strip_model(topology: Topology, points: Mapping, tilt: Tilt) -> FrameModel:
 
 
 IN_PLANE_FORMULATION = Formulation(
-    part="in-plane", dof_names=FRAME_DOFS, joints=IN_PLANE_JOINTS,
+    part=Part.IN_PLANE, dof_names=FRAME_DOFS, joints=IN_PLANE_JOINTS,
     joint_stiffness=lambda joint, tilt: in_plane_stiffness(joint),
     mass_dofs=(0, 1), rotational_dofs=(2,), rotation=node_rotation,
     model=lambda topology, points, tilt: pose_model(topology, points, warn=False),
@@ -140,7 +141,7 @@ IN_PLANE_FORMULATION = Formulation(
     link_forms=_frame_link_forms)
 
 OUT_OF_PLANE_FORMULATION = Formulation(
-    part="out-of-plane", dof_names=STRIP_DOFS, joints=OUT_OF_PLANE_JOINTS,
+    part=Part.OUT_OF_PLANE, dof_names=STRIP_DOFS, joints=OUT_OF_PLANE_JOINTS,
     joint_stiffness=out_of_plane_stiffness,
     mass_dofs=(0,), rotational_dofs=(1, 2), rotation=strip_node_rotation,
     model=_strip_model, eigen_scale=out_of_plane_eigen_scale,

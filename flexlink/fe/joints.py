@@ -9,7 +9,7 @@ the bearing stiffness of each; the springs are then:
   - a ``welded`` ground joint (its links are one body turning in one bearing): every DOF of the
     other nodes tied rigidly to the first node, and the bearing springs on the first node only;
   - the drive, where the formulation has one: a spring on the driven link's node to ground.
-A zero stiffness adds no spring; ``inf`` is an exact constraint (``assembly.reduction``).
+A zero stiffness adds no spring; ``inf`` is an exact constraint (``assembly.rigid_elimination``).
 """
 
 from __future__ import annotations

@@ -10,23 +10,34 @@ bearing, a rigid weld between the links of a ``welded`` ground joint (one bearin
 first link's node), and the drive: a torsional spring between the driven link's node and the
 ground, in parallel with its bearing's Kr.
 A stiffness of ``inf`` ("rigid" in a scene file) is an exact constraint, not a penalty: the
-two DOFs are merged (or the DOF is fixed, for ground) by ``assembly.reduction``.
+two DOFs are merged (or the DOF is fixed, for ground) by ``assembly.rigid_elimination``.
 """
 
 from __future__ import annotations
 
 import dataclasses
 import functools
+import enum
 import math
 
 import numpy as np
 
+from flexlink.choices import parse_choice
 from flexlink.errors import InputError
-from flexlink.fe.beams import THEORIES, beam_matrices
+from flexlink.fe.beams import THEORIES, BeamTheory, beam_matrices
 from flexlink.fe.joints import GROUND as GROUND  # the models' name for the ground DOF
 from flexlink.fe.joints import JointDofs, Springs, springs_of_joints
 
-BENDINGS = ("edgewise", "flatwise")
+
+
+class Bending(enum.StrEnum):
+    """How a flat bar lies (``Section.rectangle``)."""
+
+    EDGEWISE = "edgewise"
+    FLATWISE = "flatwise"
+
+
+BENDINGS = tuple(Bending)
 DOF_NAMES = ("ux", "uy", "rz")
 # in-plane joints: Kt on ux and uy, Kr on rz; the drive holds rz
 IN_PLANE_JOINTS = JointDofs(bearing_labels=("Kt x", "Kt y", "Kr"), weld_labels=("x", "y", "r"),
@@ -50,9 +61,9 @@ class Section:
     second_moment: float
     depth: float
     name: str = ""
-    beam: str = "euler-bernoulli"
+    beam: BeamTheory = BeamTheory.EULER_BERNOULLI
     shear_factor: float = 5.0 / 6.0
-    bending: str = "edgewise"  # a flat bar's orientation (``rectangle``); edgewise otherwise
+    bending: Bending = Bending.EDGEWISE  # a flat bar's orientation (``rectangle``); edgewise otherwise
 
     def __post_init__(self):
         for field in ("E", "G", "density", "area", "second_moment", "depth", "shear_factor"):
@@ -63,6 +74,9 @@ class Section:
         if self.beam not in THEORIES:
             raise InputError(f"unknown beam theory {self.beam!r}", source=self.name or None,
                              field="model.beam", expected=" or ".join(map(repr, THEORIES)))
+        # the Python edge: text choices become members
+        object.__setattr__(self, "beam", BeamTheory(self.beam))
+        object.__setattr__(self, "bending", parse_choice(Bending, self.bending, "section.bending"))
 
     @classmethod
     def rectangle(cls, E, G, density, width, thickness, name="", bending="edgewise",
@@ -75,7 +89,7 @@ class Section:
         if bending not in BENDINGS:
             raise InputError(f"unknown bending {bending!r}", source=name or None,
                              field="section.bending", expected=" or ".join(map(repr, BENDINGS)))
-        depth, across = (width, thickness) if bending == "edgewise" else (thickness, width)
+        depth, across = (width, thickness) if bending == Bending.EDGEWISE else (thickness, width)
         return cls(E=E, G=G, density=density, area=width * thickness,
                    second_moment=across * depth**3 / 12.0, depth=depth, name=name, beam=beam,
                    bending=bending)
@@ -107,7 +121,7 @@ class Section:
     def strip(self) -> tuple[float, float]:
         """(width, thickness) [m] of a flat bar, whichever way it lies."""
         across = self.area / self.depth
-        return (self.depth, across) if self.bending == "edgewise" else (across, self.depth)
+        return (self.depth, across) if self.bending is Bending.EDGEWISE else (across, self.depth)
 
     @property
     def kGA(self) -> float:

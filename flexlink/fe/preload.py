@@ -27,7 +27,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from flexlink.errors import NumericalError
-from flexlink.fe.beams import shear_parameter
+from flexlink.fe.beams import BeamTheory, shear_parameter
 from flexlink.fe.rotating import gauss_interpolation
 from flexlink.fe.timoshenko import WEIGHTS, XI, shape_functions
 
@@ -51,7 +51,7 @@ def inertia_loads(model, node_accelerations: np.ndarray, alpha) -> np.ndarray:
         # load per unit length at each Gauss point: q0 (1 - xi) + q1 xi, (e, g, 2)
         q = q0[:, None, :] * (1.0 - XI)[None, :, None] + q1[:, None, :] * XI[None, :, None]
         fe = h * np.einsum("g,gai,ega->ei", WEIGHTS, Nw, q)
-        if s.beam == "timoshenko":
+        if s.beam is BeamTheory.TIMOSHENKO:
             _, _, Npsi, _ = shape_functions(XI, h, phi)
             fe[:, [1, 2, 4, 5]] += -s.rotary_inertia * a_link * h * (Npsi @ WEIGHTS)
         # local (u, v, rz) -> global (ux, uy, rz): R^T per node; ends k = 0, 1 of each element
@@ -68,7 +68,7 @@ def inertia_loads(model, node_accelerations: np.ndarray, alpha) -> np.ndarray:
 
 def static_displacement(Kr, T, f: np.ndarray) -> np.ndarray:
     """u (n_full,) with Kr q = T^T f, u = T q: the frame's static answer to loads ``f``.
-    ``Kr`` the reduced stiffness T^T K T (dense or sparse), ``T`` from ``assembly.reduction``
+    ``Kr`` the reduced stiffness T^T K T (dense or sparse), ``T`` from ``assembly.rigid_elimination``
     (None: nothing rigid). NumericalError when Kr is singular (a mechanism: nothing holds the
     frame against the loads)."""
     fr = f if T is None else T.T @ f

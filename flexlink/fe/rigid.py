@@ -6,7 +6,7 @@ rounds away: measured on Table II case 1 (16 elements/link, dense), penalty agai
 rigid path is 2e-6 at k = 1e4 x the stiffest element, 2e-8 at 1e6 x, 3e-7 at 1e8 x, 1e-3 at
 1e10 x, and the factorisation fails from about 1e17 x. So a spring at least RIGID_RATIO times
 the stiffest element of its kind (translational: EA/h and 12 EI/h^3; rotational: 4 EI/h) is
-replaced by the exact constraint of ``assembly.reduction``, with a logged warning.
+replaced by the exact constraint of ``assembly.rigid_elimination``, with a logged warning.
 """
 
 from __future__ import annotations

@@ -29,7 +29,7 @@ translational stiffness Kt [N/m] resists w; a tilt stiffness Ktilt
 [N m/rad] resists rx and ry (a pin or bearing whose axis is the plane normal resists being
 tilted out of the plane). Scene keys: ``joints.Ktilt`` (or ``joints.<J>.Ktilt``), default
 "rigid" (an ideal revolute joint transmits both bending moments); "rigid" is an exact
-constraint (``assembly.reduction``). The drive acts about the plane normal, so it has no
+constraint (``assembly.rigid_elimination``). The drive acts about the plane normal, so it has no
 out-of-plane part. Lumped joint masses act on w.
 """
 
@@ -193,7 +193,7 @@ def assemble_out_of_plane(model: FrameModel, springs: Springs):
 def assemble_out_of_plane_reduced_dense(model: FrameModel, springs: Springs, T,
                                         strips: tuple[StripProperties, ...]):
     """Dense (T^T K T, T^T M T) of ``assemble_out_of_plane``'s K and M, with T from
-    ``assembly.reduction`` and ``strips`` = ``link_strips(model)``, scattered straight from the
+    ``assembly.rigid_elimination`` and ``strips`` = ``link_strips(model)``, scattered straight from the
     element entries (no sparse matrix built): for the small models the dense eigen solver
     takes, where scipy.sparse's bookkeeping costs more than the solve."""
     rows, cols, values = strip_entries(model, strips)

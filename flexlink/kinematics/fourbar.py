@@ -27,8 +27,8 @@ CLOSE_TOL = 1e-12  # relative: a toggle closing within this is round-off, not a 
 
 
 @dataclasses.dataclass(frozen=True)
-class Pose:
-    """A rigid pose: joint coordinates [m] and link angles [rad]."""
+class FourBarPose:
+    """A four-bar's rigid pose in closed form: joint coordinates [m] and link angles [rad]."""
 
     theta2: float
     theta3: float
@@ -164,7 +164,7 @@ class FourBar:
                 f"(lengths {self.lengths} m)")
 
     # -- positions ---------------------------------------------------------------------------
-    def pose(self, theta2: float, branch: str = "open") -> Pose:
+    def pose(self, theta2: float, branch: str = "open") -> FourBarPose:
         """Joint positions at crank angle ``theta2`` [rad] on the chosen assembly branch.
 
         Raises KinematicsError where the loop cannot close: the diagonal O4-A longer than
@@ -202,10 +202,10 @@ class FourBar:
         theta3 = math.atan2(*(B - A)[::-1])
         joints = {"O2": (0.0, 0.0), "A": (float(A[0]), float(A[1])), "B": (float(B[0]), float(B[1])),
                   "O4": (float(L1), 0.0)}
-        return Pose(theta2=float(theta2), theta3=theta3, theta4=theta4, mu=mu, branch=branch,
+        return FourBarPose(theta2=float(theta2), theta3=theta3, theta4=theta4, mu=mu, branch=branch,
                     joints=joints)
 
-    def pose_at_mu(self, mu: float, branch: str = "open", which: int = 0) -> Pose:
+    def pose_at_mu(self, mu: float, branch: str = "open", which: int = 0) -> FourBarPose:
         """Pose where the transmission angle is ``mu`` [rad]; ``which`` 0 takes the crank angle
         in [0, 180] deg, 1 its mirror in [180, 360] deg."""
         return self.pose(self.crank_angles_for_mu(mu)[which], branch)

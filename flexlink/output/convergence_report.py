@@ -1,30 +1,80 @@
-"""The convergence study (``studies.convergence``) as CSV, as a human-readable report and as
-the error-against-time plot."""
+"""The convergence study (``studies.convergence.ConvergenceStudy``) as the JSON document of
+`flexlink converge`, as CSV, as a human-readable report and as the error-against-time plot."""
 
 from __future__ import annotations
 
-import io
-
 import numpy as np
 
+from flexlink.analysis.solve import DENSE_LIMIT
 from flexlink.fileio import write_atomic
-from flexlink.studies.convergence import Level, relative_errors
+from flexlink.output.figures import write_figure
+from flexlink.studies.convergence import (REFERENCE_CHOICE, ConvergenceStudy, Level,
+                                          relative_errors)
 
 
-def convergence_csv(document: dict) -> str:
+def convergence_document(study: ConvergenceStudy) -> dict:
+    """The JSON document of `flexlink converge` (without its ``files``): the Richardson
+    reference [Hz] with its orders, the model error against the measured column [%], the
+    cheapest level meeting the tolerance, and every level's times [s], frequencies [Hz] and
+    relative errors."""
+    ext, best, measured = study.extrapolation, study.cheapest, study.measured
+    rows = []
+    for level, err in zip(study.levels, study.errors):
+        row = {"choice": level.choice.label, "method": level.choice.method,
+               "mass": level.choice.mass, "refined": level.choice.refine,
+               "elements_per_link": level.elements, "dofs": level.dofs,
+               "assembly_s": level.assembly_s, "solve_s": level.solve_s, "runs": level.runs,
+               "frequencies_Hz": level.frequencies, "relative_error": err,
+               "max_relative_error": float(err.max())}
+        if measured is not None:
+            row[f"error_vs_{measured[0]}_pct"] = study.measured_pct(level.frequencies)
+        rows.append(row)
+    return {
+        "command": "converge", "scene": study.scene, "file": study.file, "modes": study.n_modes,
+        "repeats": study.repeats,
+        "reference": {"choice": REFERENCE_CHOICE.label, "frequencies_Hz": ext.reference,
+                      "order_used": ext.order, "observed_order": ext.observed,
+                      "levels": ext.elements, "asymptotic": ext.asymptotic,
+                      "second_step_change": ext.uncertainty},
+        "model_error": None if measured is None else {
+            "column": measured[0], "measured_Hz": list(measured[1][:len(ext.reference)]),
+            "error_pct": study.measured_pct(ext.reference)},
+        "tolerance": study.tol,
+        "cheapest": None if best is None else {
+            "choice": best.choice.label, "elements_per_link": best.elements, "dofs": best.dofs,
+            "seconds": best.total_s,
+            "max_relative_error": float(study.errors[study.levels.index(best)].max())},
+        "dense_limit_dofs": DENSE_LIMIT,
+        "levels": rows,
+        "refused": [{"choice": c.label, "elements_per_link": e, "reason": msg}
+                    for c, e, msg in study.refused],
+    }
+
+
+def convergence_csv(study: ConvergenceStudy) -> str:
     """One row per level and choice: elements per link, DOFs, median times [s], frequencies
     [Hz] and relative errors against the Richardson reference."""
-    n_modes = document["modes"]
     head = ["choice", "elements_per_link", "dofs", "assembly_s", "solve_s"]
-    head += [f"f{i + 1}_Hz" for i in range(n_modes)] + [f"err{i + 1}" for i in range(n_modes)]
+    head += [f"f{i + 1}_Hz" for i in range(study.n_modes)]
+    head += [f"err{i + 1}" for i in range(study.n_modes)]
     lines = [",".join(head)]
-    for r in document["levels"]:
-        values = [r["choice"], r["elements_per_link"], r["dofs"], f"{r['assembly_s']:.6g}",
-                  f"{r['solve_s']:.6g}"]
-        values += [f"{f:.15g}" for f in r["frequencies_Hz"]]
-        values += [f"{e:.3e}" for e in r["relative_error"]]
+    for level, err in zip(study.levels, study.errors):
+        values = [level.choice.label, level.elements, level.dofs, f"{level.assembly_s:.6g}",
+                  f"{level.solve_s:.6g}"]
+        values += [f"{f:.15g}" for f in level.frequencies]
+        values += [f"{e:.3e}" for e in err]
         lines.append(",".join(map(str, values)))
     return "\n".join(lines) + "\n"
+
+
+def write_convergence(study: ConvergenceStudy, folder) -> list:
+    """converge.csv and converge.png (error against run time) in ``folder``, each written
+    atomically; returns their paths."""
+    paths = [folder / "converge.csv", folder / "converge.png"]
+    write_atomic(paths[0], convergence_csv(study))
+    plot_error_time(list(study.levels), study.reference, paths[1],
+                    title=f"{study.scene}: error against run time")
+    return paths
 
 
 def convergence_text(doc: dict) -> str:
@@ -106,7 +156,4 @@ def plot_error_time(levels: list[Level], reference: np.ndarray, path, title: str
     ax.grid(True, which="both", alpha=0.3)
     ax.legend()
     fig.tight_layout()
-    buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=120)
-    plt.close(fig)
-    write_atomic(path, buf.getvalue())
+    write_figure(fig, path)

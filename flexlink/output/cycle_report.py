@@ -1,6 +1,7 @@
 """The cycle map's renderings (``studies.cycle.ModalMap``, or ``studies.tracking.TrackedMap``
-for its tracked lines): the CSV of frequencies over the crank angle, the PNG of the map, the
-JSON document of `flexlink cycle` and its text summary."""
+for its tracked lines): the CSV of frequencies over the crank angle, the PNG of the map, and of
+`flexlink cycle`'s study (``studies.cycle_study.CycleStudy``) the JSON document and the text
+summary."""
 
 from __future__ import annotations
 
@@ -11,9 +12,11 @@ import numpy as np
 from flexlink.fileio import write_atomic
 from flexlink.output.figures import cycle_axes, write_figure
 from flexlink.output.tracking_report import (events_json, periodicity_json, plot_tracked,
-                                             reseeds_json, tracked_csv, unsampled_json)
+                                             reseeds_json, tracked_csv, tracking_lines,
+                                             unsampled_json)
 from flexlink.studies.cycle import ModalMap, Resonance, runs
-from flexlink.studies.tracking import TrackedMap, unsampled_note
+from flexlink.studies.cycle_study import CycleStudy
+from flexlink.studies.tracking import unsampled_note
 from flexlink.units import rev_per_min
 
 
@@ -41,22 +44,17 @@ def plot_map(result: ModalMap, path, crank_speed: float | None = None,
     for j in range(result.frequencies.shape[1]):
         ax.plot(deg, result.frequencies[:, j], label=f"mode {j + 1}")
     cycle_axes(ax, deg, result.mu90, hits, result.scene + (
-        f" (crank {crank_speed * 60 / (2 * math.pi):g} rev/min)" if crank_speed else ""))
+        f" (crank {rev_per_min(crank_speed):g} rev/min)" if crank_speed else ""))
     ax.grid(alpha=0.3)
     fig.tight_layout()
     write_figure(fig, path)
 
 
-def cycle_document(scene, result: ModalMap | TrackedMap, mesh, poses: int,
-                   omega: float | None, check: tuple[float | None, str | None], margin: float,
-                   hits: list[Resonance], nearest: tuple[float, int, int] | None,
-                   paths) -> dict:
-    """The JSON document of `flexlink cycle`: each mode's range over the cycle [Hz] and where
-    [deg], the mu = 90 deg poses, the resonance check at ``check`` = (speed [rad/s] or None,
-    note) with its ``hits``, the tracking (for a ``TrackedMap``), ``nearest``
-    (``campbell.nearest_harmonic``) and the files written."""
-    check_speed, check_note = check
-    track = isinstance(result, TrackedMap)
+def cycle_document(scene, study: CycleStudy) -> dict:
+    """The JSON document of `flexlink cycle` (without its ``files``): each mode's range over
+    the cycle [Hz] and where [deg], the mu = 90 deg poses, the resonance check with its hits,
+    the tracking (for a tracked map), the nearest harmonic and the scene's assumptions."""
+    result, poses = study.map, study.poses
     f = result.frequencies
     return {
         "command": "cycle", "scene": scene.name, "poses": poses,
@@ -68,36 +66,36 @@ def cycle_document(scene, result: ModalMap | TrackedMap, mesh, poses: int,
                   for j in range(f.shape[1])],
         "mu90_crank_deg": {k: [math.degrees(a) for a in v] for k, v in result.mu90.items()},
         "mechanism_modes_max": int(result.mechanism_counts.max()),
-        "mesh": mesh.as_dict(),
-        "crank_speed_rev_per_min": None if omega is None else rev_per_min(omega),
-        "resonance_check": {"speed_rev_per_min": None if check_speed is None
-                                                 else rev_per_min(check_speed),
-                            "note": check_note},
-        "margin": margin,
+        "mesh": study.mesh.as_dict(),
+        "crank_speed_rev_per_min": None if study.crank_speed is None
+        else rev_per_min(study.crank_speed),
+        "resonance_check": {"speed_rev_per_min": None if study.check_speed is None
+                                                 else rev_per_min(study.check_speed),
+                            "note": study.check_note},
+        "margin": study.margin,
         "resonances": [{"harmonic": h.harmonic, "harmonic_Hz": h.frequency, "mode": h.mode,
                         "closest_relative_gap": h.closest,
                         "crank_deg_ranges": [[round(math.degrees(a), 2), round(math.degrees(b), 2)]
                                              for a, b in runs(h.angles, 2 * math.pi / poses)]}
-                       for h in hits],
+                       for h in study.hits],
         "tracking": {"by": "MAC", "labels": list(result.labels),
                      "events": events_json(result), "reseeds": reseeds_json(result),
                      "periodicity": periodicity_json(result),
                      "unsampled_dead_centres_deg": unsampled_json(result),
-                     "unsampled_note": unsampled_note(result)} if track
+                     "unsampled_note": unsampled_note(result)} if study.tracked
         else {"by": "frequency order"},
-        "nearest_harmonic": None if nearest is None else dict(zip(
-            ("relative_gap", "mode", "harmonic"), nearest)),
-        "files": [str(p) for p in paths],
+        "nearest_harmonic": None if study.nearest is None else dict(zip(
+            ("relative_gap", "mode", "harmonic"), study.nearest)),
         "assumptions": [f"{a.field}: {a.note}" for a in scene.assumptions],
+        **({"note": study.note} if study.note else {}),  # the map is not quite what was asked
     }
 
 
-def cycle_text(document: dict, mesh_line: str, harmonics: int) -> list[str]:
-    """The text summary of `flexlink cycle` from its ``document`` (``cycle_document``), with
-    the mesh's one-line description ``mesh_line``."""
-    margin = document["margin"]
+def cycle_text(document: dict, study: CycleStudy) -> str:
+    """The text summary of `flexlink cycle` from its ``document`` (``cycle_document``)."""
+    margin, harmonics = document["margin"], study.harmonics
     out = [f"{document['scene']}: first {len(document['modes'])} elastic modes over "
-           f"{document['poses']} crank angles", mesh_line]
+           f"{document['poses']} crank angles", study.mesh.describe()]
     if document.get("note"):
         out.append(document["note"])
     synthesis = document["synthesis"]
@@ -126,25 +124,20 @@ def cycle_text(document: dict, mesh_line: str, harmonics: int) -> list[str]:
     for e in tracking.get("events", []):
         out.append(f"{e['kind']} of modes {e['lines'][0]} and {e['lines'][1]} at crank "
                    f"{e['crank_deg']:.1f} deg (gap {100 * e['gap']:.1f} %)")
-    for r in tracking.get("reseeds", []):
-        out.append(f"re-seeded line{'s' if len(r['lines']) > 1 else ''} "
-                   f"{', '.join(map(str, r['lines']))} at crank "
-                   f"{r['crank_deg']:.1f} deg: {r['reason']}")
-    if tracking.get("unsampled_note"):
-        out.append(f"warning: {tracking['unsampled_note']}")
-    if tracking.get("periodicity"):
-        out.append(f"periodicity: {tracking['periodicity']['note']}")
+    out += tracking_lines(tracking.get("reseeds", []), tracking.get("unsampled_note"),
+                          tracking.get("periodicity"))
     for h in document["resonances"]:
         ranges = ", ".join(f"{a:.1f}-{b:.1f}" for a, b in h["crank_deg_ranges"])
         out.append(f"resonance: harmonic {h['harmonic']} ({h['harmonic_Hz']:.2f} Hz) within "
                    f"{100 * margin:g} % of mode {h['mode']} at crank {ranges} deg")
-    return out
+    return "\n".join(out)
 
 
-def write_map(csv_path, png_path, result: ModalMap | TrackedMap, crank_speed: float | None,
-              hits: list[Resonance]) -> None:
-    """The map's CSV and PNG (tracked lines with their events for a ``TrackedMap``), each
-    written atomically."""
-    track = isinstance(result, TrackedMap)
-    write_atomic(csv_path, tracked_csv(result) if track else modal_map_csv(result))
-    (plot_tracked if track else plot_map)(result, png_path, crank_speed, hits)
+def write_cycle(study: CycleStudy, folder) -> list:
+    """cycle.csv and cycle.png of the map in ``folder`` (tracked lines with their events for a
+    tracked map), each written atomically; returns their paths."""
+    paths = [folder / "cycle.csv", folder / "cycle.png"]
+    result = study.map
+    write_atomic(paths[0], tracked_csv(result) if study.tracked else modal_map_csv(result))
+    (plot_tracked if study.tracked else plot_map)(result, paths[1], study.check_speed, study.hits)
+    return paths

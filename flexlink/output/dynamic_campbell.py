@@ -8,10 +8,11 @@ import math
 
 import numpy as np
 
-from flexlink.studies.dynamic_campbell import CriticalShift, DynamicCampbell, frozen_bands
+from flexlink.studies.dynamic_campbell import (CriticalShift, Divergence, DynamicCampbell,
+                                               frozen_bands)
 from flexlink.studies.operating_point import ASSUMPTIONS
-
-RPM = 2 * math.pi / 60.0  # rad/s per rev/min
+from flexlink.studies.tracking import PAIR_MAC
+from flexlink.units import RPM
 
 
 def _rpm(pair):
@@ -36,19 +37,39 @@ def dynamic_json(result: DynamicCampbell, shifts: list[CriticalShift]) -> dict:
     side, the divergence if any, and the model's assumptions."""
     low, high = result.bands()
     return {
-        "assumptions": list(ASSUMPTIONS) + ["constant crank speed"],
+        "assumptions": list(ASSUMPTIONS) + [
+            "constant crank speed" if not result.crank_acceleration else
+            "the same crank acceleration at every speed and pose (not a run-up)"],
         "basis_static_modes": result.basis,
+        "crank_acceleration_rad_s2": result.crank_acceleration,
         "frozen_bands": [{"mode": b.mode, "min_Hz": b.low, "max_Hz": b.high}
                          for b in frozen_bands(result)],
         "bands_at_speed": [{"rev_per_min": w / RPM,
                             "min_Hz": None if not np.isfinite(lo).all() else lo.tolist(),
                             "max_Hz": None if not np.isfinite(hi).all() else hi.tolist()}
                            for w, lo, hi in zip(result.speeds, low, high)],
-        "divergence": None if result.divergence is None else {
-            "rev_per_min": result.divergence[0] / RPM,
-            "crank_deg": math.degrees(result.divergence[1]) % 360.0},
+        "divergence": divergence_json(result.divergence),
+        "ambiguous_speed_steps": result.ambiguous,
         "critical_speeds": [shift_json(s, _ends(result)) for s in shifts],
     }
+
+
+def divergence_json(d: Divergence | None) -> dict | None:
+    """The divergence [rev/min, deg, 1/s], or None."""
+    if d is None:
+        return None
+    return {"rev_per_min": None if d.speed is None else d.speed / RPM,
+            "crank_deg": math.degrees(d.q) % 360.0, "line": d.line,
+            "grid_rev_per_min": d.grid_speed / RPM, "growth_rate_per_s": d.growth_rate}
+
+
+def divergence_line(d: Divergence) -> str:
+    """One sentence: which line diverges, where, and how fast it grows past it."""
+    who = f"mode {d.line}" if d.line else "a mode above the tracked lines"
+    at = "" if d.speed is None else f" at {d.speed / RPM:.1f} rev/min"
+    return (f"divergence: {who} falls to 0 Hz{at} (crank angle {math.degrees(d.q) % 360:.1f} "
+            f"deg) and grows past it (real root +{d.growth_rate:.4g} 1/s at "
+            f"{d.grid_speed / RPM:.1f} rev/min): no band from {d.grid_speed / RPM:.1f} rev/min on")
 
 
 def dynamic_csv(result: DynamicCampbell) -> str:
@@ -67,11 +88,15 @@ def dynamic_lines(result: DynamicCampbell, shifts: list[CriticalShift]) -> list[
     """The text summary: the model, the divergence, and each critical range frozen against at
     speed with the moves of its edges."""
     out = ["at speed: operating-point modes (inertia preload, centrifugal, Coriolis) at every "
-           f"pose, reduced onto {result.basis} static modes per pose; "
-           + "; ".join(ASSUMPTIONS)]
+           f"pose, reduced onto {result.basis} static modes per pose"
+           + (f", crank acceleration {result.crank_acceleration:.6g} rad/s^2 at every speed"
+              if result.crank_acceleration else "") + "; " + "; ".join(ASSUMPTIONS)]
     if result.divergence is not None:
-        out.append(f"divergence from {result.divergence[0] / RPM:.1f} rev/min (crank angle "
-                   f"{math.degrees(result.divergence[1]) % 360:.1f} deg): no band at or above it")
+        out.append(divergence_line(result.divergence))
+    if result.ambiguous:
+        out.append(f"{result.ambiguous} speed step(s) of a line paired with MAC below "
+                   f"{PAIR_MAC} (shapes that change fast between grid speeds, near a "
+                   "divergence or a veering): more --speed-steps resolve them")
     if not shifts:
         out.append("no critical speed in the range, frozen or at speed")
         return out
@@ -124,7 +149,9 @@ def plot_dynamic(result: DynamicCampbell, margin: float, harmonics: int, path,
             ax.annotate(f"{n}x", (rpm[-1], n * rpm[-1] / 60.0), fontsize=7, ha="right",
                         va="bottom")
     if result.divergence is not None:
-        ax.axvline(result.divergence[0] / RPM, color="red", lw=1.2, label="divergence")
+        d = result.divergence
+        ax.axvline((d.speed or d.grid_speed) / RPM, color="red", lw=1.2,
+                   label=f"divergence{f' (mode {d.line})' if d.line else ''}")
     ax.set_xlim(rpm[0], rpm[-1])
     ax.set_ylim(0, top)
     ax.set_xlabel("crank speed [rev/min]")

@@ -23,8 +23,10 @@ from pathlib import Path
 from flexlink.analysis.modal import CaseResult
 from flexlink.errors import InputError
 from flexlink.fileio import staged_folder, write_atomic
+from flexlink.output.counts import counted
 from flexlink.output.export_vtk import mode_set, modes_mesh, write_animation, write_vtu
 from flexlink.stopping import signals_deferred
+from flexlink.studies.scene_summary import SceneSummary
 
 
 @dataclasses.dataclass(frozen=True)
@@ -60,18 +62,19 @@ def case_stem(result: CaseResult) -> str:
 RECORD = "export.json"  # the scene folder's own list of what its export wrote
 
 
-def export_case(result: CaseResult, summary: dict, out: Path, settings: ExportSettings,
+def export_case(summary: SceneSummary, out: Path, settings: ExportSettings,
                 record: Callable[[dict], str] | None = None) -> dict:
-    """Write the files of one case into ``out/<stem>/``, replacing that folder as a whole;
-    ``summary`` is its ``report.case_summary``. Returns {"folder": ..., kind: [paths]} with
+    """Write the files of one scene's summary (``studies.scene_summary``) into ``out/<stem>/``,
+    replacing that folder as a whole. Returns {"folder": ..., kind: [paths]} with
     kinds vtu, pvd, frames, pictures, plot (paths as strings, in the final folder), and with
     ``record`` also "record": the folder's ``export.json``, holding ``record(those files)``, so
     it is swapped in with the files it lists."""
+    result = summary.case
     stem = case_stem(result)
     folder = out / stem
     with staged_folder(folder, keep=lambda name: not _is_export_file(stem, name, settings)) \
             as stage:
-        files = _write_case(result, summary, stage, stem, settings)
+        files = _write_case(summary, stage, stem, settings)
         written = {"folder": str(folder),
                    **{k: [str(folder / p.relative_to(stage)) for p in v] for k, v in files.items()}}
         if record is not None:
@@ -93,8 +96,9 @@ def _is_export_file(stem: str, name: str, settings: ExportSettings) -> bool:
     return settings.plot and name == f"{stem}_frequencies.png"
 
 
-def _write_case(result: CaseResult, summary: dict, folder: Path, stem: str,
-                settings: ExportSettings) -> dict[str, list[Path]]:
+def _write_case(summary: SceneSummary, folder: Path, stem: str, settings: ExportSettings
+                ) -> dict[str, list[Path]]:
+    result = summary.case
     modes = mode_set(result, settings.n_modes, settings.subdivisions)
     files: dict[str, list[Path]] = {"vtu": [], "pvd": [], "frames": [], "pictures": [], "plot": []}
     files["vtu"].append(write_vtu(folder / f"{stem}.vtu",
@@ -122,3 +126,39 @@ def _write_case(result: CaseResult, summary: dict, folder: Path, stem: str,
             plot = frequency_plot(summary)
         files["plot"].append(write_atomic(folder / f"{stem}_frequencies.png", plot))
     return files
+
+
+def export_entry(summary: SceneSummary, files: dict | None = None) -> dict:
+    """One scene of the export's JSON document: its frequencies [Hz], mesh, why its modes are
+    the in-plane ones (with another family) and, once written, ``export_case``'s files."""
+    scene = summary.case.scene
+    out = {"scene": scene.name, "file": scene.path, "mesh": summary.mesh.as_dict(),
+           "frequencies_Hz": summary.frequencies.tolist()}
+    if summary.note:
+        out["note"] = summary.note
+    return out if files is None else {**out, "files": files}
+
+
+def export_document(out: Path, entries: list[dict], failures: list[dict], complete: bool
+                    ) -> dict:
+    """The JSON document of ``flexlink export``: ``entries`` (``export_entry``) and the
+    ``failures``; ``complete`` when every scene asked for is in it."""
+    return {"command": "export", "out": str(out), "complete": complete, "cases": entries,
+            "failures": failures}
+
+
+def export_text(done: list[tuple[SceneSummary, dict]], combined: Path | None) -> str:
+    """What ``flexlink export`` prints for each (summary, its files) and where it wrote."""
+    lines = []
+    for summary, f in done:
+        if summary.note:
+            lines.append(summary.note)
+        lines.append(f"{summary.case.scene.name}: {counted(len(summary.frequencies), 'mode')} -> "
+                     f"{f['folder']}/  ({len(f['vtu'])} .vtu, {len(f['pvd'])} .pvd with "
+                     f"{counted(len(f['frames']), 'frame')}, "
+                     f"{counted(len(f['pictures']), 'picture')}, {counted(len(f['plot']), 'plot')})"
+                     f"\n  {summary.mesh.describe()}")
+    if done:
+        lines.append("written: " + ", ".join([*(f["record"][0] for _, f in done),
+                                              *([str(combined)] if combined else [])]))
+    return "".join(line + "\n" for line in lines)

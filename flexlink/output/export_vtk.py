@@ -198,7 +198,7 @@ def modes_mesh(result: CaseResult, modes: ModeSet, fraction: float) -> meshio.Me
         "frequencies_Hz": np.asarray(modes.frequencies, dtype=float),
         "mode_numbers": np.asarray(modes.numbers, dtype=np.int64),
         "warp_scale": np.array([modes.scale(i, fraction) for i in range(len(modes.numbers))]),
-        "theta2_deg": np.array([math.degrees(result.pose.theta2)]),
+        "theta2_deg": np.array([math.degrees(result.pose.crank_angle)]),
         # a linkage with no transmission angle (a single rotor) has no mu to record
         **({} if result.pose.mu is None else {"mu_deg": np.array([math.degrees(result.pose.mu)])}),
         **{f"{modes.label(i)}_frequency_Hz": np.array([float(modes.frequencies[i])])

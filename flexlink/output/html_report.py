@@ -296,8 +296,11 @@ def at_speed_section(page: dict, figures: list) -> str:
     at = page.get("at_speed")
     if at is None:
         return ""
+    acc = at.get("crank_acceleration_rad_s2") or 0.0
     parts = [f"<h3>At speed</h3><p>Crank speed {_number(at['rev_per_min'], 1)} rev/min "
-             f"({_number(at['rad_per_s'], 3)} rad/s), as the scene declares. Assumptions: "
+             f"({_number(at['rad_per_s'], 3)} rad/s)"
+             + (f", crank acceleration {_number(acc, 4)} rad/s^2 (at every speed below)"
+                if acc else "") + ", as the scene declares. Assumptions: "
              + "; ".join(_e(a) for a in at["assumptions"]) + ".</p>"]
     torque = at["torque"]
     if "unavailable" in torque:

@@ -47,8 +47,8 @@ def motion_text(doc: dict, with_speed: bool) -> str:
     return "\n".join(lines)
 
 
-def family_text(members: list[dict], with_speed: bool) -> str:
-    """One line per family member and output body: swing, time ratio, (``with_speed``) omega
+def variant_text(members: list[dict], with_speed: bool) -> str:
+    """One line per variant (a member of a [[family]] table) and output body: swing, time ratio, (``with_speed``) omega
     and peak alpha."""
     lines, label = [], None
     for m in members:

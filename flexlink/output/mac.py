@@ -7,7 +7,7 @@ from flexlink.units import percent_error
 
 
 def comparison_json(c: ShapeComparison, n_modes: int) -> dict:
-    """JSON-ready: the family, each side's frequencies [Hz] and labels, the MAC matrix and the
+    """JSON-ready: the part compared, each side's frequencies [Hz] and labels, the MAC matrix and the
     pairs (1-based modes) with their frequency difference [%] (b vs a)."""
     sides = {}
     for name, s in (("a", c.a), ("b", c.b)):
@@ -16,7 +16,7 @@ def comparison_json(c: ShapeComparison, n_modes: int) -> dict:
                        "modes": [{"mode": i + 1, "Hz": float(f), "label": l}
                                  for i, (f, l) in enumerate(zip(s.frequencies, s.labels))]}
     fa, fb = c.a.frequencies, c.b.frequencies
-    return {"family": c.family, **sides, "mac": c.mac.tolist(),
+    return {"part": c.part, **sides, "mac": c.mac.tolist(),
             "pairs": [{"a": i + 1, "b": j + 1, "mac": m,
                        "difference_pct": percent_error(fb[j], fa[i])}
                       for i, j, m in c.pairs]}
@@ -33,7 +33,7 @@ def mac_csv(c: ShapeComparison) -> str:
 def mac_text(document: dict, mac) -> str:
     """The human-readable report: each side's modes, the MAC matrix (rows: A, columns: B) and
     the pairs with their frequency difference."""
-    lines = [f"{document['family']} modes"]
+    lines = [f"{document['part']} modes"]
     for side in ("a", "b"):
         s = document[side]
         lines.append(f"{side.upper()}: {s['scene']} ({s['file']}), {s['elements_per_link']} "

@@ -1,50 +1,36 @@
-"""Comparison of computed frequencies with reference columns (measured Ex, published FE), as
-plain rows, a human-readable table, JSON-ready dicts and CSV text. Pairing is by mode order of
-the elastic modes only; rigid-body/mechanism modes are listed apart, never paired."""
+"""A scene's summary (``studies.scene_summary``) rendered: its JSON document (every field name
+declared here, once), the comparison table as text and as CSV. Rows pair computed and
+reference frequencies by mode order of the elastic modes only; rigid-body/mechanism modes are
+listed apart, never paired."""
 
 from __future__ import annotations
 
 import csv
 import io
 import math
+from pathlib import Path
 
-import numpy as np
-
-from flexlink.analysis.damping import damping_ratios
-from flexlink.analysis.identity import DIRECTIONS, mode_identity, participating_mass, total_mass
-from flexlink.analysis.modal import CaseResult
-from flexlink.units import percent_error
+from flexlink.analysis.identity import DIRECTIONS
+from flexlink.output.sensitivity_report import (alternative_document, alternative_line,
+                                                format_sensitivity, sensitivity_document)
+from flexlink.studies.scene_summary import SceneSummary, overall_mean_abs_error
 
 
-def comparison_rows(result: CaseResult, n_modes: int, computed=None, kinds=None) -> list[dict]:
-    """One dict per elastic mode: mode, computed [Hz], and for each reference column its value
-    [Hz] and % error (computed vs reference); for the planar model's own modes also its
-    identity (``identity.mode_identity``: label, energy fractions, effective masses)."""
-    identity = [{}] * n_modes
-    if computed is None:
-        computed = result.elastic_frequencies(n_modes)
-        identity = mode_identity(result.model, result.modes.shapes[:, result.modes.elastic[:n_modes]])
-    columns = result.scene.reference.columns if result.scene.reference else {}
+def comparison_rows(summary: SceneSummary) -> list[dict]:
+    """One dict per elastic mode: mode, computed [Hz], with another family its kind, and for
+    each reference column its value [Hz] and % error (computed vs reference); for the planar
+    model's own modes also its identity (label, energy fractions, effective masses)."""
     rows = []
-    for i, f in enumerate(computed):
+    for i, f in enumerate(summary.frequencies):
         row = {"mode": i + 1, "computed_Hz": float(f)}
-        if kinds is not None:
-            row["kind"] = kinds[i]
-        for name, values in columns.items():
+        if summary.kinds is not None:
+            row["kind"] = summary.kinds[i]
+        for name, values in summary.reference.items():
             if i < len(values):
                 row[f"{name}_Hz"] = values[i]
-                row[f"error_vs_{name}_pct"] = percent_error(float(f), values[i])
-        rows.append({**row, **identity[i]})
+                row[f"error_vs_{name}_pct"] = float(summary.errors[name][i])
+        rows.append({**row, **(summary.identity[i] if summary.identity else {})})
     return rows
-
-
-def mean_abs_errors(rows: list[dict]) -> dict[str, float]:
-    """Mean absolute % error per reference column over the rows."""
-    out = {}
-    for key in {k for r in rows for k in r if k.startswith("error_vs_")}:
-        values = [abs(r[key]) for r in rows if key in r]
-        out[key.removeprefix("error_vs_").removesuffix("_pct")] = float(np.mean(values))
-    return out
 
 
 def linkage_summary(scene) -> dict:
@@ -56,51 +42,82 @@ def linkage_summary(scene) -> dict:
     return {"bodies": [b.name for b in scene.linkage.bodies]}
 
 
-def case_summary(result: CaseResult, n_modes: int, family: str = "planar", computed=None,
-                 kinds=None) -> dict:
-    """JSON-ready summary of one case. ``computed``/``kinds``: the frequencies [Hz] and mode
-    kinds of a model family other than the planar one of ``result`` (see ``families.py``)."""
-    scene, pose, modes = result.scene, result.pose, result.modes
-    rows = comparison_rows(result, n_modes, computed, kinds)
-    mechanism = [float(f) for f, k in zip(modes.frequencies, modes.kinds) if k != "elastic"]
-    return {
+def summary_document(summary: SceneSummary) -> dict:
+    """The JSON document of one scene's summary; the alternatives and the sensitivity study
+    only when they were asked for."""
+    case = summary.case
+    scene, pose, modes = case.scene, case.pose, case.modes
+    out = {
         "scene": scene.name,
         "file": scene.path,
-        "family": family,
+        "family": summary.family,
         "linkage": linkage_summary(scene),
-        "pose": {"theta2_deg": math.degrees(pose.theta2),
+        "pose": {"theta2_deg": math.degrees(pose.crank_angle),
                  "mu_deg": None if pose.mu is None else math.degrees(pose.mu),
                  "branch": pose.branch,
                  "joints_m": {k: list(v) for k, v in pose.joints.items()}},
-        "elements_per_link": result.elements_per_link,
+        "elements_per_link": case.elements_per_link,
         "dofs": modes.n_dofs,
         "solver": modes.solver,
-        "modes": rows,
-        # per elastic mode, from the links' loss factors (``damping.damping_ratios``) [-]
-        "damping_ratio": [] if computed is not None else [float(z) for z in damping_ratios(
-            result.model, modes.shapes[:, modes.elastic[:n_modes]], scene.loss_factors)],
-        "mechanism_modes_Hz": mechanism,
-        "mass_kg": {"total": total_mass(result.model),
-                    "participating": dict(zip(DIRECTIONS, map(float, participating_mass(result.model))))},
-        "mean_abs_error_pct": mean_abs_errors(rows),
-        "max_residual": float(np.nanmax(modes.residuals[modes.elastic])),
+        "modes": comparison_rows(summary),
+        "damping_ratio": summary.damping_ratio.tolist(),  # per elastic mode [-]
+        "damping_source": summary.damping_source,
+        "mechanism_modes_Hz": summary.mechanism.tolist(),
+        "mass_kg": {"total": summary.mass,
+                    "participating": dict(zip(DIRECTIONS, summary.participating.tolist()))},
+        "mean_abs_error_pct": summary.mean_abs_error_pct,
+        "max_residual": summary.max_residual,
         "max_backward_error": float(modes.backward_errors.max()),
         "orthogonality_error": modes.orthogonality_error,
-        "seconds": result.seconds,
+        "seconds": case.seconds,
         "assumptions": [{"field": a.field, "value": a.value, "note": a.note}
                         for a in scene.assumptions],
         "reference_source": scene.reference.source if scene.reference else None,
+        "mesh": summary.mesh.as_dict(),
+        "warnings": list(summary.warnings) + ([summary.note] if summary.note else []),
     }
+    if summary.note:
+        out["note"] = summary.note
+    alternatives = summary.alternatives
+    if alternatives is not None:
+        out["other_orientation"] = alternative_document(alternatives.orientation)
+        if alternatives.timoshenko is not None:
+            out["timoshenko"] = alternative_document(alternatives.timoshenko)
+        if alternatives.shear_source is not None:
+            out["other_shear_source"] = alternative_document(alternatives.shear_source)
+    if summary.sensitivity is not None:
+        out["sensitivity"] = sensitivity_document(summary.sensitivity)
+    return out
 
 
-def overall_mean_abs(summaries: list[dict]) -> dict[str, float]:
-    pooled: dict[str, list[float]] = {}
-    for s in summaries:
-        for row in s["modes"]:
-            for key, value in row.items():
-                if key.startswith("error_vs_"):
-                    pooled.setdefault(key[9:-4], []).append(abs(value))
-    return {k: float(np.mean(v)) for k, v in pooled.items()}
+def modes_document(summaries: list[SceneSummary], files, failures: list[dict] | None = None
+                   ) -> dict:
+    """The JSON document of ``flexlink modes`` over ``summaries`` listing ``files``, with the
+    ``failures`` of a run over several scenes."""
+    out = {"command": "modes", "cases": [summary_document(s) for s in summaries],
+           "overall_mean_abs_error_pct": overall_mean_abs_error(summaries),
+           "files": [str(f) for f in files]}
+    return out if failures is None else {**out, "failures": failures}
+
+
+def modes_files(scenes: list[tuple[Path, SceneSummary]], combined: Path | None,
+                failures: list[dict]) -> tuple[dict[Path, dict], dict[Path, str], dict]:
+    """What ``flexlink modes`` writes: the JSON documents and CSV texts of modes.json and
+    modes.csv in each scene's folder, and in ``combined`` (the --out folder of a run over
+    several scenes) those of every scene; and the printed document, which is the combined
+    file's, or with one scene the run's own (its files and ``failures``)."""
+    summaries = [s for _, s in scenes]
+    parts = [(folder, [s]) for folder, s in scenes]
+    if combined is not None and summaries:
+        parts.append((combined, summaries))
+    written = [folder / name for folder, _ in parts for name in ("modes.json", "modes.csv")]
+    document = modes_document(summaries, written, failures)
+    # a scene's own file lists its own two files; the combined file is the printed document
+    documents = {folder / "modes.json": document if part is summaries else
+                 modes_document(part, [folder / "modes.json", folder / "modes.csv"])
+                 for folder, part in parts}
+    tables = {folder / "modes.csv": comparison_csv(part) for folder, part in parts}
+    return documents, tables, document
 
 
 def hz_text(frequency: float) -> str:
@@ -109,55 +126,89 @@ def hz_text(frequency: float) -> str:
     return f"{frequency:.2f}" if abs(frequency) >= 1.0 else f"{frequency:.4g}"
 
 
-def format_case(summary: dict) -> str:
-    rows = summary["modes"]
-    refs = [k[:-3] for k in (rows[0] if rows else {}) if k.endswith("_Hz") and k != "computed_Hz"]
-    head = f"{summary['scene']}  ({summary['file']})"
-    pose = summary["pose"]
+def format_case(summary: SceneSummary) -> str:
+    """The comparison table of one scene with its pose, model, mesh checks, mean errors,
+    damping and mechanism modes."""
+    case = summary.case
+    pose, modes = case.pose, case.modes
+    refs = [name for name, values in summary.reference.items() if len(values)]
+    head = f"{case.scene.name}  ({case.scene.path})"
+    mu = "" if pose.mu is None else f"mu = {math.degrees(pose.mu):.3f} deg, "
     lines = [head, "-" * len(head),
-             f"pose: theta2 = {pose['theta2_deg']:.3f} deg, "
-             + ("" if pose["mu_deg"] is None else f"mu = {pose['mu_deg']:.3f} deg, ") +
-             f"{pose['branch']} branch; {summary.get('family', 'planar')} model; "
-             f"{summary['elements_per_link']} elements/link, "
-             f"{summary['dofs']} DOFs, {summary['solver']} solver, "
-             f"max residual {summary['max_residual']:.1e}"]
-    header = f"{'mode':>4} {'computed Hz':>12}" + "".join(f" {r + ' Hz':>9} {'err %':>8}" for r in refs)
-    if rows and "kind" in rows[0]:
+             f"pose: theta2 = {math.degrees(pose.crank_angle):.3f} deg, {mu}{pose.branch} branch; "
+             f"{summary.family} model; {case.elements_per_link} elements/link, "
+             f"{modes.n_dofs} DOFs, {modes.solver} solver, "
+             f"max residual {summary.max_residual:.1e}"]
+    header = f"{'mode':>4} {'computed Hz':>12}" + "".join(
+        f" {r + ' Hz':>9} {'err %':>8}" for r in refs)
+    if len(summary.frequencies) and summary.kinds is not None:
         header += "  kind"
-    if rows and "label" in rows[0]:
+    if summary.identity:
         header += f" {'m_x g':>7} {'m_y g':>7}  label"
     lines.append(header)
-    for row in rows:
-        line = f"{row['mode']:>4} {hz_text(row['computed_Hz']):>12}"
+    for i, f in enumerate(summary.frequencies):
+        line = f"{i + 1:>4} {hz_text(float(f)):>12}"
         for r in refs:
-            if f"{r}_Hz" in row:
-                line += f" {row[f'{r}_Hz']:>9.1f} {row[f'error_vs_{r}_pct']:>+8.1f}"
-        if "kind" in row:
-            line += f"  {row['kind']}"
-        if "label" in row:
-            mass = row["effective_mass_kg"]
-            line += f" {1e3 * mass['x']:>7.3f} {1e3 * mass['y']:>7.3f}  {row['label']}"
+            if i < len(summary.reference[r]):
+                line += f" {summary.reference[r][i]:>9.1f} {summary.errors[r][i]:>+8.1f}"
+        if summary.kinds is not None:
+            line += f"  {summary.kinds[i]}"
+        if summary.identity:
+            identity = summary.identity[i]
+            mass = identity["effective_mass_kg"]
+            line += f" {1e3 * mass['x']:>7.3f} {1e3 * mass['y']:>7.3f}  {identity['label']}"
         lines.append(line)
-    if summary["mean_abs_error_pct"]:
+    if summary.mean_abs_error_pct:
         lines.append("mean |error|: " + ", ".join(
-            f"vs {k} {v:.1f} %" for k, v in sorted(summary["mean_abs_error_pct"].items())))
-    if summary.get("damping_ratio"):
-        lines.append("damping ratio zeta % (material loss, strain-energy weighted): " + ", ".join(
-            f"{100 * z:.3f}" for z in summary["damping_ratio"]))
-    lines += [f"damping: {a['field']} = {a['value']}, {a['note']}"
-              for a in summary["assumptions"] if a["field"].endswith("loss_factor")]
-    if summary["mechanism_modes_Hz"]:
+            f"vs {k} {v:.1f} %" for k, v in sorted(summary.mean_abs_error_pct.items())))
+    if len(summary.damping_ratio):
+        lines.append(f"damping ratio zeta % ({summary.damping_source}): " + ", ".join(
+            f"{100 * z:.3f}" for z in summary.damping_ratio))
+    lines += [f"damping: {a.field} = {a.value}, {a.note}"
+              for a in case.scene.assumptions if a.field.endswith("loss_factor")]
+    if len(summary.mechanism):
         lines.append("rigid-body/mechanism modes (not paired): " + ", ".join(
-            f"{f:.3g} Hz" for f in summary["mechanism_modes_Hz"]))
+            f"{f:.3g} Hz" for f in summary.mechanism))
     return "\n".join(lines)
 
 
-def comparison_csv(summaries: list[dict]) -> str:
+ALTERNATIVE_LABELS = (("orientation", "other orientation"),
+                      ("timoshenko", "Timoshenko links (computed, shear and rotary inertia)"),
+                      ("shear_source", "shear modulus source"))
+
+
+def scene_text(summary: SceneSummary) -> str:
+    """``format_case`` with the mesh, the warnings, the alternatives and the sensitivity study
+    below it: what ``flexlink modes`` prints for one scene."""
+    lines = [format_case(summary), summary.mesh.describe()]
+    lines += [f"warning: {w}" for w in summary.warnings]
+    if summary.alternatives is not None:
+        lines += [alternative_line(label, getattr(summary.alternatives, name))
+                  for name, label in ALTERNATIVE_LABELS
+                  if getattr(summary.alternatives, name) is not None]
+    if summary.sensitivity is not None:
+        lines.append(format_sensitivity(sensitivity_document(summary.sensitivity)))
+    return "\n".join(lines)
+
+
+def modes_text(summaries: list[SceneSummary]) -> str:
+    """What ``flexlink modes`` prints: ``scene_text`` of every scene, each followed by a blank
+    line, and with any reference the mean |error| over them all."""
+    text = "".join(scene_text(s) + "\n\n" for s in summaries)
+    overall = overall_mean_abs_error(summaries)
+    if overall:
+        text += "overall mean |error|: " + ", ".join(
+            f"vs {k} {v:.1f} %" for k, v in sorted(overall.items())) + "\n"
+    return text
+
+
+def comparison_csv(summaries: list[SceneSummary]) -> str:
     """CSV of the comparison: one row per scene and elastic mode, computed [Hz] and every
     reference column [Hz] with its % error (the keys of ``comparison_rows``), and the mode's
     identity flattened: label, strain_<part> and kinetic_<part> fractions, effective mass
     m_eff_x_kg and m_eff_y_kg."""
-    rows = [{"scene": s["scene"], **_flat(row)} for s in summaries for row in s["modes"]]
+    rows = [{"scene": s.case.scene.name, **_flat(row)}
+            for s in summaries for row in comparison_rows(s)]
     keys = ["scene", "mode", "computed_Hz"]
     for row in rows:
         keys += [k for k in row if k not in keys]

@@ -18,10 +18,13 @@ import numpy as np
 
 from flexlink.analysis.modal import CaseResult
 from flexlink.errors import FlexlinkError
-from flexlink.output.export_vtk import ModeSet
+from flexlink.output.counts import counted
+from flexlink.output.export_vtk import ModeSet, mode_set
+from flexlink.output.report import summary_document
 from flexlink.scene import Scene
 from flexlink.studies.cycle import ModalMap
 from flexlink.studies.operating_point import ASSUMPTIONS, operating_modes
+from flexlink.studies.report_scene import ReportScene
 from flexlink.studies.steady_response import forced_model, steady_response
 from flexlink.studies.torque import torque_study
 
@@ -105,17 +108,20 @@ TORQUE_POSES = 72
 
 
 def at_speed_data(scene: Scene, n_modes: int, elements_per_link: int) -> dict | None:
-    """The scene at its declared operating speed ([operation] crank_speed): the driving torque
-    over the cycle [N m], the operating-point frequencies at the scene's pose from rest to that
-    speed [Hz] (None where a mode diverges) and each link's largest tension and compression of
-    the preload there [N]; None when the scene declares no speed. A part the scene cannot give
-    is {"unavailable": reason}."""
+    """The scene at its declared operating point ([operation] crank_speed and
+    crank_acceleration, 0 if not given): the driving torque over the cycle [N m], the
+    operating-point frequencies at the scene's pose from rest to that speed, with that
+    acceleration at every speed [Hz] (None where a mode diverges) and each link's largest
+    tension and compression of the preload there [N]; None when the scene declares no speed.
+    A part the scene cannot give is {"unavailable": reason}."""
     speed = scene.options.crank_speed
     if speed is None:
         return None
-    out = {"rev_per_min": speed * 30 / math.pi, "rad_per_s": speed, "assumptions": ASSUMPTIONS}
+    acc = scene.options.crank_acceleration or 0.0
+    out = {"rev_per_min": speed * 30 / math.pi, "rad_per_s": speed,
+           "crank_acceleration_rad_s2": acc, "assumptions": ASSUMPTIONS}
     try:
-        curve = torque_study(scene, speed, poses=TORQUE_POSES)
+        curve = torque_study(scene, speed, acc, poses=TORQUE_POSES)
         order = np.argsort(np.degrees(curve.q) % 360.0)
         out["torque"] = {"crank_deg": _rounded(np.degrees(curve.q[order]) % 360.0),
                          "torque_N_m": [float(t) for t in curve.torque[order]],
@@ -125,7 +131,8 @@ def at_speed_data(scene: Scene, n_modes: int, elements_per_link: int) -> dict | 
     out["response"] = steady_response_data(scene, speed, elements_per_link)
     try:
         speeds = np.linspace(0.0, speed, SPEED_STEPS)
-        points = [operating_modes(scene, w, n_modes, elements_per_link) for w in speeds]
+        points = [operating_modes(scene, w, n_modes, elements_per_link, crank_acceleration=acc)
+                  for w in speeds]
     except FlexlinkError as exc:
         out["modes"] = {"unavailable": str(exc)}
         return out
@@ -163,17 +170,69 @@ def steady_response_data(scene: Scene, speed: float, elements_per_link: int) -> 
                        for k, p in enumerate(model.points)]}
 
 
-def scene_page(result: CaseResult, summary: dict, mesh: dict, modes: ModeSet,
-               cycle: dict | None, files: dict, out: Path, at_speed: dict | None = None) -> dict:
-    """Everything the report shows for one scene. ``summary``: ``report.case_summary`` (with
-    its "warnings"); ``mesh``: ``MeshRule.as_dict()`` with "describe"; ``cycle``:
-    ``cycle_data``; ``files``: ``export.export_case``'s answer, linked relative to ``out``;
-    ``at_speed``: ``at_speed_data``."""
+def scene_page(scene: ReportScene, files: dict, out: Path) -> dict:
+    """Everything the report shows for one scene (``studies.report_scene``), its modes drawn
+    on the mesh they were solved on and its operating point (``at_speed_data``); ``files``:
+    ``export.export_case``'s answer, linked relative to ``out``."""
     def relative(paths):
         return [Path(p).relative_to(out).as_posix() for p in paths]
 
-    stem = Path(result.scene.path).stem
-    return {"id": stem, "summary": summary, "mesh": mesh, "drawing": linkage_drawing(result),
-            "shapes": mode_shapes(modes), "cycle": cycle, "at_speed": at_speed,
+    summary = scene.summary
+    result, mesh = summary.case, summary.mesh
+    return {"id": Path(result.scene.path).stem, "summary": summary_document(summary),
+            "mesh": {**mesh.as_dict(), "describe": mesh.describe(), "history": list(mesh.history)},
+            "drawing": linkage_drawing(result),
+            "shapes": mode_shapes(mode_set(result, len(summary.frequencies))),
+            "cycle": cycle_data(scene.cycle, result.pose.crank_angle, scene.cycle_unavailable),
+            "at_speed": at_speed_data(result.scene, len(summary.frequencies), mesh.elements),
             "files": {"vtu": relative(files.get("vtu", [])),
                       "pvd": relative(files.get("pvd", []))}}
+
+
+def report_document(report: Path, page: str, pages: list[dict], out: Path,
+                    failures: list[dict]) -> dict:
+    """The JSON document of ``flexlink report``: the page written to ``report`` and its size,
+    per scene (``scene_page`` each, its files in ``out``) its mesh, frequencies [Hz] and
+    whether it has a cycle map, every file written, and the scenes that failed."""
+    def scene(p: dict) -> dict:
+        summary, cycle = p["summary"], p["cycle"]
+        entry = {"scene": summary["scene"], "file": summary["file"],
+                 "mesh": p["mesh"]["elements_per_link"],
+                 "frequencies_Hz": [r["computed_Hz"] for r in summary["modes"]],
+                 "cycle_map": cycle is not None and "unavailable" not in cycle}
+        if "note" in summary:
+            entry["note"] = summary["note"]
+        if cycle and "note" in cycle:
+            entry["cycle_map_note"] = cycle["note"]
+        return entry
+
+    return {"command": "report", "report": str(report), "bytes": len(page.encode()),
+            "scenes": [scene(p) for p in pages],
+            "files": [str(report)] + [str(out / f) for p in pages
+                                      for f in p["files"]["vtu"] + p["files"]["pvd"]],
+            "failures": failures}
+
+
+def report_html(pages: list[dict], failures: list[dict], n_modes: int) -> str:
+    """The self-contained page of ``pages`` (``scene_page`` each) with plotly.js inlined, the
+    scenes that failed listed at the top, and under the title flexlink's version, when, and
+    what the page holds."""
+    import datetime
+    import importlib.metadata
+
+    import plotly.offline
+
+    from flexlink.output.html_report import render_page
+
+    stamp = datetime.datetime.now().astimezone().strftime("%Y-%m-%d %H:%M %Z")
+    version = importlib.metadata.version("flexlink")
+    subtitle = (f"flexlink {version}, {stamp}: {counted(len(pages), 'scene')}, first "
+                f"{counted(n_modes, 'elastic mode')}")
+    return render_page(pages, plotly.offline.get_plotlyjs(), subtitle=subtitle,
+                       failures=[f["error"] for f in failures])
+
+
+def report_text(document: dict) -> str:
+    """The line ``flexlink report`` prints: how many scenes, how large, where."""
+    return (f"report: {counted(len(document['scenes']), 'scene')}, "
+            f"{document['bytes'] / 1e6:.1f} MB -> {document['report']}")

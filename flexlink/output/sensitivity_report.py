@@ -3,17 +3,25 @@ sensitivity study (``studies/sensitivity.py``) for ``flexlink modes``."""
 
 from __future__ import annotations
 
-import numpy as np
-
+from flexlink.studies.alternatives import Alternative
 from flexlink.studies.sensitivity import SceneSensitivity
 
 
-def alternative_line(label: str, alt: dict) -> str:
+def alternative_document(alt: Alternative | None) -> dict | None:
+    """The JSON document of one alternative (None stays None)."""
+    if alt is None:
+        return None
+    out = {"field": alt.field, "value": alt.value, "computed_Hz": alt.frequencies.tolist(),
+           "mean_abs_error_pct": alt.mean_abs_error_pct}
+    return out if alt.used is None else {**out, "used": alt.used}
+
+
+def alternative_line(label: str, alt: Alternative) -> str:
     """One line: what the other value of a modelling choice gives."""
-    freqs = ", ".join(f"{f:.4g}" for f in alt["computed_Hz"])
-    errors = ", ".join(f"vs {k} {v:.1f} %" for k, v in sorted(alt["mean_abs_error_pct"].items()))
-    used = f" (used: {alt['used']})" if "used" in alt else ""
-    return f"{label}{used}: with {alt['field']} = {alt['value']!r}: {freqs} Hz" + (
+    freqs = ", ".join(f"{f:.4g}" for f in alt.frequencies)
+    errors = ", ".join(f"vs {k} {v:.1f} %" for k, v in sorted(alt.mean_abs_error_pct.items()))
+    used = f" (used: {alt.used})" if alt.used is not None else ""
+    return f"{label}{used}: with {alt.field} = {alt.value!r}: {freqs} Hz" + (
         f"; mean |error| {errors}" if errors else "")
 
 
@@ -56,10 +64,3 @@ def format_sensitivity(data: dict) -> str:
         lines.append(f"{name} inside (*)".ljust(40) + "".join(
             ("*" if flag else "-").rjust(10) for flag in inside))
     return "\n".join(lines)
-
-
-def count_inside(summaries: list[dict], column: str = "Ex") -> tuple[int, int]:
-    """(values of ``column`` inside their case's 95 % interval, values compared)."""
-    flags = [f for s in summaries if "sensitivity" in s
-             for f in s["sensitivity"]["monte_carlo"]["inside"].get(column, [])]
-    return int(np.sum(flags)), len(flags)

@@ -13,8 +13,8 @@ from flexlink.units import RPM
 STRAIN_NOTE = ("strain: bending strain at the fibre y = +depth/2 of the link's local frame "
                "(left of start -> end); deflection: transverse, less the chord through the "
                "link's ends")
-CAVEAT = ("the reduced basis is the stability map's (the reference pose's lowest static "
-          "modes), not yet checked for convergence (docs/critical-speeds.md)")
+CAVEAT = ("the reduced basis is the stability map's, checked on the lowest frequencies of "
+          "every pose (docs/critical-speeds.md); strain converges more slowly than frequency")
 
 
 def _crank_deg(response) -> np.ndarray:

@@ -9,6 +9,7 @@ import numpy as np
 
 from flexlink.output.figures import cycle_axes, write_figure
 from flexlink.studies.tracking import TrackedMap
+from flexlink.units import rev_per_min
 
 
 def events_json(result: TrackedMap) -> list[dict]:
@@ -39,6 +40,20 @@ def periodicity_json(result: TrackedMap) -> dict | None:
     return {"closes": p.closes, "end_pairs_with_start_line": [b + 1 for b in p.permutation],
             "mac": [float(v) for v in p.mac], "relative_step": [float(v) for v in p.step],
             "note": p.note}
+
+
+def tracking_lines(reseeds: list[dict], unsampled: str | None, periodicity: dict | None
+                   ) -> list[str]:
+    """Text lines on the tracking of a map from its JSON-ready ``reseeds`` (``reseeds_json``),
+    unsampled dead-centre note and ``periodicity`` (``periodicity_json``)."""
+    out = [f"re-seeded line{'s' if len(r['lines']) > 1 else ''} "
+           f"{', '.join(map(str, r['lines']))} at crank {r['crank_deg']:.1f} deg: {r['reason']}"
+           for r in reseeds]
+    if unsampled:
+        out.append(f"warning: {unsampled}")
+    if periodicity:
+        out.append(f"periodicity: {periodicity['note']}")
+    return out
 
 
 def tracked_csv(result: TrackedMap) -> str:
@@ -88,7 +103,7 @@ def plot_tracked(result: TrackedMap, path, crank_speed: float | None = None, hit
             ax.scatter(x, y, marker=marker, s=60, color="k", facecolors="none" if marker == "o"
                        else None, zorder=3, label=kind)
     cycle_axes(ax, deg, result.mu90, hits, result.scene + " (modes tracked by MAC)" + (
-        f", crank {crank_speed * 60 / (2 * math.pi):g} rev/min" if crank_speed else ""))
+        f", crank {rev_per_min(crank_speed):g} rev/min" if crank_speed else ""))
     ax.grid(alpha=0.3)
     fig.tight_layout()
     write_figure(fig, path)

@@ -9,12 +9,14 @@ each stage's declared options. All values SI.
 from __future__ import annotations
 
 import dataclasses
+import enum
 import math
 
 import numpy as np
 
 from flexlink.errors import InputError
 from flexlink.fe.model import DriveSpec, JointSpec, LinkSpec, Section, Topology
+from flexlink.fe.motions import ModelFamily
 from flexlink.kinematics import FourBar, Linkage, State
 from flexlink.scene.source import Assumption
 
@@ -58,17 +60,52 @@ class PrbOptions:
     K_theta: float
 
 
+class Plausibility(enum.StrEnum):
+    """What a model outside its range of validity does: refuse (ERROR) or warn."""
+
+    ERROR = "error"
+    WARN = "warn"
+
+
 @dataclasses.dataclass(frozen=True)
 class Options:
     """The stages' declared options (``schema.py`` documents each)."""
 
-    family: str = "planar"  # model family
+    family: ModelFamily = ModelFamily.PLANAR
     crank_speed: float | None = None  # [rad/s]
     crank_acceleration: float | None = None  # [rad/s^2], only with crank_speed
-    plausibility: str = "error"
+    plausibility: Plausibility = Plausibility.ERROR
     prb: PrbOptions | None = None
     variants: tuple[Variant, ...] = ()
     tilt: dict[str, float] = dataclasses.field(default_factory=dict)  # joint -> Ktilt [N m/rad]
+    damping: ModalDamping | None = None  # declared modal damping; None: the loss factors
+
+
+@dataclasses.dataclass(frozen=True)
+class ModalDamping:
+    """Damping declared by the scene's [damping] table, one of: ``ratios`` (one per elastic
+    mode, lowest first, the last repeated past the end; a single ratio is a one-entry tuple)
+    or Rayleigh ``alpha`` [1/s] and ``beta`` [s] of C = alpha M + beta K."""
+
+    ratios: tuple[float, ...] = ()
+    alpha: float = 0.0
+    beta: float = 0.0
+
+    @property
+    def is_rayleigh(self) -> bool:
+        return not self.ratios
+
+
+class LoadKind(enum.StrEnum):
+    TORQUE = "torque"
+    FORCE = "force"
+
+
+class LoadFrame(enum.StrEnum):
+    """Axes a force's components are given along: the global ones or the body's own."""
+
+    GLOBAL = "global"
+    BODY = "body"
 
 
 @dataclasses.dataclass(frozen=True)
@@ -80,12 +117,12 @@ class LoadSpec:
     crank angle; a constant load has a single row and no angles. ``field`` names where it was
     declared, e.g. "loads[0]"."""
 
-    kind: str
+    kind: LoadKind
     body: str
     values: np.ndarray
     angles: np.ndarray | None = None
     at: tuple[float, float] = (0.0, 0.0)
-    frame: str = "global"
+    frame: LoadFrame = LoadFrame.GLOBAL
     field: str = "loads"
 
     def value_at(self, q: float) -> np.ndarray:
@@ -111,21 +148,24 @@ class RigidPose:
     branch: str
 
     @property
-    def theta2(self) -> float:
-        return self.crank_angle
-
-    @property
     def mu(self) -> float | None:
         return next(iter(self.transmission.values()), None)
 
 
+class SceneKind(enum.StrEnum):
+    """``[linkage] type``: a four-bar given by its lengths, or any linkage as data."""
+
+    FOUR_BAR = "four-bar"
+    GENERAL = "general"
+
+
 @dataclasses.dataclass(frozen=True)
 class Scene:
-    """A validated scene of either kind; ``kind`` is "four-bar" or "general"."""
+    """A validated scene of either kind."""
 
     name: str
     path: str
-    kind: str
+    kind: SceneKind
     linkage: Linkage
     four_bar: FourBar | None
     start: float  # input angle of the analysed pose [rad]
@@ -173,7 +213,7 @@ class Scene:
         """Where a whole-cycle sweep starts: (input angle [rad], moving joints near that pose).
         A four-bar scene's cycle runs over crank angles 0 to 360 deg whatever pose it analyses;
         a general scene's starts at its own start pose, whose guess picks the assembly."""
-        if self.kind == "four-bar":
+        if self.kind is SceneKind.FOUR_BAR:
             joints = self.four_bar.pose(0.0, self.branch).joints
             return 0.0, {k: v for k, v in joints.items() if k in self.guess}
         return self.start, dict(self.guess)
@@ -199,7 +239,9 @@ class Scene:
         if self.four_bar is not None and set(self.guess) <= {"A", "B"}:
             joints = self.four_bar.pose(q, self.branch).joints
             return self.linkage.solve(q, {k: joints[k] for k in self.guess})
-        steps = max(1, math.ceil(abs(q - self.start) / CONTINUATION_STEP))
+        steps = math.ceil(abs(q - self.start) / CONTINUATION_STEP)
+        if steps == 0:  # the start pose itself
+            return self.linkage.solve(q, self.guess)
         return self.linkage.cycle(np.linspace(self.start, q, steps + 1), self.guess).states[-1]
 
 

@@ -9,7 +9,7 @@ from flexlink.kinematics import FourBar
 from flexlink.kinematics.linkage import four_bar_linkage
 from flexlink.scene import parts, schema
 from flexlink.meshes import DEFAULT_ELEMENTS
-from flexlink.scene.contract import Scene
+from flexlink.scene.contract import Scene, SceneKind
 from flexlink.scene.source import SceneSource
 
 LINKS = (("crank", "O2", "A"), ("coupler", "A", "B"), ("rocker", "O4", "B"))
@@ -50,7 +50,7 @@ def build_four_bar(src: SceneSource, sf: schema.SceneFile) -> Scene:
         src, sf, name, assumptions), lengths[name]), elements) for name, a, b in LINKS)
     loss = {name: parts.loss_factor(src, sf, name, assumptions) for name, _, _ in LINKS}
     return Scene(
-        name=sf.name or src.path.stem, path=str(src.path), kind="four-bar",
+        name=sf.name or src.path.stem, path=str(src.path), kind=SceneKind.FOUR_BAR,
         linkage=four_bar_linkage(*fb.lengths), four_bar=fb, start=start, branch=pose.branch,
         guess=guess, transmission=(("coupler", "rocker"),), links=links,
         joints=parts.joints(src, sf, list(JOINTS), GROUND, welded_allowed=False),

@@ -23,7 +23,7 @@ from flexlink.kinematics import Body, FourBar, Linkage
 from flexlink.kinematics.synthesis import brodell_soni, extended_rocker, minimax
 from flexlink.scene import parts, schema
 from flexlink.meshes import DEFAULT_ELEMENTS
-from flexlink.scene.contract import Scene
+from flexlink.scene.contract import Scene, SceneKind
 from flexlink.scene.source import SceneSource
 
 FOUR_BAR_BODIES = (("crank", "O2", "A"), ("coupler", "A", "B"), ("rocker", "O4", "B"))
@@ -199,7 +199,7 @@ def build_general(src: SceneSource, sf: schema.SceneFile) -> Scene:
     for warning in structure_warnings(linkage, tuple(links), joints):
         log.warning("%s: %s", src.path, warning)
     return Scene(
-        name=sf.name or src.path.stem, path=str(src.path), kind="general", linkage=linkage,
+        name=sf.name or src.path.stem, path=str(src.path), kind=SceneKind.GENERAL, linkage=linkage,
         four_bar=fb, start=start, branch=lk.branch, guess=guess, transmission=transmission,
         links=tuple(links), joints=joints,
         drive=parts.drive(src, sf, {l.name: (l.start, l.end) for l in links}, set(ground)),

@@ -15,7 +15,7 @@ import numpy as np
 from flexlink.errors import InputError
 from flexlink.kinematics import Linkage
 from flexlink.scene import parts, schema
-from flexlink.scene.contract import LoadSpec
+from flexlink.scene.contract import LoadFrame, LoadKind, LoadSpec
 from flexlink.scene.source import SceneSource
 from flexlink.units import parse_quantity
 
@@ -88,17 +88,17 @@ def load_spec(src: SceneSource, table: schema.LoadTable, i: int, names: list[str
     if table.link not in names:
         raise parts.unknown_name(src, f"{field}.link", "body", table.link, names)
     at = tuple(table.at) if table.at is not None else (0.0, 0.0)
+    kind, frame = LoadKind(table.kind), LoadFrame(table.frame)
     if table.csv is None:
-        value = (table.torque,) if table.kind == "torque" else tuple(table.force)
-        return LoadSpec(table.kind, table.link, np.array([value], float), None, at, table.frame,
-                        field)
+        value = (table.torque,) if kind is LoadKind.TORQUE else tuple(table.force)
+        return LoadSpec(kind, table.link, np.array([value], float), None, at, frame, field)
     scale = parse_quantity(f"1 {table.unit}", table.kind, source=src.file_of("loads"),
                            field=f"{field}.unit")
     path = Path(src.file_of("loads")).parent / table.csv
     _, data = _rows(path, f"{field}.csv", len(COLUMNS[table.kind]))
     data = _one_turn(path, f"{field}.csv", data)
-    return LoadSpec(table.kind, table.link, data[:, 1:] * scale, np.radians(data[:, 0]), at,
-                    table.frame, field)
+    return LoadSpec(kind, table.link, data[:, 1:] * scale, np.radians(data[:, 0]), at, frame,
+                    field)
 
 
 def build_loads(src: SceneSource, sf: schema.SceneFile, linkage: Linkage) -> tuple[LoadSpec, ...]:

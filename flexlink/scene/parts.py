@@ -9,10 +9,12 @@ import math
 
 from flexlink.errors import InputError
 from flexlink.fe.model import DriveSpec, JointSpec, Section
+from flexlink.fe.motions import ModelFamily
 from flexlink.materials.mixtures import (BeamMaterial, LossFactor, isotropic, load_constituent,
                                          woven_composite)
 from flexlink.scene import schema
-from flexlink.scene.contract import Composite, Options, PrbOptions, Reference, Variant
+from flexlink.scene.contract import (Composite, ModalDamping, Options, Plausibility, PrbOptions,
+                                     Reference, Variant)
 from flexlink.scene.source import Assumption, SceneSource
 
 DEFAULT_G_RATIO = 2.6  # E / G of an isotropic solid with nu = 0.3: 2 (1 + nu)
@@ -94,12 +96,15 @@ def loss_factor(src: SceneSource, sf: schema.SceneFile, link: str,
                 assumptions: list[Assumption]) -> float:
     """A link's material loss factor eta [-]: as written in its material table, else its named
     material file's, else ``WOVEN_LOSS`` or ``GENERIC_LOSS``; a value not written in the scene
-    is listed as an assumption with its range."""
+    is listed as an assumption with its range. A scene that declares [damping] uses no loss
+    factor, so none is assumed."""
     own = sf.links.get(link)
     field = f"links.{link}.material" if own is not None and own.material else "material"
     m = own.material if own is not None and own.material else sf.material
     if m is None or m.loss_factor is not None:
         return 0.0 if m is None else m.loss_factor
+    if sf.damping is not None:
+        return 0.0
     try:
         named = load_constituent(m.isotropic).loss if m.isotropic is not None else None
     except InputError as exc:
@@ -255,7 +260,7 @@ def default_assumptions(src: SceneSource, sf: schema.SceneFile,
     own = table.__pydantic_extra__ or {}
     untilted = [j for j in joint_names
                 if table.Ktilt is None and (j not in own or own[j].Ktilt is None)]
-    if sf.model.family == "planar" or not untilted:
+    if ModelFamily(sf.model.family) is ModelFamily.PLANAR or not untilted:
         return []
     return [Assumption("joints.Ktilt", "rigid", "assumed (default): joints " + ", ".join(untilted)
                        + " hold both out-of-plane bending moments (Ktilt rigid); Ktilt is not "
@@ -268,10 +273,18 @@ def options(src: SceneSource, sf: schema.SceneFile, joint_names: list[str]) -> O
         p = sf.prb
         prb = PrbOptions(p.strip, p.pivot, p.link, p.clamp, p.gamma, p.K_theta)
     variants = tuple(Variant(v.name or v.field, v.field, tuple(v.values)) for v in sf.family)
-    return Options(family=sf.model.family, crank_speed=sf.operation.crank_speed,
+    return Options(family=ModelFamily(sf.model.family), crank_speed=sf.operation.crank_speed,
                    crank_acceleration=sf.operation.crank_acceleration,
-                   plausibility=sf.checks.plausibility, prb=prb, variants=variants,
-                   tilt=tilt(sf, joint_names))
+                   plausibility=Plausibility(sf.checks.plausibility), prb=prb, variants=variants,
+                   tilt=tilt(sf, joint_names), damping=modal_damping(sf.damping))
+
+
+def modal_damping(table: schema.DampingTable | None) -> ModalDamping | None:
+    if table is None:
+        return None
+    if table.ratio is not None or table.ratios is not None:
+        return ModalDamping(ratios=(table.ratio,) if table.ratio is not None else tuple(table.ratios))
+    return ModalDamping(alpha=table.rayleigh_alpha or 0.0, beta=table.rayleigh_beta or 0.0)
 
 
 def unique(assumptions) -> tuple[Assumption, ...]:

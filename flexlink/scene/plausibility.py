@@ -13,7 +13,8 @@ import logging
 import math
 
 from flexlink.errors import InputError
-from flexlink.fe.beams import euler_bernoulli_pinned, timoshenko_pinned
+from flexlink.fe.beams import BeamTheory, euler_bernoulli_pinned, timoshenko_pinned
+from flexlink.scene.contract import Plausibility
 
 log = logging.getLogger(__name__)
 
@@ -104,7 +105,7 @@ def check_scene(scene) -> None:
     findings = scene_findings(scene)
     if not findings:
         return
-    if scene.options.plausibility == "warn":
+    if scene.options.plausibility is Plausibility.WARN:
         for f in findings:
             log.warning("%s: %s: %s", f.source, f.field, f.message)
         return
@@ -141,7 +142,7 @@ def model_warnings(model) -> list[str]:
     out = []
     for link in model.links:
         s = link.section
-        if s.beam != "euler-bernoulli":
+        if s.beam is not BeamTheory.EULER_BERNOULLI:
             continue
         ratio, drop = link.length / s.depth, timoshenko_drop(s, link.length)
         if ratio < SLENDER_LIMIT or drop > SHEAR_WARN:

@@ -491,6 +491,35 @@ class OperationTable(Table):
         return self
 
 
+class DampingTable(Table):
+    """Modal damping declared directly, in place of the materials' loss factors: one ratio for
+    every mode, a ratio per mode, or Rayleigh damping C = alpha M + beta K."""
+
+    ratio: number(0.0, 1.0, high_open=True) | None = doc(
+        "One viscous damping ratio zeta for every elastic mode (e.g. 0.02 from a measured "
+        "decay).", default=None)
+    ratios: list[number(0.0, 1.0, high_open=True)] | None = doc(
+        "A damping ratio per elastic mode, lowest mode first; modes past the end of the list "
+        "take its last value.", default=None)
+    rayleigh_alpha: number(0.0, 1e6) | None = doc(
+        "Rayleigh mass coefficient alpha [1/s] of C = alpha M + beta K: mode i gets "
+        "zeta_i = alpha / (2 omega_i) + beta omega_i / 2.", default=None)
+    rayleigh_beta: number(0.0, 1.0) | None = doc(
+        "Rayleigh stiffness coefficient beta [s] of C = alpha M + beta K.", default=None)
+
+    @model_validator(mode="after")
+    def _one_kind(self):
+        given = [k for k in ("ratio", "ratios") if getattr(self, k) is not None]
+        if self.rayleigh_alpha is not None or self.rayleigh_beta is not None:
+            given.append("rayleigh_alpha/rayleigh_beta")
+        if len(given) != 1:
+            raise ValueError("give exactly one of: ratio, ratios, or rayleigh_alpha and/or "
+                             f"rayleigh_beta (got {given or 'none'})")
+        if self.ratios is not None and not self.ratios:
+            raise ValueError("ratios is empty; give one ratio per mode, lowest first")
+        return self
+
+
 class LoadTable(Table):
     """An external load on one body of the linkage, for the driving torque: a torque, or a
     force at a point of the body; constant, or over the crank angle from a CSV file."""
@@ -594,6 +623,8 @@ class SceneFile(Table):
                                            default=None)
     checks: ChecksTable = doc("Input checks.", default=ChecksTable())
     operation: OperationTable = doc("Operating conditions.", default=OperationTable())
+    damping: DampingTable | None = doc("Modal damping declared directly (absent: from the "
+                                       "materials' loss factors).", default=None)
     loads: list[LoadTable] = doc("External loads on the bodies, for the driving torque "
                                  "(``flexlink torque``).", default=[])
     prb: PrbTable | None = doc("Pseudo-rigid-body comparison.", default=None)

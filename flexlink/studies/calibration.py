@@ -16,18 +16,21 @@ the fit records which did (``FitResult.converged``) and the report says so.
 from __future__ import annotations
 
 import dataclasses
+import enum
 import logging
 import math
 from pathlib import Path
 
 import numpy as np
 
+from flexlink.choices import parse_choice
 from flexlink.errors import FlexlinkError, InputError
 from flexlink.analysis.families import elastic_modes
 from flexlink.studies.array_shapes import check_shape
 from flexlink.studies.jacobian import case_modes, log_frequency_sensitivities
 from flexlink.parallel import run_tasks
 from flexlink.scene import Scene, load_scene
+from flexlink.scene.contract import SceneKind
 from flexlink.units import parse_range, percent_error
 
 log = logging.getLogger(__name__)
@@ -109,6 +112,13 @@ def parse_free(spec: str) -> FreeParameter:
     return FreeParameter(name, low, high)
 
 
+class FitTarget(enum.StrEnum):
+    """The residual a fit minimises: errors of the frequencies, or of their ratios to the first."""
+
+    FREQUENCIES = "frequencies"
+    RATIOS = "ratios"
+
+
 @dataclasses.dataclass(frozen=True)
 class Problem:
     """What to fit: scene files, free inputs, the reference column, the residual kind.
@@ -118,14 +128,13 @@ class Problem:
     scenes: tuple[str, ...]
     parameters: tuple[FreeParameter, ...]
     reference: str = "Ex"
-    target: str = "frequencies"
+    target: FitTarget = FitTarget.FREQUENCIES
     n_modes: int = 4
     elements: int | None = None
     fixed: tuple[tuple[str, str], ...] = ()
 
     def __post_init__(self):
-        if self.target not in ("frequencies", "ratios"):
-            raise ValueError(f"target must be 'frequencies' or 'ratios', not {self.target!r}")
+        object.__setattr__(self, "target", parse_choice(FitTarget, self.target, "target"))
 
     @property
     def bounds(self) -> tuple[np.ndarray, np.ndarray]:
@@ -178,7 +187,7 @@ def measured(problem: Problem, scenes=None) -> np.ndarray:
     rows = []
     for path in scenes or problem.scenes:
         scene = load_scene(path)
-        if scene.kind != "four-bar":  # KNOWN's inputs (L1, the crank's section, O2..O4) are its
+        if scene.kind is not SceneKind.FOUR_BAR:  # KNOWN's inputs (L1, the crank's section, O2..O4) are its
             raise InputError("calibration fits the inputs of four-bar scenes (L1, section, "
                              "joints O2, A, B, O4); this is a general scene", source=str(path),
                              field="linkage.type", expected="a four-bar scene")
@@ -192,7 +201,7 @@ def measured(problem: Problem, scenes=None) -> np.ndarray:
 
 
 def log_residuals(problem: Problem, predicted: np.ndarray, reference: np.ndarray) -> np.ndarray:
-    if problem.target == "ratios":
+    if problem.target is FitTarget.RATIOS:
         r = np.log(predicted[:, 1:] / predicted[:, :1]) - np.log(reference[:, 1:] / reference[:, :1])
     else:
         r = np.log(predicted) - np.log(reference)
@@ -237,7 +246,7 @@ class _Residuals:
             self.names, self._evaluate(x), self.problem.n_modes, self.problem.elements,
             self.followers, self.problem.bounds[1])
         D[np.isnan(predicted)] = 0.0
-        if self.problem.target == "ratios":
+        if self.problem.target is FitTarget.RATIOS:
             J = D[:, 1:] - D[:, :1]
             J[np.isnan(predicted[:, 1:]) | np.isnan(predicted[:, :1])] = 0.0
         else:
@@ -344,7 +353,7 @@ def _summarise(problem: Problem, reference: np.ndarray, runs) -> FitResult:
 
 
 def fit_many(problems: list[Problem], starts: int = 8, seed: int = 0, n_jobs: int = -1,
-             progress: bool = False) -> list[FitResult]:
+             show_progress: bool = False) -> list[FitResult]:
     """Fit every problem from ``starts`` start points each; all runs share one parallel pool.
     Start points are drawn in this process from ``seed``, so results do not depend on n_jobs."""
     rng = np.random.default_rng(seed)
@@ -354,7 +363,7 @@ def fit_many(problems: list[Problem], starts: int = 8, seed: int = 0, n_jobs: in
         for x0 in start_points(pr, starts, rng):
             tasks.append((pr, ref, x0))
             owner.append(k)
-    runs = run_tasks(_solve_from, tasks, n_jobs=n_jobs, progress=progress, label="fits")
+    runs = run_tasks(_solve_from, tasks, n_jobs=n_jobs, show_progress=show_progress, label="fits")
     return [_summarise(pr, ref, [r for r, o in zip(runs, owner) if o == k])
             for k, (pr, ref) in enumerate(zip(problems, references))]
 
@@ -394,7 +403,7 @@ def cross_validation(problem: Problem, folds: list[FitResult]) -> CrossValidatio
                            reference=measured(problem), reasons=tuple(reasons))
 
 
-def single_case_problems(problem: Problem, target: str) -> list[Problem]:
+def single_case_problems(problem: Problem, target: FitTarget) -> list[Problem]:
     return [dataclasses.replace(problem, scenes=(s,), target=target) for s in problem.scenes]
 
 

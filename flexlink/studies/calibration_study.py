@@ -14,10 +14,12 @@ import numpy as np
 from flexlink import logbook
 from flexlink.analysis.families import scene_family
 from flexlink.errors import InputError
+from flexlink.fe.motions import ModelFamily
 from flexlink.meshes import FIT_ELEMENTS
 from flexlink.scene import load_scene
 from flexlink.studies.array_shapes import check_shape
-from flexlink.studies.calibration import (DEFAULT_FREE, CrossValidation, FitResult, FreeParameter,
+from flexlink.studies.calibration import (DEFAULT_FREE, CrossValidation, FitResult, FitTarget,
+                                          FreeParameter,
                                           Problem, case_label, cross_validation, fit_many,
                                           leave_one_out_problems, mean_abs, measured, parse_free,
                                           predict_with_failures, ratios, single_case_problems)
@@ -27,7 +29,8 @@ from flexlink.studies.uncertainty import (Inputs, MonteCarlo, Sensitivities, mon
 
 # inputs with no effect on a family are left out of its default free set (they could not be
 # identified: zero Jacobian column)
-NOT_IN_FAMILY = {"planar": {"Ktilt"}, "out-of-plane": {"Kr", "drive"}, "3d": set()}
+NOT_IN_FAMILY = {ModelFamily.PLANAR: {"Ktilt"}, ModelFamily.OUT_OF_PLANE: {"Kr", "drive"},
+                 ModelFamily.THREE_D: set()}
 DEFAULT_TILT = "Ktilt=1e-2 N*m/rad:1e5 N*m/rad"
 # the comparisons of a study, each a table of errors [%] per case and mode
 COMPARISONS = ("assumed_inputs_vs_Ex", "calibrated_to_Ex_in_sample", "cross_validated_vs_Ex",
@@ -35,7 +38,7 @@ COMPARISONS = ("assumed_inputs_vs_Ex", "calibrated_to_Ex_in_sample", "cross_vali
                "per_case_fit_in_sample")
 
 
-def default_free(family: str) -> tuple[FreeParameter, ...]:
+def default_free(family: ModelFamily) -> tuple[FreeParameter, ...]:
     specs = [parse_free(s) for s in (*DEFAULT_FREE, DEFAULT_TILT)]
     return tuple(p for p in specs if p.name not in NOT_IN_FAMILY[family])
 
@@ -49,7 +52,7 @@ class StudySettings:
     thickness_sd: float = 0.15e-3  # [m]
     elements: int | None = FIT_ELEMENTS
     n_jobs: int = -1
-    progress: bool = False
+    show_progress: bool = False
 
 
 @dataclasses.dataclass(frozen=True)
@@ -138,7 +141,7 @@ class CalibrationStudy:
     Frequencies [Hz] and errors [%] are arrays (cases, n_modes); ``free_nominal`` [SI] is each
     free input's assumed value in the first scene (inf for a rigid one)."""
 
-    family: str
+    family: ModelFamily
     files: tuple[str, ...]
     settings: StudySettings
     free: tuple[FreeParameter, ...]
@@ -179,12 +182,12 @@ class CalibrationStudy:
         return tuple(case_label(p) for p in self.files)
 
 
-def study_families(names, files) -> list[str]:
-    """The model families ``names`` once each, in order; "scene" stands for the first scene
+def study_families(names, files) -> list[ModelFamily]:
+    """The model families ``names`` once each, in order; None stands for the first scene
     file's own [model] family."""
     chosen = []
     for name in names:
-        name = scene_family(load_scene(files[0])) if name == "scene" else name
+        name = scene_family(load_scene(files[0])) if name is None else name
         if name not in chosen:
             chosen.append(name)
     return chosen
@@ -205,14 +208,14 @@ def _pct(predicted, reference):
 def _uncertainty(paths, overrides, s: StudySettings, reference) -> UncertaintySummary:
     inputs = scene_inputs(paths[0], overrides, s.vf_sd, s.thickness_sd)
     mc = monte_carlo(paths, overrides, inputs, s.samples, s.seed, elements=s.elements,
-                     n_jobs=s.n_jobs, progress=s.progress)
+                     n_jobs=s.n_jobs, show_progress=s.show_progress)
     sens = sensitivities(paths, overrides, inputs, elements=s.elements, n_jobs=s.n_jobs,
-                         progress=s.progress)
+                         show_progress=s.show_progress)
     return UncertaintySummary(inputs=inputs, monte_carlo=mc, sensitivities=sens,
                               reference=reference)
 
 
-def run_study(paths, family: str, free: tuple[FreeParameter, ...] | None,
+def run_study(paths, family: ModelFamily, free: tuple[FreeParameter, ...] | None,
               settings: StudySettings) -> CalibrationStudy:
     """Everything the report needs for one family (see the module docstring). The model's
     warnings over the study's thousands of evaluations are summarised in one line at its end.
@@ -221,7 +224,7 @@ def run_study(paths, family: str, free: tuple[FreeParameter, ...] | None,
         return _study(tuple(str(p) for p in paths), family, free, settings)
 
 
-def _study(paths: tuple[str, ...], family: str, free, s: StudySettings) -> CalibrationStudy:
+def _study(paths: tuple[str, ...], family: ModelFamily, free, s: StudySettings) -> CalibrationStudy:
     free = free or default_free(family)
     base = Problem(scenes=paths, parameters=free, reference="Ex", elements=s.elements,
                    fixed=(("model.family", family),))
@@ -233,10 +236,10 @@ def _study(paths: tuple[str, ...], family: str, free, s: StudySettings) -> Calib
                          f"leaving one out), got {len(paths)}", field="SCENES",
                          expected="two or more scene files, or a folder of them")
     groups = {"Ex": [base], "FE": [fe], "folds": leave_one_out_problems(base),
-              "per_case": single_case_problems(base, "frequencies"),
-              "ratios": single_case_problems(base, "ratios")}
+              "per_case": single_case_problems(base, FitTarget.FREQUENCIES),
+              "ratios": single_case_problems(base, FitTarget.RATIOS)}
     fitted = iter(fit_many([p for group in groups.values() for p in group], s.starts, s.seed,
-                           s.n_jobs, s.progress))  # one pool for every fit
+                           s.n_jobs, s.show_progress))  # one pool for every fit
     fits = {name: [next(fitted) for _ in group] for name, group in groups.items()}
     [ex_fit], [fe_fit], per_case = fits["Ex"], fits["FE"], fits["per_case"]
     cv = cross_validation(base, fits["folds"])

@@ -20,9 +20,11 @@ import statistics
 import numpy as np
 
 from flexlink.analysis.mesh import DEFAULT_TOL, ORDER, MeshRule, mesh_for_tolerance  # noqa: F401 (re-exported)
-from flexlink.analysis.modal import analyze
+from flexlink.analysis.eigensolver import EigenSolver, Method
+from flexlink.analysis.modal import Mass, analyze
 from flexlink.errors import NumericalError
 from flexlink.scene import Scene
+from flexlink.studies.array_shapes import check_shape
 from flexlink.analysis.solve import DENSE_LIMIT
 from flexlink.units import percent_error
 
@@ -35,8 +37,8 @@ ORDER_SLACK = 0.5  # observed order within ORDER +- this counts as asymptotic
 class Choice:
     """A way to solve: eigen ``method``, ``mass`` matrix, and energy refinement (see solve.py)."""
 
-    method: str
-    mass: str
+    method: Method
+    mass: Mass
     refine: bool = True
 
     @property
@@ -44,9 +46,10 @@ class Choice:
         return f"{self.method}/{self.mass}" + ("" if self.refine else " (unrefined)")
 
 
-CHOICES = (Choice("sparse", "consistent"), Choice("dense", "consistent"),
-           Choice("sparse", "lumped"), Choice("dense", "lumped"),
-           Choice("sparse", "consistent", refine=False))
+CHOICES = (Choice(Method.SPARSE, Mass.CONSISTENT), Choice(Method.DENSE, Mass.CONSISTENT),
+           Choice(Method.SPARSE, Mass.LUMPED), Choice(Method.DENSE, Mass.LUMPED),
+           Choice(Method.SPARSE, Mass.CONSISTENT, refine=False))
+REFERENCE_CHOICE = CHOICES[0]  # the choice the Richardson reference is extrapolated from
 
 
 @dataclasses.dataclass(frozen=True)
@@ -112,7 +115,7 @@ def run_levels(scene: Scene, work, n_modes: int, repeats: int, progress=None,
                                >= REPEAT_BUDGET_S):
                 continue
             try:
-                done.append(analyze(scene, n_modes, elements, choice.method, choice.mass,
+                done.append(analyze(scene, n_modes, elements, EigenSolver(choice.method), choice.mass,
                                     choice.refine))
             except NumericalError as exc:
                 if refused is None:
@@ -187,12 +190,40 @@ def _pct(computed, measured) -> list[float]:
 
 @dataclasses.dataclass(frozen=True)
 class ConvergenceStudy:
-    """Every level of every choice, the Richardson reference of the first choice, and the JSON
-    document that reports them (``document``: frequencies [Hz], times [s], relative errors)."""
+    """Every level of every choice of ``scene`` (``file``) with ``n_modes`` elastic modes and up
+    to ``repeats`` runs each, the Richardson ``extrapolation`` of REFERENCE_CHOICE, each level's
+    relative ``errors`` against its reference (levels, modes), the ``cheapest`` level within
+    the relative tolerance ``tol`` (None: none is), the scene's ``measured`` column (name,
+    values [Hz]; None without one) and the levels the solver ``refused`` (choice, elements,
+    reason)."""
 
-    levels: list[Level]
-    reference: np.ndarray
-    document: dict
+    scene: str
+    file: str
+    n_modes: int
+    repeats: int
+    tol: float
+    levels: tuple[Level, ...]
+    extrapolation: Extrapolation
+    errors: np.ndarray
+    cheapest: Level | None
+    measured: tuple[str, list[float]] | None
+    refused: tuple[tuple[Choice, int, str], ...] = ()
+
+    def __post_init__(self):
+        modes = len(self.extrapolation.reference)
+        check_shape("ConvergenceStudy", "errors", self.errors, (len(self.levels), modes))
+        for level in self.levels:
+            check_shape("ConvergenceStudy", "levels[].frequencies", level.frequencies, (modes,))
+
+    @property
+    def reference(self) -> np.ndarray:
+        """The Richardson reference frequencies [Hz]."""
+        return self.extrapolation.reference
+
+    def measured_pct(self, computed) -> list[float]:
+        """% error of ``computed`` [Hz] against the measured column (over the modes both have);
+        empty without one."""
+        return [] if self.measured is None else _pct(computed, self.measured[1])
 
 
 def convergence_study(scene: Scene, n_modes: int, max_elements: int, repeats: int, tol: float,
@@ -202,44 +233,13 @@ def convergence_study(scene: Scene, n_modes: int, max_elements: int, repeats: in
     first choice (Richardson), measure every level's error against it and against the
     measured column, and name the cheapest level within the relative tolerance ``tol``."""
     work = [(c, e) for c in CHOICES for e in mesh_levels(max_elements)
-            if c.method != "dense" or runs_dense(e, scene)]
+            if c.method is not Method.DENSE or runs_dense(e, scene)]
     refused: list = []
     levels = run_levels(scene, work, n_modes, repeats, progress, refused)
-    main_choice = CHOICES[0]
-    extrapolation = richardson([l for l in levels if l.choice == main_choice])
-    ref = extrapolation.reference
-    errors = relative_errors(levels, ref)
-    best = cheapest(levels, ref, tol)
-    measured = measured_column(scene)
-    rows = []
-    for level, err in zip(levels, errors):
-        row = {"choice": level.choice.label, "method": level.choice.method,
-               "mass": level.choice.mass, "refined": level.choice.refine,
-               "elements_per_link": level.elements, "dofs": level.dofs,
-               "assembly_s": level.assembly_s, "solve_s": level.solve_s, "runs": level.runs,
-               "frequencies_Hz": level.frequencies, "relative_error": err,
-               "max_relative_error": float(err.max())}
-        if measured is not None:
-            row[f"error_vs_{measured[0]}_pct"] = _pct(level.frequencies, measured[1])
-        rows.append(row)
-    document = {
-        "command": "converge", "scene": scene.name, "file": scene.path, "modes": n_modes,
-        "repeats": repeats,
-        "reference": {"choice": main_choice.label, "frequencies_Hz": ref,
-                      "order_used": extrapolation.order, "observed_order": extrapolation.observed,
-                      "levels": extrapolation.elements, "asymptotic": extrapolation.asymptotic,
-                      "second_step_change": extrapolation.uncertainty},
-        "model_error": None if measured is None else {
-            "column": measured[0], "measured_Hz": list(measured[1][:len(ref)]),
-            "error_pct": _pct(ref, measured[1])},
-        "tolerance": tol,
-        "cheapest": None if best is None else {
-            "choice": best.choice.label, "elements_per_link": best.elements, "dofs": best.dofs,
-            "seconds": best.total_s,
-            "max_relative_error": float(errors[levels.index(best)].max())},
-        "dense_limit_dofs": DENSE_LIMIT,
-        "levels": rows,
-        "refused": [{"choice": c.label, "elements_per_link": e, "reason": msg}
-                    for c, e, msg in refused],
-    }
-    return ConvergenceStudy(levels=levels, reference=ref, document=document)
+    extrapolation = richardson([l for l in levels if l.choice == REFERENCE_CHOICE])
+    return ConvergenceStudy(
+        scene=scene.name, file=scene.path, n_modes=n_modes, repeats=repeats, tol=tol,
+        levels=tuple(levels), extrapolation=extrapolation,
+        errors=relative_errors(levels, extrapolation.reference),
+        cheapest=cheapest(levels, extrapolation.reference, tol),
+        measured=measured_column(scene), refused=tuple(refused))

@@ -17,8 +17,9 @@ from flexlink.kinematics.linkage import Cycle, crank_angles, crossings
 from flexlink.scene import Scene
 from flexlink.scene.contract import pose_transmission_angles
 from flexlink.analysis.families import in_plane_only_note
-from flexlink.analysis.sweep import modal_sweep
+from flexlink.analysis.sweep import SWEEP_SOLVER, Reduction, modal_sweep
 from flexlink.parallel import on_cluster, run_tasks
+from flexlink.units import rev_per_min
 
 
 def kinematic_cycle(scene: Scene, n_poses: int = 360, progress=None) -> Cycle:
@@ -54,7 +55,7 @@ class ModalMap:
 
 def modal_map(scene: Scene, n_poses: int = 360, n_modes: int = 3,
               elements_per_link: int | None = None, progress=None,
-              reduction: str | None = "craig-bampton") -> ModalMap:
+              reduction: Reduction | None = Reduction.CRAIG_BAMPTON) -> ModalMap:
     """The first ``n_modes`` elastic frequencies at ``n_poses`` input angles over the cycle.
 
     ``reduction``: as in ``sweep.modal_sweep``; by default the Craig-Bampton links
@@ -67,7 +68,7 @@ def modal_map(scene: Scene, n_poses: int = 360, n_modes: int = 3,
     cycle = kinematic_cycle(scene, n_poses)
     sweep_task = (scene.topology(elements_per_link), [s.points for s in cycle.states], n_modes)
     if on_cluster():  # the whole sweep as one task: its basis fits all its poses together
-        [sweep] = run_tasks(modal_sweep, [(*sweep_task, "auto", None, reduction)],
+        [sweep] = run_tasks(modal_sweep, [(*sweep_task, SWEEP_SOLVER, None, reduction)],
                             label="modal maps")
     else:
         sweep = modal_sweep(*sweep_task, progress=progress, reduction=reduction)
@@ -109,7 +110,7 @@ def resonance_speed(crank_speed: float | None) -> tuple[float | None, str | None
     if crank_speed == 0:
         return None, "crank speed 0: no crank harmonics, resonance check skipped"
     if crank_speed < 0:
-        rpm = -crank_speed * 60 / (2 * math.pi)
+        rpm = rev_per_min(-crank_speed)
         return -crank_speed, (f"crank speed -{rpm:g} rev/min turns the crank the opposite way; "
                               f"the resonance check runs at |speed| = {rpm:g} rev/min (the "
                               "natural frequencies at a pose do not depend on the speed)")

@@ -36,7 +36,7 @@ import logging
 
 import numpy as np
 
-from flexlink.analysis.families import (FamilyModes, elastic_modes, family_modes, paired,
+from flexlink.analysis.families import (PartModes, elastic_modes, part_modes, paired,
                                         part_model, quadratic_forms)
 from flexlink.analysis.outofplane import tilt_stiffnesses
 from flexlink.errors import FlexlinkError
@@ -59,13 +59,13 @@ class CaseModes:
     part's model and elastic shapes, and which (part, mode) each frequency is."""
 
     frequencies: np.ndarray
-    parts: tuple[FamilyModes, ...]
+    parts: tuple[PartModes, ...]
     pairs: tuple[tuple[int, int], ...]
 
 
 def case_modes(scene, n_modes: int, elements: int | None) -> CaseModes:
     """``families.elastic_modes`` of ``scene``, keeping what the sensitivities need."""
-    parts = family_modes(scene, n_modes, elements)
+    parts = part_modes(scene, n_modes, elements)
     frequencies, pairs = paired(parts, n_modes)
     return CaseModes(frequencies, parts, pairs)
 

@@ -45,10 +45,11 @@ def motion_study(scene: Scene, poses: int, crank_speed: float | None,
                    "transmission_angle_deg": mu}
 
 
-def family_studies(scene_path, scene: Scene, poses: int,
-                   crank_speed: float | None) -> list[dict]:
-    """``motion_study`` of every member of the scene's [[family]] tables (the scene file
-    reloaded with ``field = value``), tagged with the family's name, field and value."""
+def variant_studies(scene_path, scene: Scene, poses: int,
+                    crank_speed: float | None) -> list[dict]:
+    """``motion_study`` of every variant the scene's [[family]] tables declare (the scene file
+    reloaded with ``field = value``), tagged with the variant's name (under the scene key's
+    word, "family"), field and value."""
     members = []
     for variant in scene.options.variants:
         field, label = variant.field, variant.name

@@ -21,13 +21,14 @@ import dataclasses
 import numpy as np
 import scipy.sparse as sp
 
-from flexlink.analysis.modal import pose_modes
+from flexlink.analysis.modal import pose_system
 from flexlink.analysis.quadratic import QuadraticModes, quadratic_modes
-from flexlink.analysis.solve import AUTO_DENSE_MAX, MECHANISM, ModalResult
+from flexlink.analysis.eigensolver import AUTO_DENSE_MAX
+from flexlink.analysis.solve import MECHANISM, ModalResult
 from flexlink.errors import InputError, NumericalError
 from flexlink.fe.assembly import (assemble_reduced_dense, dense_slots, dense_sum,
                                   placed_link_entries, point_mass_entries, reduced_columns,
-                                  reduction, rotated_entries, spring_entries)
+                                  rotated_entries, spring_entries)
 from flexlink.fe.energy import twice_strain_energy
 from flexlink.fe.geometric import GeometricForm, geometric_entries
 from flexlink.fe.model import FrameModel
@@ -35,7 +36,7 @@ from flexlink.fe.preload import axial_forces, inertia_loads, static_displacement
 from flexlink.fe.rotating import rotating_entries
 from flexlink.kinematics.dynamics import RigidMotion, check_speed, rigid_motion
 from flexlink.scene import Scene
-from flexlink.scene.contract import RigidPose, pose_transmission_angles
+from flexlink.scene.contract import LoadKind, RigidPose, pose_transmission_angles
 from flexlink.scene.plausibility import model_warnings, pose_warnings
 from flexlink.studies.torque import wrench
 
@@ -152,7 +153,8 @@ def operating_modes(scene: Scene, speed: float, n_modes: int = 4,
     motion = rigid_motion(scene.linkage, state, speed, crank_acceleration)
     topology = scene.topology(elements_per_link)
     # as `modes` solves them; with its spare modes, a mode that swaps order finds its pair
-    model, static, _ = pose_modes(topology, state.points, n_modes)
+    system = pose_system(topology, state.points, n_modes)
+    model, static = system.model, system.modes
     if MECHANISM in static.kinds:
         raise NumericalError(
             f"{scene.path}: the frame has {static.kinds.count(MECHANISM)} rigid-body/mechanism "
@@ -163,10 +165,10 @@ def operating_modes(scene: Scene, speed: float, n_modes: int = 4,
                                                            state.points))
     warnings = tuple(pose_warnings(scene.four_bar, pose) + model_warnings(model))
     omega, alpha, acc = link_motion(scene, model, topology, motion)
-    T = reduction(model)
+    T = system.T
     column, n = reduced_columns(T, model.n_dofs)
     reduce = reducer(column, n, dense=n <= AUTO_DENSE_MAX)
-    Kr, Mr = reduced_pair(model, T, n, reduce)
+    Kr, Mr = reused_pair(system)
     loads = inertia_loads(model, acc, alpha) + external_loads(scene, model, topology, state)
     forces = axial_forces(model, static_displacement(Kr, T, loads))
     rows, cols, rot = rotating_entries(model, omega, alpha)
@@ -224,12 +226,24 @@ def external_loads(scene: Scene, model: FrameModel, topology, state) -> np.ndarr
         nodes = np.concatenate([link.nodes for link in own])
         w = wrench(scene.linkage, state, load)
         pivot = state.points[scene.linkage.body(load.body).joints[0]]
-        point = np.asarray(pivot if load.kind == "torque" else w.point, dtype=float)
+        point = np.asarray(pivot if load.kind is LoadKind.TORQUE else w.point, dtype=float)
         node = nodes[np.argmin(np.linalg.norm(model.nodes[nodes] - point, axis=1))]
         r = point - model.nodes[node]
         f[3 * node:3 * node + 2] += w.force
         f[3 * node + 2] += w.torque + r[0] * w.force[1] - r[1] * w.force[0]
     return f
+
+
+def reused_pair(system) -> tuple:
+    """The (K, M) with the rigid constraints eliminated, from the static solve's own
+    (``modal.PoseSystem``): as they are when it eliminated them (dense), else T^T K T and
+    T^T M T of its full sparse ones."""
+    if system.eliminated:
+        return system.K, system.M
+    if system.T is None:
+        return sp.csr_matrix(system.K), sp.csr_matrix(system.M)
+    T = sp.csr_matrix(system.T)
+    return (T.T @ system.K @ T).tocsr(), (T.T @ system.M @ T).tocsr()
 
 
 def reduced_pair(model: FrameModel, T, n: int, reduce):

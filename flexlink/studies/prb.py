@@ -25,6 +25,7 @@ import numpy as np
 
 from flexlink.errors import InputError
 from flexlink.kinematics.linkage import State
+from flexlink.studies.array_shapes import check_shape
 from flexlink.units import percent_error
 
 
@@ -81,6 +82,13 @@ class PrbComparison:
     points: dict[str, tuple[float, float]]
     fe: tuple[float, ...]
     prb: PRBResult
+
+    def __post_init__(self):
+        if np.ndim(self.fe) != 1 or not len(self.fe):  # the comparison is with fe[0]
+            raise ValueError(f"PrbComparison.fe has shape {np.shape(self.fe)}, expected "
+                             "(at least 1,)")
+        for name, xy in self.points.items():
+            check_shape("PrbComparison", f"points[{name!r}]", xy, (2,))
 
     @property
     def prb_vs_fe_pct(self) -> float:

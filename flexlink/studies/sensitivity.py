@@ -119,13 +119,13 @@ class EndPoints:
 
 
 def end_points(path, n_modes: int = 4, elements: int | None = None, n_jobs: int = 1,
-               progress: bool = False) -> EndPoints:
+               show_progress: bool = False) -> EndPoints:
     ranged = spans(path)
     tasks = [(str(path), {}, n_modes, elements)]
     for s in ranged:
         tasks += [(str(path), {s.field: s.low}, n_modes, elements),
                   (str(path), {s.field: s.high}, n_modes, elements)]
-    out = run_tasks(frequencies, tasks, n_jobs=n_jobs, progress=progress, label="end points")
+    out = run_tasks(frequencies, tasks, n_jobs=n_jobs, show_progress=show_progress, label="end points")
     return EndPoints(str(path), out[0], ranged,
                      tuple(np.array(out[1 + 2 * k: 3 + 2 * k]) for k in range(len(ranged))))
 
@@ -179,9 +179,9 @@ def draws(path, samples: int, seed: int) -> list[dict]:
 
 
 def interval(path, samples: int = 200, seed: int = 1, n_modes: int = 4,
-             elements: int | None = None, n_jobs: int = 1, progress: bool = False) -> Interval:
+             elements: int | None = None, n_jobs: int = 1, show_progress: bool = False) -> Interval:
     tasks = [(str(path), d, n_modes, elements) for d in draws(path, samples, seed)]
-    out = run_tasks(frequencies, tasks, n_jobs=n_jobs, progress=progress, label="Monte Carlo")
+    out = run_tasks(frequencies, tasks, n_jobs=n_jobs, show_progress=show_progress, label="Monte Carlo")
     return Interval(str(path), np.array(out), seed)
 
 
@@ -212,10 +212,10 @@ class SceneSensitivity:
 
 
 def sensitivity_study(scene, n_modes: int = 4, samples: int = 200, seed: int = 1,
-                      n_jobs: int = 1, progress: bool = False) -> SceneSensitivity:
+                      n_jobs: int = 1, show_progress: bool = False) -> SceneSensitivity:
     """End points and the Monte Carlo interval of ``scene`` on the study's mesh
     (``DEFAULT_ELEMENTS``), with its reference columns."""
-    points = end_points(scene.path, n_modes, DEFAULT_ELEMENTS, n_jobs, progress)
-    spread = interval(scene.path, samples, seed, n_modes, DEFAULT_ELEMENTS, n_jobs, progress)
+    points = end_points(scene.path, n_modes, DEFAULT_ELEMENTS, n_jobs, show_progress)
+    spread = interval(scene.path, samples, seed, n_modes, DEFAULT_ELEMENTS, n_jobs, show_progress)
     reference = dict(scene.reference.columns) if scene.reference else {}
     return SceneSensitivity(points, spread, reference, DEFAULT_ELEMENTS)

@@ -18,8 +18,8 @@ import numpy as np
 import scipy.sparse as sp
 
 from flexlink.analysis.modal import pose_modes
-from flexlink.fe.pose import in_plane_eigen_scale, pose_model
-from flexlink.fe.assembly import assemble, reduction
+from flexlink.fe.model_at_pose import in_plane_eigen_scale, pose_model
+from flexlink.fe.assembly import assemble, rigid_elimination
 from flexlink.fe.energy import lumped_mass
 from flexlink.errors import FlexlinkError, InputError, KinematicsError, NumericalError
 from flexlink.kinematics.fourbar import FourBar
@@ -28,7 +28,9 @@ from flexlink.fe.model import JointSpec, LinkSpec, Section, Topology, build_mode
 from flexlink.scene.plausibility import SHEAR_WARN, SLENDER_LIMIT, model_warnings, pose_warnings, timoshenko_drop
 from flexlink.fe.rigid import RIGID_RATIO, element_stiffness_scale
 from flexlink.scene import RigidPose, Scene, load_scene
-from flexlink.analysis.solve import DENSE_REFUSE, MECHANISM, solve_modes
+from flexlink.scene.contract import SceneKind
+from flexlink.analysis.eigensolver import DENSE_REFUSE, EigenSolver, Method
+from flexlink.analysis.solve import MECHANISM, solve_modes
 
 log = logging.getLogger(__name__)
 
@@ -50,10 +52,10 @@ class Check:
     details: dict = dataclasses.field(default_factory=dict)
 
 
-def _modes(topology: Topology, points, n_elastic: int, method: str = "dense", refine=True):
+def _modes(topology: Topology, points, n_elastic: int, method: Method = Method.DENSE, refine=True):
     """The user's path (``modal.pose_modes``, which ``analyze`` runs): the lowest ``n_elastic``
     elastic modes and every rigid-body/mechanism mode below them."""
-    return pose_modes(topology, points, n_elastic, method, refine=refine)[1]
+    return pose_modes(topology, points, n_elastic, EigenSolver(method), refine=refine)[1]
 
 
 def _with_joints(topology: Topology, **changes) -> Topology:
@@ -174,7 +176,7 @@ def free_crank(scene: Scene) -> Check:
                  "shifted by a vanishing drive spring k_d by k_d phi_d^2 / (2 lambda) (first order, "
                  "within 1 %), and M-orthogonal to the mechanism mode (1e-8)",
                  f"{n_mech} mechanism mode(s) ({r.frequencies[0]:.1e} Hz), labelled "
-                 f"{r.kinds[0]!r}; elastic shift by the weak drive max {np.abs(change).max():.1e}, "
+                 f"'{r.kinds[0]}'; elastic shift by the weak drive max {np.abs(change).max():.1e}, "
                  f"first-order prediction max {np.abs(expected).max():.1e}; M-coupling "
                  f"{cross:.1e}", passed,
                  {"elastic_Hz": el.tolist(), "mechanism_modes": n_mech, "kinds": list(r.kinds),
@@ -190,7 +192,7 @@ def sparse_mechanism(scene: Scene) -> Check:
     eigenvalues: a few eps lambda_max / lambda per mode)."""
     topo, pose = _free_crank(scene)
     model = pose_model(topo, pose.joints)
-    dense, sparse = _modes(topo, pose.joints, 9, "dense"), _modes(topo, pose.joints, 9, "sparse")
+    dense, sparse = _modes(topo, pose.joints, 9, Method.DENSE), _modes(topo, pose.joints, 9, Method.SPARSE)
     shift = -in_plane_eigen_scale(model)
     same = dense.kinds == sparse.kinds
     diff = _rel(sparse.frequencies[1:], dense.frequencies[1:])
@@ -310,9 +312,9 @@ def contrast(scene: Scene) -> list[Check]:
                                         density=7850.0 / 1e6 if field == "density" else 7850.0)
             links.append(dataclasses.replace(spec, section=s))
         mixed, points = dataclasses.replace(topo, links=tuple(links)), pose.joints
-        dense, sparse = _modes(mixed, points, 8, "dense"), _modes(mixed, points, 8, "sparse")
-        raw_d = _modes(mixed, points, 8, "dense", refine=False)
-        raw_s = _modes(mixed, points, 8, "sparse", refine=False)
+        dense, sparse = _modes(mixed, points, 8, Method.DENSE), _modes(mixed, points, 8, Method.SPARSE)
+        raw_d = _modes(mixed, points, 8, Method.DENSE, refine=False)
+        raw_s = _modes(mixed, points, 8, Method.SPARSE, refine=False)
         diff, raw = _rel(sparse.frequencies, dense.frequencies), _rel(raw_s.frequencies, raw_d.frequencies)
         out.append(Check(cid, f"{what} contrast 1e6 (steel crank, coupler {what} / 1e6)",
                          "dense and sparse frequencies agree within 1e-8",
@@ -327,7 +329,7 @@ def dense_refused(scene: Scene) -> Check:
     """A model above DENSE_REFUSE DOFs: the dense solver refuses with a message."""
     elements = DENSE_REFUSE // 9 + 10
     topology = scene.topology(elements)
-    msg = _raises(lambda: _modes(topology, scene.rigid_pose().joints, 4, "dense"), NumericalError)
+    msg = _raises(lambda: _modes(topology, scene.rigid_pose().joints, 4, Method.DENSE), NumericalError)
     return Check("dense-refused", f"dense solve of {3 * sum(l.elements + 1 for l in topology.links)} DOFs",
                  f"refused with a message (limit {DENSE_REFUSE} DOFs), before any allocation",
                  msg or "no error", bool(msg and "refused" in msg))
@@ -394,7 +396,7 @@ def _large_child(path: str, spans: int) -> None:
     section = next(iter(load_scene(path).sections.values()))
     before = _memory_kb("VmRSS")
     topology, points = graded_spans(section, spans)
-    r = _modes(topology, points, 4, "sparse")
+    r = _modes(topology, points, 4, Method.SPARSE)
     longest = LONG_SPANS[0]
     exact = (math.pi / longest) ** 2 * math.sqrt(section.EI / section.mass_per_length) / (2 * math.pi)
     print(r.n_dofs, r.frequencies[r.elastic][0], exact, before, _memory_kb("VmHWM"))
@@ -419,16 +421,16 @@ def repeated(scene: Scene) -> Check:
     c, sn = math.cos(math.radians(60)), math.sin(math.radians(60))
     points = {"Ga": (0, 0), "Ea": (L, 0), "Gb": (1, 0), "Eb": (1 + L * c, L * sn)}
     out = {}
-    for method in ("dense", "sparse"):
+    for method in (Method.DENSE, Method.SPARSE):
         r = _modes(Topology(links, joints), points, 8, method)
         f = r.frequencies[:8]
         out[method] = (f, r.orthogonality_error, r.kinds.count(MECHANISM))
-    f, ortho, mech = out["sparse"]
+    f, ortho, mech = out[Method.SPARSE]
     pairs = _rel(f[0::2], f[1::2])
-    vs_dense = _rel(out["sparse"][0], out["dense"][0])
+    vs_dense = _rel(out[Method.SPARSE][0], out[Method.DENSE][0])
     beta1 = 1.875104068711961  # cantilever: cos b cosh b = -1
     closed = beta1**2 * math.sqrt(s.EI / (s.mass_per_length * L**4)) / (2 * math.pi)
-    passed = pairs < 1e-10 and vs_dense < 1e-10 and max(ortho, out["dense"][1]) < 1e-10 \
+    passed = pairs < 1e-10 and vs_dense < 1e-10 and max(ortho, out[Method.DENSE][1]) < 1e-10 \
         and mech == 0 and _rel(f[0], closed) < 1e-6
     return Check("repeated-eigenvalues", "repeated eigenvalues: two identical uncoupled cantilevers",
                  "4 pairs, each pair equal (1e-10); sparse = dense; M-orthonormal (1e-10); "
@@ -436,8 +438,8 @@ def repeated(scene: Scene) -> Check:
                  f"pair spread {pairs:.1e}; sparse vs dense {vs_dense:.1e}; orthogonality "
                  f"{max(ortho, out['dense'][1]):.1e}; f1 {f[0]:.6f} Hz vs closed form "
                  f"{closed:.6f} Hz", passed,
-                 {"sparse_Hz": f.tolist(), "dense_Hz": out["dense"][0].tolist(),
-                  "orthogonality": max(ortho, out["dense"][1]), "mechanism_modes": mech,
+                 {"sparse_Hz": f.tolist(), "dense_Hz": out[Method.DENSE][0].tolist(),
+                  "orthogonality": max(ortho, out[Method.DENSE][1]), "mechanism_modes": mech,
                   "length": L, "elements": ELEMENTS})
 
 
@@ -447,7 +449,7 @@ def massless(scene: Scene) -> list[Check]:
     pose = scene.rigid_pose()
     model = build_model(scene.topology(64), pose.joints)
     K, _ = assemble(model)
-    T, lam = reduction(model), in_plane_eigen_scale(model)
+    T, lam = rigid_elimination(model), in_plane_eigen_scale(model)
     M = lumped_mass(model)
     no_rotary = sp.diags(np.where(np.arange(model.n_dofs) % 3 == 2, 0.0, M.diagonal()), format="csr")
     hrz = solve_modes(K, M, 6, T=T, lambda_ref=lam)
@@ -462,7 +464,7 @@ def massless(scene: Scene) -> list[Check]:
     # a node hanging on springs only, with no mass, tied to the coupler's mid node
     small = build_model(scene.topology(ELEMENTS), pose.joints)
     Ks, Ms = assemble(small)
-    Ts = reduction(small)
+    Ts = rigid_elimination(small)
     base = solve_modes(Ks, Ms, 6, T=Ts, lambda_ref=in_plane_eigen_scale(small))
     coupler = next(l for l in small.links if l.name == "coupler")
     mid = coupler.first_node + coupler.elements // 2
@@ -578,7 +580,7 @@ SLOW = (large_sparse,)
 def run_checks(scene: Scene, slow: bool = False, progress=None) -> list[Check]:
     """Every fast check (and the slow ones if ``slow``), in the order of ``FAST`` and ``SLOW``;
     a check that raises unexpectedly is reported as failed, never hides the others."""
-    if scene.kind != "four-bar":  # every check varies a four-bar's inputs one at a time
+    if scene.kind is not SceneKind.FOUR_BAR:  # every check varies a four-bar's inputs one at a time
         raise InputError("the stability checks vary the inputs of a four-bar scene; this is a "
                          "general scene", source=scene.path, field="linkage.type",
                          expected='a four-bar scene (linkage.type = "four-bar")')

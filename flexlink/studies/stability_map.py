@@ -8,27 +8,32 @@ configuration at each instant; at constant crank speed the inertia preload, the 
 the link angular-acceleration terms all scale with Omega^2, the Coriolis matrix with Omega).
 The matrices are assembled once, at ``poses`` equally spaced crank angles, at Omega = 0 and 1
 rad/s, and interpolated in theta by their Fourier series (exact for a trigonometric
-polynomial of degree below poses/2). They are projected on the lowest ``n_modes`` static modes
-of the reference pose (the scene's), mass normalised, in which the damping is modal:
-C = diag(2 zeta omega_i). The period is one revolution, T = 2 pi / Omega.
+polynomial of degree below poses/2), in co-rotating node coordinates. They are projected on
+the basis of ``analysis.pose_basis`` (the static modes of the poses over the turn, reduced by
+SVD and checked against every pose's own lowest frequencies), given as the scene pose's Ritz
+vectors, in which the damping is modal: C = diag(2 zeta omega_i). The period is one
+revolution, T = 2 pi / Omega.
 """
 
 from __future__ import annotations
 
 import dataclasses
+import functools
 
 import numpy as np
 
-from flexlink.analysis.floquet import FloquetResult, first_order, monodromy
+from flexlink.analysis.floquet import FloquetResult, monodromy
 from flexlink.analysis.modal import pose_modes
+from flexlink.analysis.pose_basis import DEFAULT_TOLERANCE, PoseBasis, pose_basis
 from flexlink.analysis.solve import MECHANISM
 from flexlink.errors import InputError, NumericalError
-from flexlink.fe.assembly import reduced_columns, reduction
+from flexlink.fe.assembly import reduced_columns, rigid_elimination
 from flexlink.fe.geometric import GeometricForm, geometric_entries
-from flexlink.fe.pose import pose_model
+from flexlink.fe.model_at_pose import pose_model
 from flexlink.fe.preload import axial_forces, inertia_loads, static_displacement
 from flexlink.fe.rotating import node_owners, rotating_entries
 from flexlink.kinematics.dynamics import rigid_motion
+from flexlink.parallel import on_cluster, run_tasks, workers
 from flexlink.scene import Scene
 from flexlink.studies.operating_point import external_loads, link_motion, reduced_pair, reducer
 
@@ -37,10 +42,14 @@ DEFAULT_DAMPING_RATIO = 0.01  # modal; light structural damping of bolted metal 
 
 @dataclasses.dataclass(frozen=True)
 class PeriodicModel:
-    """The periodic equations in the reference modal basis, sampled at ``angles`` [rad].
+    """The periodic equations in a reduced basis, sampled at ``angles`` [rad].
 
     mass, coriolis (per rad/s), stiffness (at Omega = 0), speed_stiffness (per (rad/s)^2):
-    (poses, n, n); frequencies: the basis' static frequencies [Hz]; damping_ratio [-]."""
+    (poses, n, n); frequencies (n,): the basis vectors' Ritz frequencies at the scene's pose
+    [Hz], which set the modal damping C = diag(2 zeta omega_i); damping_ratio [-]; basis:
+    how the basis was built and its check (``analysis.pose_basis``), None for equations given
+    directly; then the first ``checked`` frequencies are those the check covers (all of them
+    without a basis)."""
 
     angles: np.ndarray
     mass: np.ndarray
@@ -49,37 +58,87 @@ class PeriodicModel:
     speed_stiffness: np.ndarray
     frequencies: np.ndarray
     damping_ratio: float
+    basis: PoseBasis | None = None
+
+    @property
+    def checked(self) -> np.ndarray:
+        """The scene pose's lowest frequencies [Hz] the basis was checked on (the modes the
+        unstable ranges are labelled with)."""
+        return self.frequencies if self.basis is None else self.basis.exact[0]
 
     def matrices_at(self, theta: np.ndarray) -> tuple[np.ndarray, ...]:
         """(M, G1, K, K2) at crank angles theta (m,) [rad] by Fourier interpolation."""
-        return tuple(_fourier(a, theta) for a in
+        relative = np.asarray(theta, dtype=float) - self.angles[0]
+        return tuple(fourier_series(a, relative) for a in
                      (self.mass, self.coriolis, self.stiffness, self.speed_stiffness))
 
+    def stiffness_floor(self, speed: float, per_pose: int = 4) -> float:
+        """The lowest eigenvalue [(rad/s)^2] over the turn (``per_pose`` points per sampled
+        pose) of the symmetric part of K + speed^2 K2, mass weighted: negative where the
+        frozen frame buckles under its own inertia at that speed (a quasi-static divergence,
+        not a parametric resonance), or at rest where the interpolation between poses fails."""
+        theta = self.angles[0] + np.linspace(0.0, 2.0 * np.pi, per_pose * len(self.angles),
+                                             endpoint=False)
+        M, _, K, K2 = self.matrices_at(theta)
+        L = np.linalg.inv(np.linalg.cholesky(M))
+        stiff = K + speed**2 * K2
+        stiff = 0.5 * (stiff + np.swapaxes(stiff, -1, -2))
+        return float(np.linalg.eigvalsh(L @ stiff @ np.swapaxes(L, -1, -2))[:, 0].min())
+
+    @functools.cached_property
+    def _first_order_samples(self) -> np.ndarray:
+        """(poses, 4, n, n): M^-1 C, M^-1 G1, M^-1 K, M^-1 K2 at each sampled pose, the blocks
+        of A that are interpolated (linear in C + Omega G1 and K + Omega^2 K2, so one series
+        serves every speed; exact at the samples like the matrices' own series)."""
+        damping = np.diag(2.0 * self.damping_ratio * 2.0 * np.pi * self.frequencies)
+        blocks = np.stack(np.broadcast_arrays(damping, self.coriolis, self.stiffness,
+                                              self.speed_stiffness), axis=1)
+        return np.linalg.solve(self.mass[:, None], blocks)
+
     def system(self, speed: float):
-        """times (m,) [s] -> A(t) (m, 2n, 2n) at crank speed ``speed`` [rad/s]."""
-        omega_i = 2.0 * np.pi * self.frequencies
-        damping = np.diag(2.0 * self.damping_ratio * omega_i)
+        """times (m,) [s] -> A(t) (m, 2n, 2n) at crank speed ``speed`` [rad/s], t = 0 at the
+        scene's pose."""
+        samples = self._first_order_samples
+        n = samples.shape[-1]
+        weights = np.array([1.0, speed, 1.0, speed**2])[:, None, None]
+        damping = (samples[:, :2] * weights[:2]).sum(axis=1)
+        stiffness = (samples[:, 2:] * weights[2:]).sum(axis=1)
 
         def a(t):
-            M, G1, K, K2 = self.matrices_at(self.angles[0] + speed * np.asarray(t))
-            return first_order(M, damping + speed * G1, K + speed**2 * K2)
+            theta = speed * np.asarray(t, dtype=float)
+            out = np.zeros(theta.shape + (2 * n, 2 * n))
+            out[..., :n, n:] = np.eye(n)
+            out[..., n:, :n] = -fourier_series(stiffness, theta)
+            out[..., n:, n:] = -fourier_series(damping, theta)
+            return out
         return a
 
 
-def _fourier(samples: np.ndarray, theta: np.ndarray) -> np.ndarray:
+def fourier_series(samples: np.ndarray, theta: np.ndarray) -> np.ndarray:
     """Trigonometric interpolation over one turn of samples (N, ...) taken at N equal steps
-    from angle 0 (N odd, so every harmonic has its pair and the interpolant is real)."""
+    from angle 0, at angles theta (m,) [rad]: N odd, so every harmonic has its pair and the
+    interpolant is real; evaluated as a real cosine-sine sum."""
     N = samples.shape[0]
-    c = np.fft.fft(samples, axis=0) / N
-    k = np.fft.fftfreq(N, 1.0 / N)
-    return np.tensordot(np.exp(1j * np.outer(theta, k)), c, axes=(1, 0)).real
+    c = np.fft.rfft(samples, axis=0) / N
+    k = np.arange(c.shape[0])
+    angle = np.outer(theta, k)
+    flat = c.reshape(c.shape[0], -1)
+    weights = np.full(c.shape[0], 2.0)
+    weights[0] = 1.0
+    values = np.cos(angle) @ (weights[:, None] * flat.real) \
+        - np.sin(angle) @ (weights[:, None] * flat.imag)
+    return values.reshape(np.shape(theta) + samples.shape[1:])
 
 
 def periodic_model(scene: Scene, n_modes: int = 6, poses: int = 37,
                    damping_ratio: float = DEFAULT_DAMPING_RATIO,
-                   elements_per_link: int | None = None) -> PeriodicModel:
-    """The periodic equations of ``scene`` over one crank turn in its reference pose's lowest
-    ``n_modes`` static modes, sampled at ``poses`` (odd) crank angles from the scene's pose."""
+                   elements_per_link: int | None = None, basis_size: int | None = None,
+                   tolerance: float = DEFAULT_TOLERANCE) -> PeriodicModel:
+    """The periodic equations of ``scene`` over one crank turn, sampled at ``poses`` (odd)
+    crank angles from the scene's pose, in the basis of ``analysis.pose_basis``: the lowest
+    ``n_modes`` static modes of every other pose in co-rotating coordinates, reduced by SVD
+    to ``basis_size`` vectors (None: the fewest whose lowest ``n_modes`` frequencies match the
+    full model's at every pose to ``tolerance``), given as the scene pose's Ritz vectors."""
     if poses < 3 or poses % 2 == 0:
         raise InputError(f"poses must be an odd count of at least 3, got {poses}")
     if not 0.0 <= damping_ratio < 1.0:
@@ -91,25 +150,29 @@ def periodic_model(scene: Scene, n_modes: int = 6, poses: int = 37,
     if MECHANISM in static.kinds:
         raise NumericalError(f"{scene.path}: the frame has a mechanism mode at its pose: the "
                              "stability map needs the crank held by its drive")
-    T = reduction(model0)
+    T = rigid_elimination(model0)
     column, n = reduced_columns(T, model0.n_dofs)
-    basis = np.zeros((n, n_modes))
-    basis[column[column >= 0]] = static.shapes[np.ix_(column >= 0, static.elastic[:n_modes])]
     reduce = reducer(column, n, dense=True)
     angles = state0.q + 2.0 * np.pi * np.arange(poses) / poses
-    out = np.empty((4, poses, n_modes, n_modes))
+    full = np.empty((5, poses, n, n))  # M, G1, K, K_ext, K2 in co-rotating DOFs
     for p, angle in enumerate(angles):
-        out[:, p] = _pose_matrices(scene, topology, angle, T, n, reduce, basis,
-                                     _link_angles(model0))
-    scale = np.sqrt(np.diagonal(out[0, 0]))  # mass-normalise at the reference pose
-    out /= np.outer(scale, scale)
-    return PeriodicModel(angles=angles, mass=out[0], coriolis=out[1], stiffness=out[2],
-                         speed_stiffness=out[3], frequencies=static.elastic_frequencies[:n_modes],
-                         damping_ratio=damping_ratio)
+        full[:, p] = _pose_matrices(scene, topology, angle, T, n, reduce, _link_angles(model0))
+    basis = pose_basis(full[2], full[0], n_modes, basis_size, tolerance)
+    M, G1, K, K_ext, K2 = (basis.vectors.T @ A @ basis.vectors for A in full)
+    model = PeriodicModel(angles=angles, mass=M, coriolis=G1, stiffness=K + K_ext,
+                          speed_stiffness=K2, frequencies=basis.frequencies,
+                          damping_ratio=damping_ratio, basis=basis)
+    floor = model.stiffness_floor(0.0)
+    if floor <= 0.0:
+        raise NumericalError(
+            f"{scene.path}: between the {poses} sampled poses the interpolated stiffness is "
+            f"indefinite (lowest eigenvalue {floor:.3g} (rad/s)^2 at rest): the basis' stiff "
+            "directions change faster than the poses resolve; use more poses")
+    return model
 
 
-def _pose_matrices(scene, topology, angle, T, n, reduce, basis, reference):
-    """(M, G1, K + K_ext, K2) at crank ``angle`` [rad] in ``basis`` of co-rotating DOFs."""
+def _pose_matrices(scene, topology, angle, T, n, reduce, reference):
+    """(M, G1, K, K_ext, K2) at crank ``angle`` [rad], dense, in co-rotating reduced DOFs."""
     state = scene.rigid_state(angle)
     model = pose_model(topology, state.points)
     K, M = reduced_pair(model, T, n, reduce)
@@ -123,7 +186,7 @@ def _pose_matrices(scene, topology, angle, T, n, reduce, basis, reference):
     K2 = reduce(rows, cols, rot[0] + rot[2]) + _geometric(model, K, T, reduce,
                                                           inertia_loads(model, acc, alpha))
     R = _turning(model, reference, T)
-    return tuple(basis.T @ R.T @ np.asarray(A) @ R @ basis for A in (M, G1, K + K_ext, K2))
+    return tuple(R.T @ np.asarray(A) @ R for A in (M, G1, K, K_ext, K2))
 
 
 def _link_angles(model) -> np.ndarray:
@@ -165,15 +228,19 @@ def _geometric(model, Kr, T, reduce, loads):
     return reduce(*geometric_entries(model, forces, GeometricForm.CONSISTENT))
 
 
-def speed_multipliers(model: PeriodicModel, speed: float, steps: int = 200) -> FloquetResult:
+STEP_PHASE = 2.0  # h omega_max bound [rad]: ln|mu| within 1.3e-4 per turn of h omega_max 0.5
+
+
+def speed_multipliers(model: PeriodicModel, speed: float, steps: int = 200,
+                      step_phase: float = STEP_PHASE) -> FloquetResult:
     """Floquet multipliers over one revolution at crank ``speed`` [rad/s] (> 0), by at least
-    ``steps`` Magnus steps, and more where needed to keep h max|eig A| <= 1 (h omega_max <= 1,
-    well inside the Magnus series' convergence): at low speed one revolution spans many
-    periods of the highest mode."""
+    ``steps`` Magnus steps, and more where needed to keep h max|eig A| <= ``step_phase``: at
+    low speed one revolution spans many periods of the highest basis frequency, and the
+    Magnus step's error grows with h omega_max (docs/critical-speeds.md, convergence)."""
     period = 2.0 * np.pi / speed
     system = model.system(speed)
     size = np.abs(np.linalg.eigvals(system((model.angles - model.angles[0]) / speed))).max()
-    return monodromy(system, period, max(steps, int(np.ceil(period * size))))
+    return monodromy(system, period, max(steps, int(np.ceil(period * size / step_phase))))
 
 
 @dataclasses.dataclass(frozen=True)
@@ -185,35 +252,57 @@ class InstabilityRange:
     high: float
     modes: tuple[int, ...]
     harmonic: int
-    kind: str
+    kind: str  # "primary", "combination", or "divergence" (K + Omega^2 K2 indefinite)
     growth_rate: float
 
 
 @dataclasses.dataclass(frozen=True)
 class StabilityMap:
-    """Per speed [rad/s]: the largest multiplier modulus [-] and growth rate [1/s]."""
+    """Per speed [rad/s]: the largest multiplier modulus [-], growth rate [1/s] and stiffness
+    floor [(rad/s)^2] (``PeriodicModel.stiffness_floor``: negative where the frozen frame is
+    quasi-statically divergent at some crank angle)."""
 
     speeds: np.ndarray
     largest_modulus: np.ndarray
     growth_rate: np.ndarray
     ranges: tuple[InstabilityRange, ...]
+    stiffness_floor: np.ndarray
 
 
 def stability_map(model: PeriodicModel, speeds: np.ndarray, steps: int = 200,
-                  harmonics: int = 6, progress=None) -> StabilityMap:
+                  harmonics: int = 6, show_progress: bool = False,
+                  step_phase: float = STEP_PHASE) -> StabilityMap:
     """The largest Floquet multiplier over ``speeds`` [rad/s]. At zero speed the equations do
     not vary: nothing is parametrically excited, the modulus is 1 and the rate 0 by definition
-    (the damped modes decay). ``progress``: wraps the loop over speeds (a progress bar)."""
+    (the damped modes decay). The speeds go out in chunks through ``parallel.run_tasks``: in
+    this process, or on the dask cluster of ``parallel.use_scheduler`` (each speed is
+    computed alone, so the result is the same wherever it runs); ``show_progress``: a bar."""
     speeds = np.asarray(speeds, dtype=float)
+    # on a cluster a few chunks per worker; here one speed a chunk, for the bar
+    count = 4 * workers(n_jobs=1) if on_cluster() else len(speeds)
+    chunks = np.array_split(np.arange(len(speeds)), max(1, min(len(speeds), count)))
+    parts = run_tasks(_speed_chunk, [(model, speeds[c], steps, step_phase) for c in chunks],
+                      n_jobs=1, show_progress=show_progress, label="speed chunks")
+    modulus = np.concatenate([p[0] for p in parts])
+    rate = np.concatenate([p[1] for p in parts])
+    floor = np.array([model.stiffness_floor(w) for w in speeds])
+    return StabilityMap(speeds, modulus, rate,
+                        _ranges(model, speeds, modulus, rate, floor, harmonics), floor)
+
+
+def _speed_chunk(model: PeriodicModel, speeds: np.ndarray, steps: int, step_phase: float):
+    """(largest modulus, growth rate) at each of ``speeds`` [rad/s]."""
     modulus, rate = np.ones(len(speeds)), np.zeros(len(speeds))
-    for i in (progress or iter)(range(len(speeds))):
-        if speeds[i] > 0.0:
-            result = speed_multipliers(model, speeds[i], steps)
+    for i, speed in enumerate(speeds):
+        if speed > 0.0:
+            result = speed_multipliers(model, speed, steps, step_phase)
             modulus[i], rate[i] = result.largest_modulus, result.growth_rate
-    return StabilityMap(speeds, modulus, rate, _ranges(model, speeds, modulus, rate, harmonics))
+    return modulus, rate
 
 
-def _ranges(model, speeds, modulus, rate, harmonics):
+def _ranges(model, speeds, modulus, rate, floor, harmonics):
+    """Runs of unstable speeds, each labelled with the nearest parametric resonance, or as a
+    "divergence" (no modes, harmonic 0) when the stiffness is indefinite somewhere in it."""
     unstable = np.concatenate([[False], modulus > 1.0, [False]])
     starts, ends = np.flatnonzero(np.diff(unstable.astype(int)) == 1), \
         np.flatnonzero(np.diff(unstable.astype(int)) == -1)
@@ -221,7 +310,9 @@ def _ranges(model, speeds, modulus, rate, harmonics):
     for a, b in zip(starts, ends):
         low, high = speeds[a], speeds[b - 1]
         middle = 0.5 * (low + high) / (2.0 * np.pi)  # rev/s
-        modes, k, kind = _nearest(model.frequencies, middle, harmonics)
+        modes, k, kind = _nearest(model.checked, middle, harmonics)
+        if floor[a:b].min() < 0.0:
+            modes, k, kind = (), 0, "divergence"
         out.append(InstabilityRange(float(low), float(high), modes, k, kind,
                                     float(rate[a:b].max())))
     return tuple(out)

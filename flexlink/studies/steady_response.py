@@ -1,8 +1,8 @@
 """The steady elastic response of the running linkage: deflection and bending strain over one
 revolution at a crank speed, and the peak strain against speed.
 
-The periodic equations of ``studies.stability_map`` (reduced basis of the reference pose's
-static modes, co-rotating node coordinates, modal damping) forced by the loads of the rigid
+The periodic equations of ``studies.stability_map`` (its reduced basis, ``analysis.pose_basis``,
+co-rotating node coordinates, modal damping) forced by the loads of the rigid
 motion: the d'Alembert loads (``fe.preload.inertia_loads``, which scale with Omega^2 at constant
 crank speed) and the scene's [[loads]] (independent of speed),
 
@@ -25,13 +25,11 @@ import math
 
 import numpy as np
 
-from flexlink.analysis.floquet import first_order
-from flexlink.analysis.modal import pose_modes
 from flexlink.analysis.periodic_response import UnstableError, periodic_solution
 from flexlink.errors import InputError, NumericalError
-from flexlink.fe.assembly import reduced_columns, reduction
+from flexlink.fe.assembly import reduced_columns, rigid_elimination
 from flexlink.fe.beams import shear_parameter
-from flexlink.fe.pose import pose_model
+from flexlink.fe.model_at_pose import pose_model
 from flexlink.fe.preload import inertia_loads
 from flexlink.fe.timoshenko import shape_functions
 from flexlink.kinematics.dynamics import rigid_motion
@@ -40,9 +38,9 @@ from flexlink.studies.operating_point import external_loads, link_motion, reduce
 from flexlink.studies.stability_map import (
     DEFAULT_DAMPING_RATIO,
     PeriodicModel,
-    _fourier,
     _link_angles,
     _turning,
+    fourier_series,
     periodic_model,
 )
 
@@ -88,35 +86,28 @@ class ForcedModel:
                 raise ValueError(f"{name} must be ({poses}, {len(self.points)}, {n})")
 
     def at(self, samples: np.ndarray, theta) -> np.ndarray:
-        """``samples`` (poses, ...) interpolated at crank angles ``theta`` (m,) [rad]."""
-        return _fourier(samples, np.asarray(theta) - self.periodic.angles[0])
+        """``samples`` (poses, ...) interpolated at crank angles ``theta`` (m,) [rad], as the
+        periodic model interpolates its matrices."""
+        return fourier_series(samples, np.asarray(theta) - self.periodic.angles[0])
 
     def system(self, speed: float):
-        """times (m,) [s] -> A (m, 2n, 2n) of x' = A x + b at crank ``speed`` [rad/s], t = 0 at
-        the first pose. The stability map's equations, interpolated here from its samples so
-        that matrices and forcing share one crank angle (``PeriodicModel.matrices_at`` reads
-        its samples one first-pose angle late: harmless for its multipliers, not for a
-        forcing)."""
-        p = self.periodic
-        damping = np.diag(4.0 * np.pi * p.damping_ratio * p.frequencies)
-
-        def a(t):
-            theta = p.angles[0] + speed * np.asarray(t)
-            return first_order(self.at(p.mass, theta), damping + speed * self.at(
-                p.coriolis, theta), self.at(p.stiffness, theta)
-                + speed**2 * self.at(p.speed_stiffness, theta))
-        return a
+        """times (m,) [s] -> A (m, 2n, 2n) of x' = A x + b: the stability map's equations
+        (``PeriodicModel.system``), t = 0 at the first pose."""
+        return self.periodic.system(speed)
 
     def forcing(self, speed: float):
-        """times (m,) [s] -> b (m, 2n) of x' = A x + b at crank ``speed`` [rad/s]."""
+        """times (m,) [s] -> b (m, 2n) of x' = A x + b at crank ``speed`` [rad/s]: M^-1 f
+        interpolated from the poses, as the periodic model interpolates M^-1 K."""
         n = len(self.periodic.frequencies)
+        mass = self.periodic.mass
+        inertia = np.linalg.solve(mass, self.inertia_forcing[..., None])[..., 0]
+        external = np.linalg.solve(mass, self.external_forcing[..., None])[..., 0]
+        per_pose = speed**2 * inertia + external
 
         def b(t):
             theta = self.periodic.angles[0] + speed * np.asarray(t)
-            f = speed**2 * self.at(self.inertia_forcing, theta) + self.at(
-                self.external_forcing, theta)
             out = np.zeros((len(theta), 2 * n))
-            out[:, n:] = np.linalg.solve(self.at(self.periodic.mass, theta), f[..., None])[..., 0]
+            out[:, n:] = self.at(per_pose, theta)
             return out
         return b
 
@@ -157,28 +148,25 @@ def forced_model(scene: Scene, n_modes: int = 6, poses: int = 37,
     points = check_points(scene, midspans(scene) if points is None else points)
     periodic = periodic_model(scene, n_modes, poses, damping_ratio, elements_per_link)
     topology = scene.topology(elements_per_link)
-    model0, static, _ = pose_modes(topology, scene.rigid_state(None).points, n_modes)
-    T = reduction(model0)
-    column, n = reduced_columns(T, model0.n_dofs)
-    basis = np.zeros((n, n_modes))
-    basis[column[column >= 0]] = static.shapes[np.ix_(column >= 0, static.elastic[:n_modes])]
-    reduce = reducer(column, n, dense=True)
+    model0 = pose_model(topology, scene.rigid_state(None).points)
+    T = rigid_elimination(model0)
+    n = reduced_columns(T, model0.n_dofs)[1]
+    basis = periodic.basis.vectors  # co-rotating reduced DOFs per coordinate
     reference = _link_angles(model0)
-    forcing = np.empty((2, poses, n_modes))
-    rows = np.empty((2, poses, len(points), n_modes))
-    scale = None
+    size = basis.shape[1]
+    forcing = np.empty((2, len(periodic.angles), size))
+    rows = np.empty((2, len(periodic.angles), len(points), size))
     for p, angle in enumerate(periodic.angles):
         state = scene.rigid_state(angle)
         model = pose_model(topology, state.points)
-        R = _turning(model, reference, T)
-        if scale is None:  # the stability map's mass normalisation at the reference pose
-            _, M = reduced_pair(model, T, n, reduce)
+        to_global = _turning(model, reference, T) @ basis  # reduced global DOFs
+        if p == 0:  # the same coordinates as the periodic model's matrices
+            _, M = reduced_pair(model, T, n, reducer(reduced_columns(T, model0.n_dofs)[0], n,
+                                                     dense=True))
             M = M.toarray() if hasattr(M, "toarray") else np.asarray(M)
-            scale = np.sqrt(np.einsum("ij,ik,kj->j", R @ basis, M, R @ basis))
-            projected = (R @ basis / scale).T @ M @ (R @ basis / scale)
-            if not np.allclose(projected, periodic.mass[0], rtol=1e-9, atol=1e-12):
+            if not np.allclose(to_global.T @ M @ to_global, periodic.mass[0], rtol=1e-9,
+                               atol=1e-12):
                 raise NumericalError("the response basis is not the stability map's")
-        to_global = R @ basis / scale  # reduced global displacement per modal coordinate
         _, alpha, acc = link_motion(scene, model, topology, rigid_motion(
             scene.linkage, state, 1.0, 0.0))
         for i, f in enumerate((inertia_loads(model, acc, alpha),

@@ -21,7 +21,7 @@ from flexlink.kinematics.inverse import (
 )
 from flexlink.kinematics.linkage import Linkage, State
 from flexlink.scene import Scene
-from flexlink.scene.contract import LoadSpec
+from flexlink.scene.contract import LoadFrame, LoadKind, LoadSpec
 from flexlink.studies.cycle import kinematic_cycle
 
 MODEL = (
@@ -121,9 +121,9 @@ def wrench(linkage: Linkage, state: State, load: LoadSpec) -> Wrench:
     e = (p1 - p0) / np.linalg.norm(p1 - p0)
     n = np.array([-e[1], e[0]])
     value = load.value_at(state.q)
-    if load.kind == "torque":
+    if load.kind is LoadKind.TORQUE:
         return Wrench(load.body, torque=float(value[0]))
-    force = value[0] * e + value[1] * n if load.frame == "body" else value
+    force = value[0] * e + value[1] * n if load.frame is LoadFrame.BODY else value
     point = p0 + load.at[0] * e + load.at[1] * n
     return Wrench(load.body, force=(float(force[0]), float(force[1])),
                   point=(float(point[0]), float(point[1])))

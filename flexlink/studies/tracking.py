@@ -289,7 +289,7 @@ def tracked_map(scene: Scene, n_poses: int = 360, n_modes: int = 3,
                                 min(len(points), CHUNKS_PER_WORKER * workers(n_jobs)))
         parts = run_tasks(_pose_lines, [(topology, [points[i] for i in chunk], k, n_modes)
                                         for chunk in chunks],
-                          n_jobs=n_jobs, progress=progress is not None, label="pose chunks")
+                          n_jobs=n_jobs, show_progress=progress is not None, label="pose chunks")
     freqs = np.concatenate([p[0] for p in parts])
     shapes = [U for p in parts for U in p[1]]
     mechanism = np.concatenate([p[2] for p in parts])

@@ -133,10 +133,10 @@ class MonteCarlo:
 
 def monte_carlo(paths, base_overrides: dict, inputs: Inputs, samples: int, seed: int,
                 n_modes: int = 4, elements: int | None = None, n_jobs: int = -1,
-                progress: bool = False) -> MonteCarlo:
+                show_progress: bool = False) -> MonteCarlo:
     draws = draw_samples(inputs, samples, seed)
     tasks = [(tuple(paths), base_overrides, inputs, d, n_modes, elements) for d in draws]
-    results = run_tasks(evaluate, tasks, n_jobs=n_jobs, progress=progress, label="Monte Carlo samples")
+    results = run_tasks(evaluate, tasks, n_jobs=n_jobs, show_progress=show_progress, label="Monte Carlo samples")
     return MonteCarlo(samples=np.array(results), seed=seed)
 
 
@@ -164,13 +164,13 @@ class Sensitivities:
 
 def sensitivities(paths, base_overrides: dict, inputs: Inputs, n_modes: int = 4,
                   elements: int | None = None, n_jobs: int = -1,
-                  progress: bool = False) -> Sensitivities:
+                  show_progress: bool = False) -> Sensitivities:
     """Central differences of ``studies.derivatives`` at the nominal inputs, every evaluation
     in one parallel pool, and the first-order sd of ln f they give."""
     names = tuple(sorted(inputs.nominal))
     tasks = [(tuple(paths), base_overrides, inputs, values, n_modes, elements)
              for values in central_points(inputs.nominal, names)]
-    results = run_tasks(evaluate, tasks, n_jobs=n_jobs, progress=progress, label="sensitivity evaluations")
+    results = run_tasks(evaluate, tasks, n_jobs=n_jobs, show_progress=show_progress, label="sensitivity evaluations")
     values = central_log_slopes(results, names)
     return Sensitivities(names=names, values=values,
                          sd_ln_f=first_order_sd(values, inputs.nominal, inputs.sd))

@@ -16,7 +16,7 @@ from flexlink.analysis.damping import damping_ratios
 from flexlink.analysis.modal import analyze
 from flexlink.cli import main
 from flexlink.errors import InputError
-from flexlink.fe.assembly import assemble, reduction
+from flexlink.fe.assembly import assemble, rigid_elimination
 from flexlink.fe.model import build_model
 from flexlink.scene import load_scene
 
@@ -73,7 +73,7 @@ def _complex_modulus_zeta(scene, frequencies):
         K2 = assemble(build_model(dataclasses.replace(topology, links=tuple(links)),
                                   pose.joints))[0].toarray()
         lossy += scene.loss_factors[link.name] * (K2 - K)
-    T = reduction(model)
+    T = rigid_elimination(model)
     T = np.eye(K.shape[0]) if T is None else T.toarray()
     lam = la.eigvals(T.T @ (K + 1j * lossy) @ T, T.T @ M @ T)
     lam = lam[np.isfinite(lam)]
@@ -151,3 +151,73 @@ def test_modes_command_shows_zeta_and_its_assumption(tmp_path):
     assert any(a["field"] == "material.loss_factor" for a in case["assumptions"])
     text = CliRunner().invoke(main, args).output
     assert "damping ratio zeta %" in text and "damping: material.loss_factor = 0.01" in text
+
+
+def _declared_case(tmp_path, damping: str):
+    scene = tmp_path / "declared.toml"
+    scene.write_text(f'base = "{CASE.as_posix()}"\n[damping]\n{damping}\n')
+    return scene
+
+
+def _modes_json(scene, tmp_path):
+    import json
+
+    args = ["modes", str(scene), "-e", str(ELEMENTS), "-n", str(N_MODES), "--json",
+            "--out", str(tmp_path / "out")]
+    result = CliRunner().invoke(main, args)
+    assert result.exit_code == 0, result.output
+    return json.loads(result.output)["cases"][0]
+
+
+def test_rayleigh_damping_matches_the_damped_eigenvalues(tmp_path):
+    """C = alpha M + beta K: the printed ratios equal those of the damped quadratic eigenproblem
+    (s^2 M + s C + K) u = 0 solved densely here in first-order form (zeta = -Re s / |s|), to
+    1e-7: Rayleigh damping leaves the undamped modes uncoupled, so the two agree exactly up to
+    the eigen solvers' round-off."""
+    alpha, beta = 3.0, 2e-5  # both terms matter: alpha/(2w) and beta w/2 are each ~1e-3..1e-2
+    case = _modes_json(_declared_case(tmp_path, f"rayleigh_alpha = {alpha}\n"
+                                                f"rayleigh_beta = {beta}"), tmp_path)
+    scene = load_scene(CASE)
+    pose = scene.rigid_pose()
+    model = build_model(scene.topology(ELEMENTS), pose.joints)
+    K, M = (m.toarray() for m in assemble(model))
+    T = rigid_elimination(model)
+    T = np.eye(K.shape[0]) if T is None else T.toarray()
+    K, M = T.T @ K @ T, T.T @ M @ T
+    n = K.shape[0]
+    C = alpha * M + beta * K
+    A = np.block([[np.zeros((n, n)), np.eye(n)], [-la.solve(M, K), -la.solve(M, C)]])
+    s = la.eigvals(A)
+    s = s[(s.imag > 1.0)]  # one of each conjugate pair; the mechanism modes are overdamped
+    computed = np.array([row["computed_Hz"] for row in case["modes"]])
+    zeta = []
+    for f in computed:
+        nearest = s[np.argmin(abs(abs(s) - 2 * np.pi * f))]
+        zeta.append(-nearest.real / abs(nearest))
+    assert np.allclose(case["damping_ratio"], zeta, rtol=1e-7, atol=0)
+    assert "Rayleigh" in case["damping_source"]
+
+
+def test_declared_ratios_apply_per_mode_and_replace_the_loss_factors(tmp_path):
+    """ratios = [a, b]: mode 1 gets a, every later mode b; no loss factor is then assumed."""
+    case = _modes_json(_declared_case(tmp_path, "ratios = [0.03, 0.012]"), tmp_path)
+    assert case["damping_ratio"] == [0.03] + [0.012] * (N_MODES - 1)
+    assert not any(a["field"].endswith("loss_factor") for a in case["assumptions"])
+    one = _modes_json(_declared_case(tmp_path, "ratio = 0.02"), tmp_path)
+    assert one["damping_ratio"] == [0.02] * N_MODES
+
+
+@pytest.mark.parametrize("damping, field, expected", [
+    ("ratio = 1.2", "damping.ratio", "[0, 1)"),
+    ("ratio = -0.1", "damping.ratio", "[0, 1)"),
+    ("ratios = [0.01, 1.0]", "damping.ratios", "[0, 1)"),
+    ("rayleigh_alpha = -1", "damping.rayleigh_alpha", "[0, 1e+06]"),
+    ("ratio = 0.01\nrayleigh_beta = 1e-5", "damping", "exactly one of"),
+    ("ratios = []", "damping", "empty"),
+])
+def test_declared_damping_out_of_range_is_one_line(tmp_path, damping, field, expected):
+    scene = _declared_case(tmp_path, damping)
+    result = CliRunner().invoke(main, ["modes", str(scene), "--out", str(tmp_path / "o")])
+    assert result.exit_code == 2, result.output
+    line = result.output.strip()
+    assert "\n" not in line and "declared.toml" in line and field in line and expected in line

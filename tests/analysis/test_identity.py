@@ -9,7 +9,7 @@ from flexlink.analysis.identity import (effective_masses, energy_parts, mode_ide
                                         mode_labels, participating_mass, total_mass)
 import scipy.linalg as la
 
-from flexlink.fe.assembly import assemble, reduction
+from flexlink.fe.assembly import assemble, rigid_elimination
 from flexlink.fe.model import JointSpec, LinkSpec, Topology, build_model
 from flexlink.scene import load_scene
 
@@ -40,7 +40,7 @@ def _all_modes(model):
     """Every mode of a small model by plain LAPACK eigh (mass-normalised), independent of
     solve.py: the sums over all modes need the highest ones too."""
     K, M = assemble(model)
-    T = reduction(model)
+    T = rigid_elimination(model)
     if T is not None:
         K, M = T.T @ K @ T, T.T @ M @ T
     vals, vecs = la.eigh(K.toarray(), M.toarray())

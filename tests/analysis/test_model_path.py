@@ -1,6 +1,6 @@
 """One model path, one mesh rule, and hostile inputs on the user's path (issue 11 items 1, 9).
 
-Every driver builds its FrameModel through ``fe.pose.pose_model`` and solves through
+Every driver builds its FrameModel through ``fe.model_at_pose.pose_model`` and solves through
 ``analysis.modal.pose_modes`` / ``solve.lowest_elastic``; these tests hold them to it."""
 
 import json

@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 import scipy.sparse as sp
 
+from flexlink.analysis.eigensolver import EigenSolver
 from flexlink.analysis.solve import solve_modes
 from flexlink.errors import NumericalError
 
@@ -30,7 +31,7 @@ def test_two_mass_chain_closed_form(method):
         K, M = sp.csr_matrix(K), sp.csr_matrix(M)
     else:
         expected = [math.sqrt(1.0e4 / 2.0), math.sqrt(3 * 1.0e4 / 2.0)]
-    result = solve_modes(K, M, 2, lambda_ref=1.0e3, method=method)
+    result = solve_modes(K, M, 2, lambda_ref=1.0e3, solver=EigenSolver(method))
     np.testing.assert_allclose(2 * np.pi * result.frequencies, expected, rtol=1e-12)
     assert result.backward_errors.max() < 1e-12  # a 2-by-2 or banded solve: round-off level
 
@@ -39,7 +40,7 @@ def test_backward_error_above_tolerance_raises():
     """Round-off leaves a backward error near 1e-17, never 0: a tolerance of 1e-30 must fail."""
     K, M = chain()
     with pytest.raises(NumericalError, match="backward error"):
-        solve_modes(K, M, 2, lambda_ref=1.0e3, method="dense", backward_tol=1e-30)
+        solve_modes(K, M, 2, lambda_ref=1.0e3, solver=EigenSolver("dense"), backward_tol=1e-30)
 
 
 @pytest.mark.parametrize("method", ["dense", "sparse"])
@@ -52,5 +53,5 @@ def test_negative_eigenvalue_raises(method):
     Kin = K if method == "dense" else sp.csr_matrix(K)
     Min = np.eye(n) if method == "dense" else sp.identity(n, format="csr")
     with pytest.raises(NumericalError, match="negative eigenvalue"):
-        solve_modes(Kin, Min, 2, lambda_ref=1.0, method=method)
+        solve_modes(Kin, Min, 2, lambda_ref=1.0, solver=EigenSolver(method))
 

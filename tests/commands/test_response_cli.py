@@ -31,7 +31,7 @@ def test_bad_input_is_one_line_with_the_field(tmp_path, args, words):
 
 
 def test_one_speed_writes_strain_over_the_turn(tmp_path):
-    result = CliRunner().invoke(main, ["response", CASE1, "--speed", "3000 rev/min", "-n", "1",
+    result = CliRunner().invoke(main, ["response", CASE1, "--speed", "1200 rev/min", "-n", "1",
                                        "--at", "coupler:60 mm", "--json", "--out",
                                        str(tmp_path)])
     assert result.exit_code == 0, result.output

@@ -14,9 +14,10 @@ import functools
 import numpy as np
 import pytest
 
+from flexlink.analysis.eigensolver import AUTO_DENSE_MAX, EigenSolver
 from flexlink.analysis import outofplane
 from flexlink.analysis import solve as sv
-from flexlink.fe.assembly import reduction
+from flexlink.fe.assembly import rigid_elimination
 from flexlink.fe.model import Section
 from flexlink.fe.strip import (StripProperties, assemble_out_of_plane,
                                assemble_out_of_plane_reduced_dense, out_of_plane_eigen_scale,
@@ -44,8 +45,8 @@ def sparse_path(path, elements, overrides, n_modes):
     scipy.sparse, solved densely."""
     model, _ = scene_model(path, elements, overrides)
     K, M = assemble_out_of_plane(model, model.springs)
-    solve = functools.partial(sv.solve_modes, K, M, T=reduction(model),
-                              lambda_ref=out_of_plane_eigen_scale(model), method="dense")
+    solve = functools.partial(sv.solve_modes, K, M, T=rigid_elimination(model),
+                              lambda_ref=out_of_plane_eigen_scale(model), solver=EigenSolver("dense"))
     return sv.require_elastic(sv.lowest_elastic(solve, n_modes), n_modes)
 
 
@@ -58,7 +59,7 @@ def test_dense_path_equals_the_sparse_path(path, elements, tilt, masses, monkeyp
     old = sparse_path(path, elements, overrides, 6)
     monkeypatch.setattr(outofplane, "assemble_out_of_plane", None)  # must not assemble sparse K
     new = outofplane.analyze_out_of_plane(load_scene(path, overrides=overrides), 6, elements)
-    assert new.kinds == old.kinds and new.n_dofs == old.n_dofs <= sv.AUTO_DENSE_MAX
+    assert new.kinds == old.kinds and new.n_dofs == old.n_dofs <= AUTO_DENSE_MAX
     np.testing.assert_allclose(new.frequencies, old.frequencies, rtol=1e-9, atol=0)
     # the same mass-normalised shapes, up to sign, on every full DOF (modes 1 to 6 are distinct)
     elastic = [i for i, kind in enumerate(new.kinds) if kind == sv.ELASTIC]
@@ -72,15 +73,15 @@ def test_the_cases_cover_a_model_without_constraints_and_masses():
     """The finite-Ktilt cases have no rigid spring at all (T is None) and the mass overrides
     reach the out-of-plane model, so both branches of the scatter are exercised."""
     model, _ = scene_model(SCENES[0], 6, {**TILTS["finite Ktilt"], **joint_masses(SCENES[0])})
-    assert reduction(model) is None and len(model.point_masses) == 4
+    assert rigid_elimination(model) is None and len(model.point_masses) == 4
     wiper, _ = scene_model(SCENES[4], 6, joint_masses(SCENES[4]))
-    assert reduction(wiper) is not None and wiper.point_masses
+    assert rigid_elimination(wiper) is not None and wiper.point_masses
 
 
 def test_large_models_keep_the_sparse_path(monkeypatch):
     monkeypatch.setattr(outofplane, "assemble_out_of_plane_reduced_dense", None)
     modes = outofplane.analyze_out_of_plane(load_scene(SCENES[1]), 4, 96)
-    assert modes.n_dofs > sv.AUTO_DENSE_MAX and modes.solver == "sparse"
+    assert modes.n_dofs > AUTO_DENSE_MAX and modes.solver == "sparse"
 
 
 @pytest.mark.parametrize("path", SCENES, ids=lambda p: p.stem)
@@ -88,7 +89,7 @@ def test_large_models_keep_the_sparse_path(monkeypatch):
 def test_dense_reduced_matrices_equal_the_sparse_reduction(path, tilt):
     model, strips = scene_model(path, 6, {**tilt, **joint_masses(path)})
     K, M = assemble_out_of_plane(model, model.springs)
-    T = reduction(model)
+    T = rigid_elimination(model)
     Kd, Md = assemble_out_of_plane_reduced_dense(model, model.springs, T, strips)
     for dense, sparse in ((Kd, K), (Md, M)):
         reduced = (sparse if T is None else T.T @ sparse @ T).toarray()

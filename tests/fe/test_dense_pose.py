@@ -11,12 +11,13 @@ import numpy as np
 import pytest
 import scipy.sparse as sp
 
+from flexlink.analysis.eigensolver import AUTO_DENSE_MAX, EigenSolver
 from flexlink.analysis import modal
 from flexlink.analysis import solve as sv
 from flexlink.errors import NumericalError
-from flexlink.fe.assembly import assemble, assemble_reduced_dense, reduction
+from flexlink.fe.assembly import assemble, assemble_reduced_dense, rigid_elimination
 from flexlink.fe.energy import twice_strain_energy
-from flexlink.fe.pose import in_plane_eigen_scale, pose_model
+from flexlink.fe.model_at_pose import in_plane_eigen_scale, pose_model
 from flexlink.scene import load_scene
 
 from conftest import ROOT
@@ -27,8 +28,8 @@ def sparse_path(topology, points, n_modes):
     """What ``pose_modes`` did before the fast path: sparse K, M reduced by T in scipy.sparse."""
     model = pose_model(topology, points)
     K, M = assemble(model)
-    solve = functools.partial(sv.solve_modes, K, M, T=reduction(model),
-                              lambda_ref=in_plane_eigen_scale(model), method="dense",
+    solve = functools.partial(sv.solve_modes, K, M, T=rigid_elimination(model),
+                              lambda_ref=in_plane_eigen_scale(model), solver=EigenSolver("dense"),
                               energy=lambda shapes: twice_strain_energy(model, shapes))
     return sv.require_elastic(sv.lowest_elastic(solve, n_modes), n_modes)
 
@@ -43,7 +44,7 @@ def test_dense_fast_path_equals_the_sparse_path(path, elements, monkeypatch):
     monkeypatch.setattr(modal, "assemble", None)  # the fast path must not assemble sparse K
     _, new, _ = modal.pose_modes(topology, joints, 6)
     assert isinstance(new, sv.ModalResult) and new.kinds == old.kinds
-    assert new.n_dofs == old.n_dofs <= sv.AUTO_DENSE_MAX and new.refined
+    assert new.n_dofs == old.n_dofs <= AUTO_DENSE_MAX and new.refined
     np.testing.assert_allclose(new.frequencies, old.frequencies, rtol=1e-9, atol=0)
     assert new.shapes.shape == old.shapes.shape
     # the same mass-normalised shapes, up to sign, on every full DOF
@@ -57,7 +58,7 @@ def test_large_models_keep_the_sparse_path(monkeypatch):
     topology = scene.topology(64)  # 585 DOFs > AUTO_DENSE_MAX
     monkeypatch.setattr(modal, "assemble_reduced_dense", None)
     _, modes, _ = modal.pose_modes(topology, scene.rigid_pose().joints, 4)
-    assert modes.n_dofs > sv.AUTO_DENSE_MAX and modes.solver == "sparse"
+    assert modes.n_dofs > AUTO_DENSE_MAX and modes.solver == "sparse"
 
 
 JOINT_MASSES = {f"joints.{j}.mass": "0.02 kg" for j in ("O2", "A", "B", "O4")}
@@ -81,7 +82,7 @@ def test_dense_reduced_matrices_equal_the_sparse_reduction(path):
     scene = load_scene(path, overrides=JOINT_MASSES if path == SCENES[1] else None)
     model = pose_model(scene.topology(6), scene.rigid_pose().joints)
     K, M = assemble(model)
-    T = reduction(model)
+    T = rigid_elimination(model)
     Kd, Md = assemble_reduced_dense(model, T)
     for dense, sparse in ((Kd, T.T @ K @ T), (Md, T.T @ M @ T)):
         np.testing.assert_allclose(dense, sparse.toarray(), rtol=0, atol=1e-14 * abs(dense).max())
@@ -98,7 +99,7 @@ def test_dense_massless_condensation_equals_the_sparse_one():
     np.testing.assert_allclose(dense.Ks, sparse.Ks.toarray(), atol=1e-15)
     np.testing.assert_allclose(dense.Ms, sparse.Ms.toarray(), atol=1e-15)
     np.testing.assert_allclose(dense.expand(np.eye(2)), sparse.expand(np.eye(2)), atol=1e-15)
-    result = sv.solve_modes(K3, M3, 2, lambda_ref=1.0, method="dense")
+    result = sv.solve_modes(K3, M3, 2, lambda_ref=1.0, solver=EigenSolver("dense"))
     np.testing.assert_allclose(result.eigenvalues, [1.0, 4.0], rtol=1e-14)
     assert result.condensed == 1
 

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from conftest import SCENES_DIR
 
-from flexlink.analysis.families import family_modes
+from flexlink.analysis.families import part_modes
 from flexlink.fe.formulation import FORMULATIONS
 from flexlink.scene import load_scene
 
@@ -46,7 +46,7 @@ def test_welded_joint_has_a_weld_and_one_bearing_in_each_part(part):
 def test_welded_arms_move_as_one_body():
     """In every mode of both parts, the two arms' ends at O2 have the same displacement and
     rotation (exactly: the weld is an exact constraint, so equal to round-off)."""
-    for part in family_modes(wiper("50 N*m/rad"), 4, ELEMENTS):
+    for part in part_modes(wiper("50 N*m/rad"), 4, ELEMENTS):
         first, second = o2_nodes(part.model)
         a = part.shapes[3 * first:3 * first + 3]
         b = part.shapes[3 * second:3 * second + 3]
@@ -60,7 +60,7 @@ def test_finite_tilt_stiffness_converges_to_the_rigid_joint_as_one_over_ktilt():
     ten times the stiffness, a tenth of the gap. The next term is of relative size
     gap / frequency (below 0.5 % here), so the ratio is 10 within 5 %."""
     def lowest(tilt):
-        return family_modes(wiper(tilt, "out-of-plane"), 4, ELEMENTS)[0].frequencies
+        return part_modes(wiper(tilt, "out-of-plane"), 4, ELEMENTS)[0].frequencies
 
     rigid = lowest("rigid")
     soft, stiff = lowest("1e4 N*m/rad"), lowest("1e5 N*m/rad")

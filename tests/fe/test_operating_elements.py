@@ -16,7 +16,7 @@ from flexlink.fe.beams import beam_matrices
 from flexlink.fe.geometric import GeometricForm, geometric_stiffness, unit_geometric_stiffness
 from flexlink.fe.link import chain_entries
 from flexlink.fe.model import Section
-from flexlink.fe.pose import pose_model
+from flexlink.fe.model_at_pose import pose_model
 from flexlink.fe.preload import inertia_loads
 from flexlink.fe.rotating import coupling, rotating_entries, translational_mass
 from flexlink.fe.timoshenko import WEIGHTS, XI, shape_functions

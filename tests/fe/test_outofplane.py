@@ -6,6 +6,7 @@ import math
 import numpy as np
 import pytest
 
+from flexlink.analysis.eigensolver import EigenSolver
 from flexlink.errors import InputError
 from flexlink.analysis.families import elastic_modes
 from flexlink.fe.model import JointSpec, LinkSpec, Section, Topology
@@ -31,7 +32,7 @@ def strip_modes(start, end, elements, n, angle=0.0):
     tilt = {"S": start[1] if start else 0.0, "E": end[1] if end else 0.0}
     topo = Topology(links=(LinkSpec("strip", "S", "E", STRIP, elements),), joints=joints)
     points = {"S": (0.0, 0.0), "E": (LENGTH * math.cos(angle), LENGTH * math.sin(angle))}
-    return out_of_plane_modes(topo, points, tilt, n, method="dense")
+    return out_of_plane_modes(topo, points, tilt, n, EigenSolver("dense"))
 
 
 def bending(beta_l):

@@ -18,8 +18,9 @@ from flexlink.errors import OutputError
 from flexlink.output.export_vtk import mode_set, modes_mesh, write_animation, write_vtu
 from flexlink.fileio import write_atomic_with
 from flexlink.fe.modeshape import sample_shapes
-from flexlink.output.report import case_summary
+from flexlink.analysis.mesh import COMMAND_LINE, MeshRule
 from flexlink.scene import load_scene
+from flexlink.studies.scene_summary import summary_of
 
 from helpers import single_beam
 
@@ -349,7 +350,7 @@ def test_failed_rendering_check_is_a_clear_error(modes, case3, monkeypatch):
 def test_frequency_plot(case3):
     from flexlink.output.plots import frequency_plot
 
-    size, pixels = png_pixels(frequency_plot(case_summary(case3, 3), size=(6, 4), dpi=50))
+    size, pixels = png_pixels(frequency_plot(summary_of(case3, 3, MeshRule(6, COMMAND_LINE)), size=(6, 4), dpi=50))
     assert size == (300, 200)
     # points, not bars: a few hundred coloured pixels at this size (0.45 % measured), none
     # when nothing is drawn
@@ -448,4 +449,4 @@ def test_frequency_plot_draws_points_not_bars(case3, monkeypatch):
         raise AssertionError("a bar on a log axis has no meaningful base")
 
     monkeypatch.setattr(Axes, "bar", no_bars)
-    assert frequency_plot(case_summary(case3, 3), size=(6, 4), dpi=50)[:4] == b"\x89PNG"
+    assert frequency_plot(summary_of(case3, 3, MeshRule(6, COMMAND_LINE)), size=(6, 4), dpi=50)[:4] == b"\x89PNG"

@@ -3,6 +3,7 @@ speed, with the torque curve, the frequencies from rest to that speed, the axial
 the steady response."""
 
 import json
+import math
 import re
 
 import pytest
@@ -56,3 +57,29 @@ def test_frequencies_at_rest_are_the_static_ones_of_the_page(page):
         assert f"{f:,.2f}" in table
     # at 600 rev/min the first mode moves (preload and rotating terms are in)
     assert figure["data"][0]["y"][-1] != pytest.approx(at_rest[0], rel=1e-6)
+
+
+def test_the_scene_crank_acceleration_reaches_torque_and_modes(tmp_path):
+    # [operation] crank_acceleration is part of the operating point: the torque curve and the
+    # modes at speed are those of `torque` and `modes --speed` with it, not at constant speed
+    from flexlink.output.report_data import at_speed_data
+    from flexlink.scene import load_scene
+    from flexlink.studies.operating_point import operating_modes
+    from flexlink.studies.torque import torque_study
+
+    text = (CASES_DIR / "case3.toml").read_text().replace(
+        'base = "_table2.toml"', f'base = "{(CASES_DIR / "_table2.toml").as_posix()}"')
+    path = tmp_path / "case3_speeding.toml"
+    path.write_text(text + '\n[operation]\ncrank_speed = "600 rev/min"\n'
+                           'crank_acceleration = "3000 rad/s^2"\n')
+    scene = load_scene(path)
+    data = at_speed_data(scene, 2, 8)
+    speed = 600 * 2 * math.pi / 60
+    assert data["crank_acceleration_rad_s2"] == pytest.approx(3000.0)
+    curve = torque_study(scene, speed, 3000.0, poses=72)
+    assert data["torque"]["summary"] == pytest.approx(curve.summary(), rel=1e-12)
+    op = operating_modes(scene, speed, 2, 8, crank_acceleration=3000.0)
+    steady = operating_modes(scene, speed, 2, 8)
+    at_top = [line[-1] for line in data["modes"]["frequencies_Hz"]]
+    assert at_top == pytest.approx(list(op.frequencies), rel=1e-12)
+    assert at_top != pytest.approx(list(steady.frequencies), rel=1e-6)

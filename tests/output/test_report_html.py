@@ -3,6 +3,7 @@ the model's own vectors and the modes command), the page carries every section i
 for and only those, nothing in it points at the network, and it stays small. The browser test
 (test_report_browser.py) looks at the page as a person does."""
 
+import dataclasses
 import json
 import re
 from html.parser import HTMLParser
@@ -16,9 +17,12 @@ from flexlink.analysis.modal import analyze
 from flexlink.cli import main
 from flexlink.output.export_vtk import mode_set
 from flexlink.output.html_report import render_page
-from flexlink.output.report import case_summary
-from flexlink.output.report_data import cycle_data, mode_shapes, scene_page
+from flexlink.analysis.mesh import COMMAND_LINE, MeshRule
+from flexlink.output.report import comparison_rows
+from flexlink.output.report_data import mode_shapes, scene_page
 from flexlink.scene import load_scene
+from flexlink.studies.report_scene import ReportScene
+from flexlink.studies.scene_summary import summary_of
 
 from conftest import ROOT
 CASE1 = ROOT / "cases" / "case1.toml"
@@ -85,12 +89,14 @@ def test_mode_shapes_are_the_solved_vectors_normalised(case1):
         assert mode["frequency_Hz"] == pytest.approx(case1.elastic_frequencies(3)[i], rel=1e-12)
 
 
+def _summary(result, n_modes):
+    return summary_of(result, n_modes, MeshRule(result.elements_per_link, COMMAND_LINE))
+
+
 def _page(result, cycle=None, reason=None, out=Path("/out")):
-    summary = {**case_summary(result, 3), "warnings": ["a warning <b>"]}
-    mesh = {"rule": "command line (-e)", "elements_per_link": 8, "describe": "mesh: 8 elements"}
+    summary = dataclasses.replace(_summary(result, 3), warnings=("a warning <b>",))
     files = {"vtu": [str(out / "case1" / "case1.vtu")], "pvd": [str(out / "case1" / "case1_mode1.pvd")]}
-    return scene_page(result, summary, mesh, mode_set(result, 3),
-                      cycle_data(cycle, result.pose.crank_angle, reason), files, out)
+    return scene_page(ReportScene(summary, cycle, reason), files, out)
 
 
 def test_page_has_each_section_it_has_data_for_and_escapes_text(case1):
@@ -101,7 +107,7 @@ def test_page_has_each_section_it_has_data_for_and_escapes_text(case1):
     assert "<h3>Cycle map</h3>" not in page  # no map asked for: no section
     assert "a warning &lt;b&gt;" in page and "a warning <b>" not in page
     # the table: every reference column with its error, the computed values as the modes command
-    rows = case_summary(case1, 3)["modes"]
+    rows = comparison_rows(_summary(case1, 3))
     for row in rows:
         assert f"{row['computed_Hz']:,.2f}" in page
         assert f"{row['error_vs_Ex_pct']:+.1f} %" in page and f"{row['error_vs_FE_pct']:+.1f} %" in page
@@ -177,10 +183,9 @@ def test_scene_data_leave_room_for_four_cases_under_15_MB(tmp_path):
 def test_scene_without_reference_or_assumptions_shows_no_such_columns_or_section():
     result = analyze(load_scene(ROOT / "scenes" / "wiper.toml"), 2, 4)
     assert result.scene.reference is None
-    summary = {**case_summary(result, 2), "warnings": [], "assumptions": []}
-    mesh = {"rule": "command line (-e)", "elements_per_link": 4, "describe": "mesh: 4 elements"}
-    page = render_page([scene_page(result, summary, mesh, mode_set(result, 2), None, {}, Path("/o"))],
-                       FAKE_JS)
+    result = dataclasses.replace(result, scene=dataclasses.replace(result.scene, assumptions=()))
+    summary = dataclasses.replace(_summary(result, 2), warnings=())
+    page = render_page([scene_page(ReportScene(summary, None), {}, Path("/o"))], FAKE_JS)
     assert "<h3>Natural frequencies</h3>" in page and "<th>error</th>" not in page
     assert "<h3>Assumptions</h3>" not in page and "<h3>Files for ParaView</h3>" not in page
     data = json.loads(parsed(page).scripts[0])
@@ -228,7 +233,7 @@ def test_energy_shares_and_counts_read_as_text():
     from flexlink.output.counts import counted
     from flexlink.output.html_report import _shares
 
-    # case 3 mode 2's strain energy, as case_summary gives it (fractions summing to 1)
+    # case 3 mode 2's strain energy, as the scene summary gives it (fractions summing to 1)
     cell = _shares({"crank": 0.8478, "coupler": 0.0918, "rocker": 0.0571, "O2": 0.0016,
                     "A": 0.0017})
     shown = re.sub(r"<[^>]+>", "", cell.split(">", 1)[1])

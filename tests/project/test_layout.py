@@ -20,7 +20,7 @@ PACKAGE_DIR = Path(flexlink.__file__).parent
 # Stage of each first-level name under flexlink; a module may import its own stage or lower.
 LAYERS = {
     "": 0, "errors": 0, "units": 0, "fileio": 0, "parallel": 0, "logbook": 0, "stopping": 0,
-    "meshes": 0,
+    "meshes": 0, "choices": 0,
     "materials": 1, "kinematics": 1,
     "fe": 2, "scene": 3, "analysis": 4, "studies": 5, "output": 6, "commands": 7, "cli": 8,
 }

@@ -36,7 +36,7 @@ from strategies import cantilever_toml, linkages, load, write_scene
 from flexlink.analysis.mesh import ORDER, mesh_for_tolerance
 from flexlink.analysis.modal import analyze
 from flexlink.cli import main
-from flexlink.fe.assembly import assemble, reduction
+from flexlink.fe.assembly import assemble, rigid_elimination
 from flexlink.materials.mixtures import load_constituent, woven_composite
 from flexlink.scene import load_scene
 from flexlink.studies.uncertainty import Inputs, evaluate, monte_carlo, scene_inputs
@@ -85,7 +85,7 @@ def test_the_mesh_rule_estimate_bounds_the_actual_error_of_a_composite_four_bar(
 
 def _reduced(result):
     K, M = assemble(result.model)
-    T = reduction(result.model)
+    T = rigid_elimination(result.model)
     if T is None:
         return K.toarray(), M.toarray(), result.modes.shapes
     counts = np.asarray(T.sum(axis=0)).ravel()  # T merges DOFs with entries 1

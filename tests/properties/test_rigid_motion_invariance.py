@@ -9,7 +9,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 from strategies import linkages, load, placements
 
-from flexlink.analysis.modal import MASSES, analyze
+from flexlink.analysis.modal import Mass, analyze
 
 N_MODES = 3
 # Frequencies: the placed scene differs from the original only by the round-off of placing
@@ -47,7 +47,7 @@ def separated(freqs: np.ndarray) -> np.ndarray:
     return np.array(out, dtype=int)
 
 
-@given(linkages(kind="four-bar"), placements(), st.sampled_from(MASSES))
+@given(linkages(kind="four-bar"), placements(), st.sampled_from(tuple(Mass)))
 def test_moving_turning_and_mirroring_the_linkage_changes_nothing(spec, placement, mass):
     here = analyze(load(spec), N_MODES, mass=mass)
     moved = spec.placed(*placement)

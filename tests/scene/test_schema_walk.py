@@ -58,6 +58,7 @@ def _bases() -> dict[str, dict]:
     loaded["loads"] = [{"kind": "force", "link": "coupler", "force": ["10 N", "0 N"],
                         "at": ["50 mm", "0 mm"], "frame": "body"}]
     loaded["operation"] = {"crank_speed": "600 rev/min", "crank_acceleration": "1 rad/s^2"}
+    loaded["damping"] = {"ratio": 0.02}  # no shipped scene declares its damping
     bases["loads"] = loaded
     return bases
 
@@ -569,6 +570,12 @@ RULES = {
     ],
     ("ReferenceTable", "_columns"): [
         _rule("case1", ["reference"], {"FE_Hz": []}, "reference", "FE_Hz is empty"),
+    ],
+    ("DampingTable", "_one_kind"): [
+        _rule("loads", ["damping"], {"ratios": [0.01]}, "damping", "exactly one of"),
+        _rule("loads", ["damping"], {"rayleigh_beta": 1e-5}, "damping", "exactly one of"),
+        _rule("loads", ["damping"], {"ratio": DELETE}, "damping", "exactly one of"),
+        _rule("loads", ["damping"], {"ratio": DELETE, "ratios": []}, "damping", "empty"),
     ],
     ("OperationTable", "_speed_first"): [
         _rule("loads", ["operation"], {"crank_speed": DELETE}, "operation.crank_speed",

@@ -35,7 +35,7 @@ def ground_of(scene) -> float:
     return scene.four_bar.ground
 
 
-def law(scene, n_modes, elements=None, method="auto"):
+def law(scene, n_modes, elements=None, solver=None):
     """Stand-in for analysis.families.elastic_modes: frequencies [Hz] A / L1^2, in-plane."""
     f = A[Path(scene.path).stem][:n_modes] / ground_of(scene) ** 2
     return f, ("in-plane",) * n_modes

@@ -8,7 +8,7 @@ import pytest
 from click.testing import CliRunner
 
 from flexlink.cli import main
-from flexlink.commands.campbell import parse_speeds
+from flexlink.commands._options import parse_speeds
 from flexlink.errors import InputError
 from flexlink.studies.campbell import RPM, Band, bands, critical_speeds, nearest_margin
 

@@ -9,6 +9,8 @@ import pytest
 from click.testing import CliRunner
 
 from flexlink import analyze, load_scene
+from flexlink.analysis.eigensolver import EigenSolver
+from flexlink.analysis.mesh import SPARSE_SOLVER as SPARSE
 from flexlink.studies import convergence as cv
 from flexlink.fe.assembly import assemble
 from flexlink.cli import main
@@ -53,8 +55,8 @@ def test_lumped_mass_keeps_link_mass_and_is_diagonal(scene):
 def test_refined_frequencies_do_not_depend_on_the_solver(scene):
     # 128 elements/link: K's entries are 1e8 times a smooth mode's energy scale, so the raw
     # eigenvalues of the two solvers differ by ~1e-9; the energy quotients agree to ~1e-13.
-    dense = analyze(scene, 4, 128, "dense").elastic_frequencies(4)
-    sparse = analyze(scene, 4, 128, "sparse").elastic_frequencies(4)
+    dense = analyze(scene, 4, 128, EigenSolver("dense")).elastic_frequencies(4)
+    sparse = analyze(scene, 4, 128, SPARSE).elastic_frequencies(4)
     assert np.max(np.abs(dense - sparse) / dense) < 1e-11
 
 
@@ -91,9 +93,9 @@ def test_mesh_rule_meets_its_tolerance(scene):
     rule = cv.mesh_for_tolerance(scene, 4, tol)
     # the true error against a mesh 16 times finer than needed (its own error is ~1e-9 here,
     # test_discretisation_error_reaches_1e_minus_8), not against the rule's own estimate
-    fine = analyze(scene, 4, 512, "sparse").elastic_frequencies(4)
+    fine = analyze(scene, 4, 512, SPARSE).elastic_frequencies(4)
     def true_error(elements):
-        return np.max(np.abs(analyze(scene, 4, elements, "sparse").elastic_frequencies(4) - fine)
+        return np.max(np.abs(analyze(scene, 4, elements, SPARSE).elastic_frequencies(4) - fine)
                       / fine)
     assert true_error(rule.elements) <= tol
     # and the rule does not over-refine: half its mesh misses the tolerance
@@ -113,7 +115,7 @@ def test_converge_command(tmp_path):
     assert {"sparse/consistent", "dense/consistent", "sparse/lumped"} <= choices
     # the cheapest setting's frequencies really are within 1e-3 of a fine independent analysis
     best = doc["cheapest"]
-    fine = analyze(load_scene(CASE1), 4, 256, "sparse").elastic_frequencies(4)
+    fine = analyze(load_scene(CASE1), 4, 256, SPARSE).elastic_frequencies(4)
     [level] = [r for r in doc["levels"] if r["choice"] == best["choice"]
                and r["elements_per_link"] == best["elements_per_link"]]
     assert np.max(np.abs(np.array(level["frequencies_Hz"]) - fine) / fine) <= 1e-3
@@ -129,6 +131,6 @@ def test_modes_states_its_mesh_rule(tmp_path):
     case = json.loads(result.stdout)["cases"][0]
     assert case["mesh"]["rule"] == "tolerance" and case["mesh"]["tolerance"] == 1e-6
     # the frequencies printed meet the tolerance against a fine independent analysis
-    fine = analyze(load_scene(CASE1), 4, 512, "sparse").elastic_frequencies(4)
+    fine = analyze(load_scene(CASE1), 4, 512, SPARSE).elastic_frequencies(4)
     computed = np.array([m["computed_Hz"] for m in case["modes"]])
     assert np.max(np.abs(computed - fine) / fine) <= 1e-6

@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 
 from flexlink.analysis.modal import analyze
-from flexlink.fe.pose import in_plane_eigen_scale
-from flexlink.fe.assembly import assemble, reduction
+from flexlink.fe.model_at_pose import in_plane_eigen_scale
+from flexlink.fe.assembly import assemble, rigid_elimination
 from flexlink.studies.cycle import ModalMap, crossings, kinematic_cycle, modal_map, resonances, runs
 from flexlink.fe.model import JointSpec, LinkSpec, Section, Topology, build_model
 from flexlink.kinematics.motion import body_summary, limit_positions
@@ -92,7 +92,7 @@ def test_welded_ground_joint_makes_one_rigid_body():
                   JointSpec("Q", False, 0.0, 0.0))
         model = build_model(Topology(arms, joints), points)
         K, M = assemble(model)
-        res = solve_modes(K, M, 4, T=reduction(model), lambda_ref=in_plane_eigen_scale(model))
+        res = solve_modes(K, M, 4, T=rigid_elimination(model), lambda_ref=in_plane_eigen_scale(model))
         return [k for k in res.kinds if k != "elastic"]
 
     assert len(kinds(True)) == 1 and len(kinds(False)) == 2
@@ -121,7 +121,7 @@ def test_prb_frequency_close_to_fe_with_strip_as_beam():
     prb = prb_frequency(scene, state, "strip", "B", "rocker", "coupler", 0.85, 2.65)
     model = build_model(scene.topology(8), state.points)
     K, M = assemble(model)
-    fe = solve_modes(K, M, 3, T=reduction(model), lambda_ref=in_plane_eigen_scale(model))
+    fe = solve_modes(K, M, 3, T=rigid_elimination(model), lambda_ref=in_plane_eigen_scale(model))
     assert fe.kinds[0] == "elastic"
     # PRB idealisations: K_Theta = 2.65 is a large-deflection average (small deflection:
     # 3 gamma = 2.55, 4 % lower stiffness), the strip's mass split at the pivot, and the beam

@@ -12,9 +12,10 @@ from click.testing import CliRunner
 from flexlink.analysis.mac import compare_models, out_of_plane_stations
 from flexlink.cli import main
 from flexlink.errors import InputError
+from flexlink.fe.motions import Part
 from flexlink.fe.strip import StripProperties
 from flexlink.scene import load_scene
-from flexlink.studies.mac_comparison import mac_family
+from flexlink.studies.mac_comparison import mac_part
 
 from helpers import single_beam
 
@@ -46,32 +47,30 @@ def test_out_of_plane_stations_sample_the_exact_fields():
     assert weights[per_link + 1:].sum() == pytest.approx(strip.rhoIp * L, rel=1e-14)
     assert names == ("beam",)
     # a shape compared with itself: MAC 1
-    assert compare_models(model, shapes, model, shapes, family="out-of-plane")[0, 0] == \
+    assert compare_models(model, shapes, model, shapes, part=Part.OUT_OF_PLANE)[0, 0] == \
         pytest.approx(1.0, rel=1e-14)
 
 
-def test_mac_family_resolves_auto_and_refuses_across_families():
+def test_mac_part_resolves_auto_and_refuses_across_families():
     planar = load_scene(CASE3)
     strip = load_scene(CASE3, overrides={"model.family": "out-of-plane"})
     both = load_scene(CASE3, overrides={"model.family": "3d"})
-    assert mac_family(planar, planar) == "in-plane"
-    assert mac_family(strip, strip) == "out-of-plane"
-    assert mac_family(planar, strip, "out-of-plane") == "out-of-plane"  # asked for: both have it
+    assert mac_part(planar, planar) is Part.IN_PLANE
+    assert mac_part(strip, strip) is Part.OUT_OF_PLANE
+    assert mac_part(planar, strip, Part.OUT_OF_PLANE) is Part.OUT_OF_PLANE  # asked: both have it
     with pytest.raises(InputError, match="different model families.*means nothing"):
-        mac_family(planar, strip)
-    with pytest.raises(InputError, match="model.family.*3d.*--family in-plane"):
-        mac_family(both, planar)
-    with pytest.raises(InputError, match="family: got '3d'.*in-plane, out-of-plane"):
-        compare_models(None, None, None, None, family="3d")
+        mac_part(planar, strip)
+    with pytest.raises(InputError, match="model.family.*3d.*--part in-plane"):
+        mac_part(both, planar)
 
 
 def test_mac_command_compares_out_of_plane_modes_of_two_meshes(tmp_path):
     result = CliRunner().invoke(main, ["mac", str(CASE3), str(CASE3), "-e", "8", "--elements-b",
-                                       "16", "-n", "3", "--family", "out-of-plane", "--json",
+                                       "16", "-n", "3", "--part", "out-of-plane", "--json",
                                        "--out", str(tmp_path)])
     assert result.exit_code == 0, result.output
     doc = json.loads(result.stdout)
-    assert doc["family"] == "out-of-plane"
+    assert doc["part"] == "out-of-plane"
     assert [(p["a"], p["b"]) for p in doc["pairs"]] == [(1, 1), (2, 2), (3, 3)]
     assert min(p["mac"] for p in doc["pairs"]) > 0.99
     mac = np.array(doc["mac"])
@@ -79,6 +78,17 @@ def test_mac_command_compares_out_of_plane_modes_of_two_meshes(tmp_path):
     # the frequencies are the strip model's, not the frame's (case 3's first in-plane mode is
     # near 668 Hz, its first out-of-plane one near 35 Hz)
     assert doc["a"]["modes"][0]["Hz"] < 100
+
+
+def test_mac_command_still_takes_the_old_family_spelling_with_a_deprecation_note(tmp_path):
+    args = ["mac", str(CASE3), str(CASE3), "-e", "4", "-n", "2", "--json", "--out", str(tmp_path)]
+    new = CliRunner().invoke(main, args + ["--part", "out-of-plane"])
+    old = CliRunner().invoke(main, args + ["--family", "out-of-plane"])
+    assert new.exit_code == old.exit_code == 0, old.output
+    assert "deprecated" in old.stderr and "--part" in old.stderr and "deprecated" not in new.stderr
+    strip = json.loads(old.stdout)
+    assert strip["part"] == "out-of-plane"
+    assert strip["mac"] == json.loads(new.stdout)["mac"]
 
 
 def test_mac_command_refuses_a_cross_family_comparison(tmp_path):

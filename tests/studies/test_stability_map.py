@@ -1,17 +1,19 @@
 """The linkage's periodic equations over one crank turn and the stability map built on them."""
 import numpy as np
 import pytest
+from scipy.linalg import eigh_tridiagonal
 from conftest import CASES_DIR
 
 from flexlink.errors import InputError
 from flexlink.scene import load_scene
-from flexlink.studies.stability_map import _nearest, periodic_model, stability_map
+from flexlink.studies.stability_map import PeriodicModel, _nearest, periodic_model, stability_map
 
 
 @pytest.fixture(scope="module")
 def model():
     # a coarse mesh and few poses: the checks below are identities, not converged numbers
-    return periodic_model(load_scene(CASES_DIR / "case1.toml"), n_modes=3, poses=5,
+    # (13 poses: with 9 the interpolated stiffness turns indefinite between poses)
+    return periodic_model(load_scene(CASES_DIR / "case1.toml"), n_modes=3, poses=13,
                           elements_per_link=2)
 
 
@@ -19,11 +21,11 @@ def test_mass_is_constant_over_the_turn_in_co_rotating_coordinates(model):
     # A link's mass matrix only turns with the link; in co-rotating node coordinates it is the
     # same at every crank angle (to round-off, 1e-12 of the unit modal mass).
     assert np.allclose(model.mass, model.mass[0], atol=1e-12, rtol=0)
-    assert np.allclose(model.mass[0], np.eye(3), atol=1e-12)
+    assert np.allclose(model.mass[0], np.eye(model.mass.shape[1]), atol=1e-12)
 
 
 def test_reference_pose_is_diagonal_with_the_static_frequencies(model):
-    # the basis is the reference pose's mass-normalised static modes: K = diag(omega_i^2)
+    # the basis is given as the reference pose's Ritz vectors: K = diag(omega_i^2) there
     omega2 = (2 * np.pi * model.frequencies) ** 2
     assert np.allclose(model.stiffness[0], np.diag(omega2), rtol=0, atol=1e-9 * omega2.max())
 
@@ -68,3 +70,69 @@ def test_document_lists_instability_ranges(model):
     assert document["instability_ranges"] == []
     assert document["largest_modulus"][0] == 1.0
     assert stability_csv(result).count("\n") == 3
+
+
+def mathieu_model(speed_stiffness: float) -> PeriodicModel:
+    """One DOF, q'' + 2 zeta omega0 q' + (omega0^2 (1 + 0.3 cos theta) + Omega^2 K2) q = 0,
+    given directly (no basis): at crank speed Omega a Mathieu equation in theta."""
+    angles = 2 * np.pi * np.arange(9) / 9
+    omega0 = 2 * np.pi * 10.0
+    K = omega0**2 * (1 + 0.3 * np.cos(angles))
+    ones = np.ones((9, 1, 1))
+    return PeriodicModel(angles=angles, mass=ones, coriolis=0 * ones, stiffness=K[:, None, None],
+                         speed_stiffness=speed_stiffness * ones, frequencies=np.array([10.0]),
+                         damping_ratio=0.001)
+
+
+def hill_edges(epsilon: float) -> tuple[float, float]:
+    """The first tongue of q'' + delta (1 + epsilon cos t) q = 0: on an edge q is 4 pi periodic,
+    so delta / (1/4 ... ) are eigenvalues of Hill's tridiagonal matrix over odd half harmonics
+    n/2 with coupling epsilon delta / 2 (solved for delta by fixed-point iteration; the
+    truncation at |n| <= 41 is converged far below the test's tolerance)."""
+    n = np.arange(-41, 42, 2)
+    edges = []
+    for side in (0, 1):
+        delta = 0.25
+        for _ in range(60):
+            values = eigh_tridiagonal(n**2 / 4.0, np.full(n.size - 1, -epsilon * delta / 2),
+                                      eigvals_only=True)
+            delta = np.sort(values[np.argsort(np.abs(values - 0.25))[:2]])[side]
+        edges.append(delta)
+    return edges[0], edges[1]
+
+
+def test_mathieu_through_the_map_is_a_primary_range_at_twice_the_frequency():
+    # theta = Omega t: q'' + delta (1 + 0.3 cos theta) q = 0 in theta with delta =
+    # (omega0 / Omega)^2; the range is where delta lies inside Hill's first tongue
+    revs = np.linspace(17.0, 23.0, 241)  # 0.025 rev/s apart
+    result = stability_map(mathieu_model(0.0), 2 * np.pi * revs)
+    [found] = result.ranges
+    assert (found.modes, found.harmonic, found.kind) == ((1,), 1, "primary")
+    low_delta, high_delta = hill_edges(0.3)
+    # edges known to one grid step (damping 0.001 narrows the tongue by ~1e-4 of its width)
+    step = revs[1] - revs[0]
+    assert abs(found.low / (2 * np.pi) - 10 / np.sqrt(high_delta)) <= step
+    assert abs(found.high / (2 * np.pi) - 10 / np.sqrt(low_delta)) <= step
+    assert np.all(result.stiffness_floor > 0)
+
+
+def test_inertia_softening_past_the_stiffness_is_labelled_divergence():
+    # K2 = -0.2: K + Omega^2 K2 is negative at every angle once Omega^2 > 1.3 omega0^2 / 0.2,
+    # Omega > 25.5 rev/s (at the softest angle from 18.7 rev/s, where it need not grow yet)
+    revs = np.linspace(27.0, 35.0, 5)
+    result = stability_map(mathieu_model(-0.2), 2 * np.pi * revs)
+    assert np.all(result.stiffness_floor < 0)
+    assert np.all(result.largest_modulus > 1)  # diverging at every speed of the scan
+    assert [r.kind for r in result.ranges] == ["divergence"]
+    assert result.ranges[0].modes == () and result.ranges[0].harmonic == 0
+
+
+def test_even_pose_count_is_a_one_line_error(tmp_path):
+    from click.testing import CliRunner
+
+    from flexlink.cli import main
+    result = CliRunner().invoke(main, ["stability-map", str(CASES_DIR / "case1.toml"),
+                                       "--speeds", "0:3000 rev/min", "--poses", "36",
+                                       "--out", str(tmp_path)])
+    assert result.exit_code == 2
+    assert "--poses" in result.output and "Traceback" not in result.output
