@@ -318,6 +318,7 @@ def at_speed_section(page: dict, figures: list) -> str:
                        f"{s['peak_torque_N_m']:.4g} N m at {s['peak_torque_at_deg']:.0f} deg, "
                        f"mean {s['mean_torque_N_m']:.4g} N m, mean power "
                        f"{s['mean_power_W']:.4g} W.</p>")
+    parts.append(_steady_response_part(page, figures, at.get("response")))
     modes = at["modes"]
     if "unavailable" in modes:
         parts.append(f"<p>Modes at speed not available: {_e(modes['unavailable'])}</p>")
@@ -339,6 +340,29 @@ def at_speed_section(page: dict, figures: list) -> str:
         + ".</p><h4>Axial preload at the operating speed</h4>"
         + _table(["link", "largest tension [N]", "largest compression [N]"], rows,
                  numeric_from=1))
+
+
+def _steady_response_part(page: dict, figures: list, response: dict | None) -> str:
+    """Midspan bending strain over the turn at the operating speed, with each peak."""
+    if response is None:
+        return ""
+    if "unavailable" in response:
+        return f"<p>Steady response not available: {_e(response['unavailable'])}</p>"
+    data = [{"type": "scatter", "mode": "lines", "x": response["crank_deg"],
+             "y": [x * 1e6 for x in p["strain"]], "name": p["label"],
+             "hovertemplate": "%{x:.1f} deg: %{y:.4g} microstrain<extra></extra>"}
+            for p in response["points"]]
+    layout = {"xaxis": {"title": {"text": "crank angle [deg]"}, "range": [0, 360], "dtick": 60},
+              "yaxis": {"title": {"text": "bending strain [1e-6]"}},
+              "legend": {"orientation": "h", "y": -0.25}}
+    rows = [[_e(p["label"]), _number(p["peak_strain"] * 1e6, 3),
+             _number(p["peak_deflection_m"] * 1e3, 4)] for p in response["points"]]
+    return ("<h4>Steady response</h4>" + _figure(page, figures, "response", data, layout)
+            + '<p class="note">Bending strain at each link\'s midspan (outer fibre) over one '
+              "turn once the start-up transient has died out (6 modes, damping ratio 0.01; "
+              "docs/steady-response.md).</p>"
+            + _table(["point", "peak strain [1e-6]", "peak deflection [mm]"], rows,
+                     numeric_from=1))
 
 
 def files_section(page: dict, figures: list) -> str:

@@ -117,6 +117,7 @@ def at_speed_data(at: AtSpeed | None) -> dict | None:
         out["torque"] = {"crank_deg": _rounded(np.degrees(curve.q[order]) % 360.0),
                          "torque_N_m": [float(t) for t in curve.torque[order]],
                          "summary": curve.summary()}
+    out["response"] = steady_response_data(at)
     if at.points_unavailable is not None:
         out["modes"] = {"unavailable": at.points_unavailable}
         return out
@@ -137,6 +138,20 @@ def at_speed_data(at: AtSpeed | None) -> dict | None:
                                  "compression": float(min(f.min(), 0.0))}
                                 for name, f in last.axial_forces.items()]}
     return out
+
+
+def steady_response_data(at: AtSpeed) -> dict:
+    """Each strain point's bending strain over one turn at the operating speed in the steady
+    state (``AtSpeed.response``), or {"unavailable": reason}."""
+    if at.response is None:
+        return {"unavailable": at.response_unavailable}
+    result = at.response
+    order = np.argsort(np.degrees(result.angles) % 360.0)
+    return {"crank_deg": _rounded(np.degrees(result.angles[order]) % 360.0),
+            "points": [{"label": p.label, "strain": [float(x) for x in result.strain[order, k]],
+                        "peak_strain": float(result.peak_strain[k]),
+                        "peak_deflection_m": float(result.peak_deflection[k])}
+                       for k, p in enumerate(at.forced.points)]}
 
 
 def scene_page(scene: ReportScene, files: dict, out: Path) -> dict:

@@ -15,6 +15,7 @@ from flexlink.studies.array_shapes import check_shape
 from flexlink.studies.cycle import ModalMap, modal_map
 from flexlink.studies.operating_point import OperatingPoint, operating_modes
 from flexlink.studies.scene_summary import SceneSummary, SensitivityRun, scene_summary
+from flexlink.studies.steady_response import ForcedModel, SteadyResponse, forced_model, steady_response
 from flexlink.studies.torque import TorqueCurve, torque_study
 
 SPEED_STEPS = 11  # crank speeds from rest to the operating speed in the frequency diagram
@@ -26,7 +27,9 @@ class AtSpeed:
     """A scene at its declared operating ``speed`` [rad/s] and ``crank_acceleration``
     [rad/s^2]: the driving ``torque`` over the cycle, and the operating ``points`` at the
     scene's pose at ``speeds`` [rad/s] from rest to the operating speed, each with that
-    acceleration; where either could not be made, None (no points) and the reason."""
+    acceleration; where either could not be made, None (no points) and the reason. ``response``:
+    the steady elastic response at the speed (``steady_response``, its ``forced`` model giving
+    the strain points), or the reason in ``response_unavailable``."""
 
     speed: float
     crank_acceleration: float
@@ -35,6 +38,9 @@ class AtSpeed:
     speeds: np.ndarray
     points: tuple[OperatingPoint, ...]
     points_unavailable: str | None = None
+    forced: ForcedModel | None = None
+    response: SteadyResponse | None = None
+    response_unavailable: str | None = None
 
     def __post_init__(self):
         check_shape("AtSpeed", "speeds", self.speeds, (SPEED_STEPS,))
@@ -60,12 +66,21 @@ def at_speed(scene: Scene, n_modes: int, elements_per_link: int) -> AtSpeed | No
         torque = torque_study(scene, speed, acc, poses=TORQUE_POSES)
     except FlexlinkError as exc:
         torque_unavailable = str(exc)
+    forced, response, response_unavailable = None, None, None
+    try:  # six modes: the stability map's default basis request
+        forced = forced_model(scene, n_modes=6, elements_per_link=elements_per_link)
+        response = steady_response(forced, speed)
+    except FlexlinkError as exc:
+        response_unavailable = str(exc)
+    response_parts = dict(forced=forced, response=response,
+                          response_unavailable=response_unavailable)
     try:
         points = tuple(operating_modes(scene, w, n_modes, elements_per_link, crank_acceleration=acc)
                        for w in speeds)
     except FlexlinkError as exc:
-        return AtSpeed(speed, acc, torque, torque_unavailable, speeds, (), str(exc))
-    return AtSpeed(speed, acc, torque, torque_unavailable, speeds, points)
+        return AtSpeed(speed, acc, torque, torque_unavailable, speeds, (), str(exc),
+                       **response_parts)
+    return AtSpeed(speed, acc, torque, torque_unavailable, speeds, points, **response_parts)
 
 
 @dataclasses.dataclass(frozen=True)

@@ -34,6 +34,7 @@ ARGS = {
     "modes": [CASE1, "-e", "2", "-n", "2"],
     "prb": [str(SCENES_DIR / "compliant_wiper.toml"), "-e", "2", "-n", "2"],
     "report": [CASE1, "-e", "2", "-n", "2", "--cycle-poses", "0"],
+    "response": [CASE1, "--speed", "1200 rev/min", "-n", "1"],
     "schema": [],
     "stability": [CASE1],
     "stability-map": [CASE1, "--speeds", "0:600 rev/min", "--count", "3", "-n", "2"],

@@ -1,5 +1,6 @@
 """The report's "At speed" section: present exactly for a scene that declares an operating
-speed, with the torque curve, the frequencies from rest to that speed and the axial preload."""
+speed, with the torque curve, the frequencies from rest to that speed, the axial preload and
+the steady response."""
 
 import json
 import math
@@ -37,9 +38,10 @@ def test_section_appears_exactly_for_the_scene_with_a_speed(page):
     assert "<h3>At speed</h3>" in _scene(page, "case3_speed")
     assert "At speed" not in _scene(page, "case1")
     assert 'id="fig-case1-speed"' not in page and 'id="fig-case1-torque"' not in page
-    for name in ("torque", "speed"):
+    for name in ("torque", "speed", "response"):
         assert f'id="fig-case3_speed-{name}"' in page
     assert "Axial preload at the operating speed" in _scene(page, "case3_speed")
+    assert "<h4>Steady response</h4>" in _scene(page, "case3_speed")
 
 
 def test_frequencies_at_rest_are_the_static_ones_of_the_page(page):
