@@ -65,6 +65,7 @@ def test_the_scene_crank_acceleration_reaches_torque_and_modes(tmp_path):
     from flexlink.output.report_data import at_speed_data
     from flexlink.scene import load_scene
     from flexlink.studies.operating_point import operating_modes
+    from flexlink.studies.report_scene import at_speed
     from flexlink.studies.torque import torque_study
 
     text = (CASES_DIR / "case3.toml").read_text().replace(
@@ -73,7 +74,7 @@ def test_the_scene_crank_acceleration_reaches_torque_and_modes(tmp_path):
     path.write_text(text + '\n[operation]\ncrank_speed = "600 rev/min"\n'
                            'crank_acceleration = "3000 rad/s^2"\n')
     scene = load_scene(path)
-    data = at_speed_data(scene, 2, 8)
+    data = at_speed_data(at_speed(scene, 2, 8))
     speed = 600 * 2 * math.pi / 60
     assert data["crank_acceleration_rad_s2"] == pytest.approx(3000.0)
     curve = torque_study(scene, speed, 3000.0, poses=72)
