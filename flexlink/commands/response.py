@@ -5,7 +5,7 @@ from __future__ import annotations
 import click
 
 from flexlink.commands._failures import names_scene
-from flexlink.commands._options import dumps, json_option, out_option
+from flexlink.commands._options import json_option, out_option, parse_speeds
 
 
 @click.command("response")
@@ -29,37 +29,26 @@ def command(scene_path, speed, speeds, count, n_modes, damping_ratio, points, as
     or their peaks against speed. Writes response.png, .csv and .json to OUT/<scene>/."""
     import numpy as np
 
-    from flexlink.commands.campbell import parse_speeds
     from flexlink.errors import InputError
-    from flexlink.fileio import prepare_out_dir, write_atomic
-    from flexlink.output import steady_response as out
-    from flexlink.scene import load_scene
+    from flexlink.output.steady_response import response_lines, write_response
     from flexlink.studies import steady_response as study
     from flexlink.studies.campbell import _check_speeds
     from flexlink.studies.operating_point import crank_speed
     from flexlink.units import parse_quantity
     from ._progress import progress_bar
-    from ._written import announce, scene_folders
+    from ._written import folder_and_scene, publish
 
     if speed is not None and speeds is not None:
         raise InputError("give --speed or --speeds, not both", field="--speeds")
     sweep = None if speeds is None else np.linspace(*_check_speeds(parse_speeds(speeds)), count)
     one = speed and parse_quantity(speed, "angular speed", source="command line", field="--speed")
     at = tuple(study.parse_point(p) for p in points) or None
-    [folder] = scene_folders(prepare_out_dir(out_dir), [scene_path])
-    scene = load_scene(scene_path)
-    one = crank_speed(scene, one) if sweep is None else None
+    folder, scene = folder_and_scene(out_dir, scene_path)
     model = study.forced_model(scene, n_modes, damping_ratio=damping_ratio, points=at)
-    paths = [folder / f"response.{x}" for x in ("png", "csv", "json")]
     if sweep is None:
-        result = study.steady_response(model, one)
-        out.plot_response(result, model, paths[0], scene.name)
-        csv, document = out.response_csv(result, model), out.response_document(scene.name, result, model)
+        result = study.steady_response(model, crank_speed(scene, one))
     else:
         result = study.response_sweep(model, sweep, progress=progress_bar("speeds", as_json))
-        out.plot_sweep(result, paths[0], scene.name, model.periodic.frequencies)
-        csv, document = out.sweep_csv(result), out.sweep_document(scene.name, result, model)
-    write_atomic(paths[1], csv)
-    write_atomic(paths[2], dumps({**document, "files": [str(p) for p in paths]}))
-    click.echo(dumps(document) if as_json else "\n".join(out.response_lines(document)))
-    announce(paths, as_json)
+    document, files = write_response(result, model, folder, scene.name)
+    publish(folder / "response.json", document, files, "\n".join(response_lines(document)),
+            as_json)

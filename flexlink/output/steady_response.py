@@ -167,3 +167,20 @@ def plot_sweep(sweep, path, title: str, frequencies=(), harmonics: int = 4) -> N
            xlim=(rpm[0], rpm[-1]))
     ax.legend(fontsize=8, loc="lower right")
     write_figure(fig, path)
+
+
+def write_response(result, model, folder, title: str) -> tuple[dict, list]:
+    """response.png and response.csv in ``folder`` (atomically) for one speed
+    (``SteadyResponse``) or a sweep of speeds; returns (the JSON document, their paths)."""
+    from flexlink.fileio import write_atomic
+    from flexlink.studies.steady_response import SteadyResponse
+
+    paths = [folder / "response.png", folder / "response.csv"]
+    if isinstance(result, SteadyResponse):
+        plot_response(result, model, paths[0], title)
+        csv, document = response_csv(result, model), response_document(title, result, model)
+    else:
+        plot_sweep(result, paths[0], title, model.periodic.frequencies)
+        csv, document = sweep_csv(result), sweep_document(title, result, model)
+    write_atomic(paths[1], csv)
+    return document, paths
