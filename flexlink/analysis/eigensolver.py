@@ -89,8 +89,8 @@ class EigenSolver:
             method = Method.DENSE if n_solved <= self.dense_max or k >= n_solved - 1 else Method.SPARSE
         if method is Method.DENSE and n_solved > DENSE_REFUSE:
             raise NumericalError(f"dense solve refused for {n_solved} DOFs (limit {DENSE_REFUSE}): "
-                                 f"it needs {8 * 2 * n_solved * n_solved / 1e9:.1f} GB; use the "
-                                 "sparse method")
+                                 f"it needs {8 * 2 * n_solved * n_solved / 1e9:.1f} GB; use "
+                                 "method='sparse'")
         if method is Method.SPARSE and k >= n_solved - 1:
             method = Method.DENSE  # ARPACK needs k < n - 1
         return method
