@@ -157,3 +157,14 @@ def odd_count(ctx, param, value: int) -> int:
     if value % 2 == 0:
         raise click.BadParameter(f"must be odd (every harmonic with its pair), got {value}")
     return value
+
+
+def deprecated_for(new: str):
+    """Click callback of an old spelling kept for a while: when it is given, a note on stderr
+    says which option replaces it; its value passes through."""
+    def note(ctx, param, value):
+        if value is not None:
+            click.echo(f"flexlink: {ctx.info_name} {param.opts[0]} is deprecated (it names a "
+                       f"model part, not the [model] family): use {new}", err=True)
+        return value
+    return note

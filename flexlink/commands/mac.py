@@ -3,9 +3,8 @@
 from __future__ import annotations
 
 import click
-from click.core import ParameterSource
 
-from flexlink.commands._options import EnumChoice, dumps, json_option, out_option
+from flexlink.commands._options import EnumChoice, deprecated_for, json_option, out_option
 from flexlink.fe.motions import Part
 
 
@@ -24,7 +23,7 @@ from flexlink.fe.motions import Part
                    "scenes declare (model.family planar -> in-plane); a comparison across "
                    "parts is refused (their shapes move different DOFs).")
 @click.option("--family", "old_part", type=EnumChoice(Part, none="auto"), default=None,
-              hidden=True, help="Deprecated spelling of --part.")
+              hidden=True, callback=deprecated_for("--part"), help="Deprecated: --part.")
 @json_option
 @out_option
 def command(scene_a, scene_b, n_modes, elements, elements_b, part, old_part, as_json, out_dir):
@@ -38,25 +37,15 @@ def command(scene_a, scene_b, n_modes, elements, elements_b, part, old_part, as_
     from flexlink.scene import load_scene
     from flexlink.output.mac import comparison_json, mac_csv, mac_text
     from flexlink.studies.mac_comparison import compare_scenes, mac_part
-    from ._written import announce, run_folder
+    from ._written import publish, run_folder
 
     folder = run_folder(prepare_out_dir(out_dir), [scene_a, scene_b])
     a, b = load_scene(scene_a), load_scene(scene_b)
-    if click.get_current_context().get_parameter_source("old_part") is not ParameterSource.DEFAULT:
-        click.echo("flexlink: mac --family is deprecated (it names a model part, not the "
-                   "[model] family): use --part", err=True)
-        part = old_part
-    part = mac_part(a, b, part)
+    part = mac_part(a, b, part if old_part is None else old_part)
     mesh_a = choose_mesh(a, n_modes, elements, DEFAULT_TOL)
     mesh_b = choose_mesh(b, n_modes, elements if elements_b is None else elements_b, DEFAULT_TOL)
     result = compare_scenes(a, b, n_modes, mesh_a.elements, mesh_b.elements, part=part)
-    paths = [folder / "mac.json", folder / "mac.csv"]
-    document = {"command": "mac", **comparison_json(result, n_modes),
-                "files": [str(p) for p in paths]}
-    write_atomic(paths[0], dumps(document))
-    write_atomic(paths[1], mac_csv(result))
-    if as_json:
-        click.echo(dumps(document))
-        return
-    click.echo(mac_text(document, result.mac))
-    announce(paths, as_json)
+    write_atomic(folder / "mac.csv", mac_csv(result))
+    document = {"command": "mac", **comparison_json(result, n_modes)}
+    publish(folder / "mac.json", document, [folder / "mac.csv"], mac_text(document, result.mac),
+            as_json)
