@@ -29,7 +29,7 @@ EARLIER = ["-e", "2", "-n", "2", "--phases", "3", "--no-pictures"]  # other file
 # the console script's entry point, SIGINT first handled as Python does for a terminal
 INTERACTIVE = ("import signal, sys; signal.signal(signal.SIGINT, signal.default_int_handler); "
                "from flexlink.cli import main; sys.argv[0] = 'flexlink'; main()")
-DELAYS = 8  # signals spread evenly over one run's duration, SIGTERM and SIGINT in turn
+DELAYS = 4  # signals spread evenly over one run's duration, SIGTERM and SIGINT in turn
 
 
 def export(out: Path, args: list[str]) -> subprocess.Popen:
