@@ -168,3 +168,17 @@ def deprecated_for(new: str):
                        f"model part, not the [model] family): use {new}", err=True)
         return value
     return note
+
+
+def periodic_basis_options(command):
+    """-n/--modes and --damping-ratio of the commands on the periodic equations at speed
+    (``stability-map``, ``response``): the static modes the reduced basis must reproduce and
+    the modal damping in it."""
+    options = (
+        click.option("-n", "--modes", "n_modes", default=6, show_default=True,
+                     type=click.IntRange(1, 50), help="Static modes of the reduced basis."),
+        click.option("--damping-ratio", default=0.01, show_default=True, type=float,
+                     help="Modal damping ratio in [0, 1)."))
+    for option in reversed(options):
+        command = option(command)
+    return command

@@ -5,7 +5,8 @@ from __future__ import annotations
 import click
 
 from flexlink.commands._failures import names_scene
-from flexlink.commands._options import json_option, out_option, parse_speeds
+from flexlink.commands._options import (json_option, out_option, parse_speeds,
+                                       periodic_basis_options)
 
 
 @click.command("response")
@@ -14,10 +15,7 @@ from flexlink.commands._options import json_option, out_option, parse_speeds
 @click.option("--speeds", help="A sweep of crank speeds instead, e.g. '60:3000 rev/min'.")
 @click.option("--count", default=100, show_default=True, type=click.IntRange(2, 100000),
               help="Speeds over the --speeds range.")
-@click.option("-n", "--modes", "n_modes", default=6, show_default=True,
-              type=click.IntRange(1, 50), help="Static modes of the reduced basis.")
-@click.option("--damping-ratio", default=0.01, show_default=True, type=float,
-              help="Modal damping ratio in [0, 1).")
+@periodic_basis_options
 @click.option("--at", "points", multiple=True, metavar="LINK:DISTANCE",
               help="A strain point, e.g. 'coupler:60 mm' from its start joint (repeatable; "
                    "default: each link's midspan).")

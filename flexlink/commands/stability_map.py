@@ -6,7 +6,8 @@ import click
 
 from flexlink.commands._failures import names_scene
 from flexlink.commands._options import (json_option, odd_count, out_option, parse_speeds,
-                                       scheduler_option, speeds_option)
+                                       periodic_basis_options, scheduler_option,
+                                       speeds_option)
 
 
 @click.command("stability-map")
@@ -14,10 +15,7 @@ from flexlink.commands._options import (json_option, odd_count, out_option, pars
 @speeds_option()
 @click.option("--count", default=300, show_default=True, type=click.IntRange(2, 100000),
               help="Speeds over the range.")
-@click.option("-n", "--modes", "n_modes", default=6, show_default=True,
-              type=click.IntRange(1, 50), help="Static modes of the reduced basis.")
-@click.option("--damping-ratio", default=0.01, show_default=True, type=float,
-              help="Modal damping ratio in [0, 1).")
+@periodic_basis_options
 @click.option("--poses", default=37, show_default=True, type=click.IntRange(3, 1001),
               callback=odd_count, help="Crank angles the periodic matrices are sampled at (odd).")
 @click.option("--basis", "basis_size", default=None, type=click.IntRange(1, 10000),
