@@ -29,9 +29,10 @@ from flexlink.analysis.solve import MECHANISM
 from flexlink.errors import InputError, NumericalError
 from flexlink.fe.assembly import reduced_columns, rigid_elimination
 from flexlink.fe.geometric import GeometricForm, geometric_entries
+from flexlink.fe.co_rotating import co_rotating_turn, link_angles
 from flexlink.fe.model_at_pose import pose_model
 from flexlink.fe.preload import axial_forces, inertia_loads, static_displacement
-from flexlink.fe.rotating import node_owners, rotating_entries
+from flexlink.fe.rotating import rotating_entries
 from flexlink.kinematics.dynamics import rigid_motion
 from flexlink.parallel import on_cluster, run_tasks, workers
 from flexlink.scene import Scene
@@ -156,7 +157,7 @@ def periodic_model(scene: Scene, n_modes: int = 6, poses: int = 37,
     angles = state0.q + 2.0 * np.pi * np.arange(poses) / poses
     full = np.empty((5, poses, n, n))  # M, G1, K, K_ext, K2 in co-rotating DOFs
     for p, angle in enumerate(angles):
-        full[:, p] = _pose_matrices(scene, topology, angle, T, n, reduce, _link_angles(model0))
+        full[:, p] = _pose_matrices(scene, topology, angle, T, n, reduce, link_angles(model0))
     basis = pose_basis(full[2], full[0], n_modes, basis_size, tolerance)
     M, G1, K, K_ext, K2 = (basis.vectors.T @ A @ basis.vectors for A in full)
     model = PeriodicModel(angles=angles, mass=M, coriolis=G1, stiffness=K + K_ext,
@@ -185,41 +186,8 @@ def _pose_matrices(scene, topology, angle, T, n, reduce, reference):
     G1 = reduce(rows, cols, rot[1])
     K2 = reduce(rows, cols, rot[0] + rot[2]) + _geometric(model, K, T, reduce,
                                                           inertia_loads(model, acc, alpha))
-    R = _turning(model, reference, T)
+    R = co_rotating_turn(model, reference, T)
     return tuple(R.T @ np.asarray(A) @ R for A in (M, G1, K, K_ext, K2))
-
-
-def _link_angles(model) -> np.ndarray:
-    """Each link's direction angle [rad] from its first node to its last."""
-    ends = np.array([model.nodes[link.nodes[-1]] - model.nodes[link.nodes[0]]
-                     for link in model.links])
-    return np.arctan2(ends[:, 1], ends[:, 0])
-
-
-def _turning(model, reference, T) -> np.ndarray:
-    """R (reduced) taking co-rotating node DOFs to global ones: each node's (ux, uy) turned by
-    how far its link has turned since the reference pose (``reference``: its link angles).
-    The co-rotating DOFs keep a mode's meaning over the turn (a crank's bending stays bending
-    after half a revolution); global ones do not. A rigid pin's shared translation turns
-    with the first of its links (one DOF, one rotation: any choice is a valid coordinate)."""
-    node_turn = (_link_angles(model) - reference)[node_owners(model)]
-    if T is not None:
-        T = T.tocsc()
-        for j in np.flatnonzero(np.diff(T.indptr) > 1):
-            nodes = T.indices[T.indptr[j]:T.indptr[j + 1]] // 3
-            node_turn[nodes] = node_turn[nodes[0]]
-    c, s = np.cos(node_turn), np.sin(node_turn)
-    R = np.zeros((model.n_dofs, model.n_dofs))
-    ux, uy = 3 * np.arange(len(model.nodes)), 3 * np.arange(len(model.nodes)) + 1
-    R[ux, ux], R[ux, uy], R[uy, ux], R[uy, uy] = c, -s, s, c
-    R[ux + 2, ux + 2] = 1.0
-    # R T = T Rr: Rr = (T^T T)^-1 T^T R T, T^T T counting the DOFs tied in each column
-    Rr = R if T is None else (np.asarray(T.T @ (T.T @ R.T).T)
-                              / np.diff(T.indptr)[:, None])
-    if not np.allclose(Rr.T @ Rr, np.eye(Rr.shape[0]), atol=1e-12):
-        raise NumericalError("a grounded or tied DOF is one direction of a turning node: the "
-                             "co-rotating coordinates cannot be formed")
-    return Rr
 
 
 def _geometric(model, Kr, T, reduce, loads):

@@ -29,6 +29,7 @@ from flexlink.analysis.periodic_response import UnstableError, periodic_solution
 from flexlink.errors import InputError, NumericalError
 from flexlink.fe.assembly import reduced_columns, rigid_elimination
 from flexlink.fe.beams import shear_parameter
+from flexlink.fe.co_rotating import co_rotating_turn, link_angles
 from flexlink.fe.model_at_pose import pose_model
 from flexlink.fe.preload import inertia_loads
 from flexlink.fe.timoshenko import shape_functions
@@ -38,8 +39,6 @@ from flexlink.studies.operating_point import external_loads, link_motion, reduce
 from flexlink.studies.stability_map import (
     DEFAULT_DAMPING_RATIO,
     PeriodicModel,
-    _link_angles,
-    _turning,
     fourier_series,
     periodic_model,
 )
@@ -152,14 +151,14 @@ def forced_model(scene: Scene, n_modes: int = 6, poses: int = 37,
     T = rigid_elimination(model0)
     n = reduced_columns(T, model0.n_dofs)[1]
     basis = periodic.basis.vectors  # co-rotating reduced DOFs per coordinate
-    reference = _link_angles(model0)
+    reference = link_angles(model0)
     size = basis.shape[1]
     forcing = np.empty((2, len(periodic.angles), size))
     rows = np.empty((2, len(periodic.angles), len(points), size))
     for p, angle in enumerate(periodic.angles):
         state = scene.rigid_state(angle)
         model = pose_model(topology, state.points)
-        to_global = _turning(model, reference, T) @ basis  # reduced global DOFs
+        to_global = co_rotating_turn(model, reference, T) @ basis  # reduced global DOFs
         if p == 0:  # the same coordinates as the periodic model's matrices
             _, M = reduced_pair(model, T, n, reducer(reduced_columns(T, model0.n_dofs)[0], n,
                                                      dense=True))
