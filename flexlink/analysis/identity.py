@@ -169,15 +169,38 @@ def mode_labels(parts: EnergyParts) -> list[str]:
     return labels
 
 
-def mode_identity(model: FrameModel, shapes: np.ndarray) -> list[dict]:
-    """JSON-ready identity of each mass-normalised column of ``shapes``: ``label``,
-    ``strain_energy`` and ``kinetic_energy`` (fraction per link and joint), and
-    ``effective_mass_kg`` ({"x": ..., "y": ...})."""
+@dataclasses.dataclass(frozen=True)
+class ModeIdentity:
+    """What each of k modes is (in the order given, lowest first): its ``labels``
+    (``mode_labels``), the fractions of its strain energy (``strain``) and of its kinetic energy
+    (``kinetic``) held by each of ``parts`` (links, then joints; each row sums to 1), and its
+    ``effective_mass`` [kg] for ground motion in each direction of ``DIRECTIONS``."""
+
+    parts: tuple[str, ...]
+    labels: tuple[str, ...]
+    strain: np.ndarray  # (k, parts)
+    kinetic: np.ndarray  # (k, parts)
+    effective_mass: np.ndarray  # (k, len(DIRECTIONS)) [kg]
+
+    def __post_init__(self):
+        k = len(self.labels)
+        for name, columns in (("strain", len(self.parts)), ("kinetic", len(self.parts)),
+                              ("effective_mass", len(DIRECTIONS))):
+            shape = np.shape(getattr(self, name))
+            if shape != (k, columns):
+                raise ValueError(f"ModeIdentity.{name} has shape {shape}, expected ({k}, "
+                                 f"{columns}): one row per label, one column per "
+                                 f"{'direction' if name == 'effective_mass' else 'part'}")
+
+    def __len__(self) -> int:
+        """The number of modes."""
+        return len(self.labels)
+
+
+def mode_identity(model: FrameModel, shapes: np.ndarray) -> ModeIdentity:
+    """The identity of each mass-normalised column of ``shapes`` (n_dofs, k): label, energy
+    fractions per link and joint, and effective masses."""
     parts = energy_parts(model, shapes)
     strain, kinetic = parts.fractions()
-    masses = effective_masses(model, shapes)
-    return [{"label": label,
-             "strain_energy": {n: float(v) for n, v in zip(parts.names, strain[:, j])},
-             "kinetic_energy": {n: float(v) for n, v in zip(parts.names, kinetic[:, j])},
-             "effective_mass_kg": dict(zip(DIRECTIONS, map(float, masses[j])))}
-            for j, label in enumerate(mode_labels(parts))]
+    return ModeIdentity(parts=parts.names, labels=tuple(mode_labels(parts)), strain=strain.T,
+                        kinetic=kinetic.T, effective_mass=effective_masses(model, shapes))

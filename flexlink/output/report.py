@@ -10,7 +10,7 @@ import io
 import math
 from pathlib import Path
 
-from flexlink.analysis.identity import DIRECTIONS
+from flexlink.analysis.identity import DIRECTIONS, ModeIdentity
 from flexlink.output.sensitivity_report import (alternative_document, alternative_line,
                                                 format_sensitivity, sensitivity_document)
 from flexlink.studies.scene_summary import SceneSummary, overall_mean_abs_error
@@ -29,8 +29,18 @@ def comparison_rows(summary: SceneSummary) -> list[dict]:
             if i < len(values):
                 row[f"{name}_Hz"] = values[i]
                 row[f"error_vs_{name}_pct"] = float(summary.errors[name][i])
-        rows.append({**row, **(summary.identity[i] if summary.identity else {})})
+        rows.append({**row, **(identity_json(summary.identity, i) if summary.identity else {})})
     return rows
+
+
+def identity_json(identity: ModeIdentity, j: int) -> dict:
+    """Mode ``j``'s identity as JSON fields: its ``label``, the ``strain_energy`` and
+    ``kinetic_energy`` fractions [-] per link and joint, and ``effective_mass_kg`` per
+    direction."""
+    return {"label": identity.labels[j],
+            "strain_energy": dict(zip(identity.parts, identity.strain[j].tolist())),
+            "kinetic_energy": dict(zip(identity.parts, identity.kinetic[j].tolist())),
+            "effective_mass_kg": dict(zip(DIRECTIONS, identity.effective_mass[j].tolist()))}
 
 
 def linkage_summary(scene) -> dict:
@@ -154,9 +164,8 @@ def format_case(summary: SceneSummary) -> str:
         if summary.kinds is not None:
             line += f"  {summary.kinds[i]}"
         if summary.identity:
-            identity = summary.identity[i]
-            mass = identity["effective_mass_kg"]
-            line += f" {1e3 * mass['x']:>7.3f} {1e3 * mass['y']:>7.3f}  {identity['label']}"
+            mass_x, mass_y = 1e3 * summary.identity.effective_mass[i]  # [g] in x and y
+            line += f" {mass_x:>7.3f} {mass_y:>7.3f}  {summary.identity.labels[i]}"
         lines.append(line)
     if summary.mean_abs_error_pct:
         lines.append("mean |error|: " + ", ".join(

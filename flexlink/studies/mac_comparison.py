@@ -79,7 +79,7 @@ def mac_part(scene_a: Scene, scene_b: Scene, requested: Part | None = None) -> P
 def _in_plane(scene: Scene, n_modes: int, elements: int | None) -> Side:
     r = analyze(scene, n_modes, elements)
     shapes = r.modes.shapes[:, r.modes.elastic[:n_modes]]
-    labels = tuple(d["label"] for d in mode_identity(r.model, shapes))
+    labels = mode_identity(r.model, shapes).labels
     return Side(scene, r.elements_per_link, r.elastic_frequencies(n_modes), labels, r.model,
                 shapes)
 

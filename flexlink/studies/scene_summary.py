@@ -19,8 +19,8 @@ import numpy as np
 from flexlink.analysis.damping import damping_source, modal_damping_ratios
 from flexlink.analysis.eigensolver import DEFAULT_SOLVER, EigenSolver
 from flexlink.analysis.families import elastic_modes, in_plane_only_note, scene_family
-from flexlink.analysis.identity import (DIRECTIONS, mode_identity, participating_mass,
-                                        total_mass)
+from flexlink.analysis.identity import (DIRECTIONS, ModeIdentity, mode_identity,
+                                        participating_mass, total_mass)
 from flexlink.analysis.mesh import MeshRule, choose_mesh
 from flexlink.analysis.modal import CaseResult, analyze
 from flexlink.analysis.solve import ELASTIC
@@ -61,8 +61,8 @@ class SceneSummary:
     """One scene at its pose. ``case``: the planar analysis (scene, pose, model, modes, solve
     checks, timings); ``family``: the model family whose modes these are; ``frequencies``: its
     n lowest elastic frequencies [Hz] (NaN where fewer were found); ``kinds``: per mode
-    "in-plane" or "out-of-plane" (None for the planar family); ``identity``: per mode
-    ``identity.mode_identity`` (empty for another family); ``damping_ratio``: per mode [-],
+    "in-plane" or "out-of-plane" (None for the planar family); ``identity``: the modes'
+    ``identity.ModeIdentity`` (None for another family); ``damping_ratio``: per mode [-],
     declared in the scene's [damping] or else from the links' loss factors (empty for another
     family), and ``damping_source`` how it was found; ``mechanism``: rigid-body/mechanism
     frequencies [Hz]; ``mass``: total [kg]; ``participating``: mass per direction of
@@ -74,7 +74,7 @@ class SceneSummary:
     family: ModelFamily
     frequencies: np.ndarray
     kinds: tuple[str, ...] | None
-    identity: tuple[dict, ...]
+    identity: ModeIdentity | None
     damping_ratio: np.ndarray
     damping_source: str
     mechanism: np.ndarray
@@ -93,9 +93,11 @@ class SceneSummary:
         check_shape("SceneSummary", "frequencies", self.frequencies, (None,))
         if self.kinds is not None:
             check_shape("SceneSummary", "kinds", self.kinds, (n,))
-        for name in ("identity", "damping_ratio"):  # per mode, or none at all
-            check_shape("SceneSummary", name, getattr(self, name),
-                        (0 if len(getattr(self, name)) == 0 else n,))
+        if self.identity is not None and len(self.identity) not in (0, n):
+            raise ValueError(f"SceneSummary.identity has {len(self.identity)} modes, expected "
+                             f"one per mode ({n}), or none")
+        check_shape("SceneSummary", "damping_ratio", self.damping_ratio,  # per mode, or none
+                    (0 if len(self.damping_ratio) == 0 else n,))
         check_shape("SceneSummary", "mechanism", self.mechanism, (None,))
         check_shape("SceneSummary", "participating", self.participating, (len(DIRECTIONS),))
         if set(self.errors) != set(self.reference):
@@ -144,10 +146,10 @@ def summary_of(case: CaseResult, n_modes: int, mesh: MeshRule,
     scene, modes = case.scene, case.modes
     family = ModelFamily.PLANAR if in_plane_only else scene_family(scene)
     frequencies, kinds = case.elastic_frequencies(n_modes), None
-    identity, damping = (), np.zeros(0)
+    identity, damping = None, np.zeros(0)
     if family is ModelFamily.PLANAR:
         shapes = modes.shapes[:, modes.elastic[:n_modes]]
-        identity = tuple(mode_identity(case.model, shapes))
+        identity = mode_identity(case.model, shapes)
         damping = np.asarray(modal_damping_ratios(
             case.model, shapes, 2 * np.pi * frequencies, scene.loss_factors,
             scene.options.damping), dtype=float)

@@ -391,8 +391,8 @@ def _pose_lines(topology, points, k: int, n_modes: int, progress=None):
         U[:, :len(elastic)] = link_frame(model, modes.shapes[:, elastic])
         shapes.append(U)
         if first is None:
-            first = (link_frame_mass(model), tuple(
-                d["label"] for d in mode_identity(model, modes.shapes[:, elastic[:n_modes]])))
+            first = (link_frame_mass(model),
+                     mode_identity(model, modes.shapes[:, elastic[:n_modes]]).labels)
     return freqs, shapes, mechanism, first
 
 

@@ -46,8 +46,9 @@ def test_joint_springs_carry_no_loss():
     eta = 0.004
     scene = load_scene(CASE, {"material.loss_factor": eta})
     result, zeta = _zeta(scene)
-    parts = [row["strain_energy"] for row in _identity(result)]
-    in_links = np.array([sum(v for k, v in p.items() if k in scene.loss_factors) for p in parts])
+    identity = _identity(result)
+    in_links = np.array([sum(v for k, v in zip(identity.parts, row) if k in scene.loss_factors)
+                         for row in identity.strain])
     assert np.all(in_links < 1) and np.allclose(zeta, eta / 2 * in_links, rtol=1e-12)
 
 

@@ -11,6 +11,7 @@ import scipy.linalg as la
 
 from flexlink.fe.assembly import assemble, rigid_elimination
 from flexlink.fe.model import JointSpec, LinkSpec, Topology, build_model
+from flexlink.output.report import identity_json
 from flexlink.scene import load_scene
 
 from helpers import SECTION, modes_of, single_beam
@@ -105,9 +106,9 @@ def test_labels_name_the_bending_link_and_the_soft_joint_springs():
                             JointSpec("E", ground=True, Kt=100.0, Kr=0.0)))
     model = build_model(soft, {"S": (0.0, 0.0), "E": (1.0, 0.0)})
     identity = mode_identity(model, modes_of(model, 2).shapes)
-    assert identity[0]["label"] == "joint springs S, E (axial)" or \
-        identity[0]["label"] == "joint springs E, S (axial)"
-    assert set(identity[0]["effective_mass_kg"]) == {"x", "y"}
+    assert identity.labels[0] == "joint springs S, E (axial)" or \
+        identity.labels[0] == "joint springs E, S (axial)"
+    assert identity.effective_mass.shape == (2, 2)  # per mode, in x and y
 
 
 def test_modes_command_prints_and_writes_the_identity(tmp_path):
@@ -130,3 +131,43 @@ def test_modes_command_prints_and_writes_the_identity(tmp_path):
     table = CliRunner().invoke(main, ["modes", "cases/case1.toml", "-e", "8", "--out",
                                       str(tmp_path)]).output
     assert "label" in table and "bending" in table
+
+
+@pytest.fixture(scope="module")
+def case1_identity():
+    model = _case1()
+    return mode_identity(model, modes_of(model, 3).shapes)
+
+
+def test_each_modes_energy_fractions_sum_to_one(case1_identity):
+    """Strain and kinetic parts each split u^T K u and u^T M u: a row sums to 1 (round-off)."""
+    assert len(case1_identity) == 3
+    np.testing.assert_allclose(case1_identity.strain.sum(axis=1), 1.0, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(case1_identity.kinetic.sum(axis=1), 1.0, rtol=0, atol=1e-12)
+
+
+@pytest.mark.parametrize("field, cut", [
+    ("strain", np.s_[:, 1:]), ("kinetic", np.s_[1:]), ("effective_mass", np.s_[:, :1])])
+def test_an_identity_of_the_wrong_shape_is_refused_naming_the_field(case1_identity, field, cut):
+    bad = getattr(case1_identity, field)[cut]
+    with pytest.raises(ValueError, match=rf"ModeIdentity\.{field} has shape"):
+        dataclasses.replace(case1_identity, **{field: bad})
+
+
+def test_a_joint_mass_kinetic_fraction_is_its_share_of_u_m_u():
+    """A lumped mass m at joint B moves with its node: its part of u^T M u is m |u_B|^2."""
+    model = _case1(joint_mass=0.01)
+    U = modes_of(model, 3).shapes
+    M = assemble(model)[1]
+    node_part = sum(m * (U[3 * n] ** 2 + U[3 * n + 1] ** 2) for n, m in model.point_masses)
+    identity = mode_identity(model, U)
+    expected = node_part / np.einsum("ik,ik->k", U, M @ U)
+    # fractions of one sum computed two ways: round-off only
+    np.testing.assert_allclose(identity.kinetic[:, identity.parts.index("B")], expected,
+                               rtol=1e-10)
+    # and the JSON fields say the same, with the effective masses in x and y
+    masses = effective_masses(model, U)
+    for j in range(3):
+        row = identity_json(identity, j)
+        assert row["kinetic_energy"]["B"] == pytest.approx(expected[j], rel=1e-10)
+        assert row["effective_mass_kg"] == {"x": masses[j, 0], "y": masses[j, 1]}

@@ -37,10 +37,10 @@ def test_a_crank_has_no_angle_extremes_and_a_rocker_swings_its_closed_form_angle
     """A body turning fully has no extreme angle; the rocker's sampled extremes span at most
     the closed-form swing, and within the sampling step's second-order error of it."""
     _, cyc = cycle
-    assert body_summary(cyc, "crank", None)["angle_deg"] is None
-    rocker = body_summary(cyc, "rocker", None, output=True)["angle_deg"]
+    assert body_summary(cyc, "crank", None).angle is None
+    rocker = body_summary(cyc, "rocker", None, output=True).angle
     swing = math.degrees(CASE1.rocker_swing())
-    sampled = rocker["max"] - rocker["min"]
+    sampled = rocker.max - rocker.min
     # a sampled extreme misses the true one by O(h^2): with 5 deg steps well under 1 deg
     assert swing - 1.0 < sampled <= swing + 1e-9
 
@@ -51,12 +51,11 @@ def test_angular_speed_and_acceleration_scale_as_w_and_w_squared(cycle):
     _, cyc = cycle
     one, two = (body_summary(cyc, "rocker", w, output=True) for w in (1.5, 3.0))
     for key in ("min", "max"):
-        assert two["omega_rad_s"][key] == pytest.approx(2 * one["omega_rad_s"][key], rel=1e-12)
-        assert two["alpha_rad_s2"][key] == pytest.approx(4 * one["alpha_rad_s2"][key], rel=1e-12)
-    assert two["peak_abs_alpha"]["value_rad_s2"] == pytest.approx(
-        4 * one["peak_abs_alpha"]["value_rad_s2"], rel=1e-12)
-    assert two["peak_abs_alpha"]["value_rad_s2"] == pytest.approx(
-        max(abs(two["alpha_rad_s2"]["min"]), abs(two["alpha_rad_s2"]["max"])), rel=1e-12)
+        assert getattr(two.omega, key) == pytest.approx(2 * getattr(one.omega, key), rel=1e-12)
+        assert getattr(two.alpha, key) == pytest.approx(4 * getattr(one.alpha, key), rel=1e-12)
+    assert two.peak_alpha.value == pytest.approx(4 * one.peak_alpha.value, rel=1e-12)
+    assert two.peak_alpha.value == pytest.approx(
+        max(abs(two.alpha.min), abs(two.alpha.max)), rel=1e-12)
 
     def columns(w):
         lines = motion_csv(cyc, w).splitlines()
@@ -74,10 +73,10 @@ def test_least_torque_ratio_is_one_over_the_largest_velocity_ratio(cycle):
     is fastest. The velocity ratio comes from the closed-form pose at the same samples."""
     _, cyc = cycle
     ratios = np.abs([rocker_velocity_ratio(CASE1, q) for q in cyc.q])
-    summary = body_summary(cyc, "rocker", None, output=True)["torque_ratio_min_abs"]
+    summary = body_summary(cyc, "rocker", None, output=True).torque_ratio
     # the Newton solve meets the closed form to ~1e-12; 1e-9 leaves room for its tolerance
-    assert summary["value"] == pytest.approx(1 / ratios.max(), rel=1e-9)
-    assert summary["at_deg"] == pytest.approx(math.degrees(cyc.q[np.argmax(ratios)]) % 360)
+    assert summary.value == pytest.approx(1 / ratios.max(), rel=1e-9)
+    assert summary.at_deg == pytest.approx(math.degrees(cyc.q[np.argmax(ratios)]) % 360)
 
 
 def test_limit_positions_are_the_closed_form_toggles(cycle):
@@ -89,7 +88,7 @@ def test_limit_positions_are_the_closed_form_toggles(cycle):
     for d, turn in ((L3 + L2, 0.0), (L3 - L2, math.pi)):
         phi = math.acos((L1**2 + d**2 - L4**2) / (2 * L1 * d))  # angle of O2->B above O2->O4
         expected.append(math.degrees(phi + turn) % 360)
-    found = sorted(p["crank_deg"] for p in limit_positions(linkage, cyc, "rocker"))
+    found = sorted(p.crank_deg for p in limit_positions(linkage, cyc, "rocker"))
     assert found == pytest.approx(sorted(expected), abs=1e-8)  # Newton on K to |K| < 1e-13
     assert all(0.0 <= a < 360.0 for a in found)
 

@@ -103,13 +103,13 @@ def test_extended_rocker_family_unit_time_ratio_only_at_k_1():
         scene = load_scene(SCENES / "extended_rocker.toml", overrides={"linkage.synthesis.k": k})
         cycle = kinematic_cycle(scene, 72)
         limits = limit_positions(scene.linkage, cycle, "rocker")
-        forward = (limits[1]["crank_deg"] - limits[0]["crank_deg"]) % 360
+        forward = (limits[1].crank_deg - limits[0].crank_deg) % 360
         assert (abs(forward - 180) < 1e-9) == unit
-        swing = abs(limits[1]["angle_deg"] - limits[0]["angle_deg"])
+        swing = abs(limits[1].angle_deg - limits[0].angle_deg)
         assert (abs(swing - 30) < 1e-9) == unit
         omega = 2000 * 2 * math.pi / 60
         s = body_summary(cycle, "rocker", omega, output=True)
-        assert s["alpha_rad_s2"]["max"] == pytest.approx(cycle.L[:, 2].max() * omega**2)
+        assert s.alpha.max == pytest.approx(cycle.L[:, 2].max() * omega**2)
 
 
 def test_prb_frequency_close_to_fe_with_strip_as_beam():

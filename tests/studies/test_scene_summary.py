@@ -7,6 +7,7 @@ import dataclasses
 import numpy as np
 import pytest
 
+from flexlink.analysis.identity import ModeIdentity
 from flexlink.analysis.mesh import COMMAND_LINE, MeshRule
 from flexlink.analysis.modal import analyze
 from flexlink.scene import load_scene
@@ -38,7 +39,6 @@ def test_a_planar_summary_has_one_entry_per_mode(summary):
 @pytest.mark.parametrize("field, value, named", [
     ("frequencies", np.zeros((N, 1)), "frequencies"),
     ("kinds", ("in-plane",) * (N - 1), "kinds"),
-    ("identity", ({},) * (N + 1), "identity"),
     ("damping_ratio", np.zeros(N - 1), "damping_ratio"),
     ("mechanism", np.zeros((1, 1)), "mechanism"),
     ("participating", np.zeros(3), "participating"),
@@ -50,6 +50,14 @@ def test_a_wrong_shape_is_refused_naming_the_field(summary, field, value, named)
         dataclasses.replace(summary, **{field: value})
 
 
+def test_an_identity_of_other_modes_is_refused(summary):
+    ident = summary.identity
+    fewer = ModeIdentity(ident.parts, ident.labels[1:], ident.strain[1:], ident.kinetic[1:],
+                         ident.effective_mass[1:])
+    with pytest.raises(ValueError, match=r"SceneSummary\.identity"):
+        dataclasses.replace(summary, identity=fewer)
+
+
 def test_error_arrays_must_match_their_reference_columns(summary):
     errors = {**summary.errors, "Ex": summary.errors["Ex"][:-1]}
     with pytest.raises(ValueError, match=r"SceneSummary\.errors\['Ex'\]"):
@@ -57,7 +65,7 @@ def test_error_arrays_must_match_their_reference_columns(summary):
 
 
 def test_per_mode_fields_may_be_empty_for_another_family(summary):
-    other = dataclasses.replace(summary, kinds=("out-of-plane",) * N, identity=(),
+    other = dataclasses.replace(summary, kinds=("out-of-plane",) * N, identity=None,
                                 damping_ratio=np.zeros(0))
     assert other.kinds == ("out-of-plane",) * N
 
@@ -85,7 +93,7 @@ def test_another_family_gives_its_modes_with_their_kinds_and_no_planar_identity(
                      '[model]\nfamily = "out-of-plane"\n')
     other = scene_summary(scene, N, ELEMENTS)
     assert other.family == "out-of-plane" and other.kinds == ("out-of-plane",) * N
-    assert other.identity == () and other.damping_ratio.shape == (0,)
+    assert other.identity is None and other.damping_ratio.shape == (0,)
     planar = scene_summary(scene, N, ELEMENTS, in_plane_only="this test")
     assert planar.family == "planar" and planar.kinds is None and "this test" in planar.note
     # out-of-plane bending of flat strips is softer than in-plane: the two sets differ
