@@ -14,6 +14,7 @@ Docs and editor support are generated from these models (``reference.py``).
 from __future__ import annotations
 
 import dataclasses
+import enum
 import math
 import typing
 from typing import Annotated, Literal
@@ -22,6 +23,9 @@ from pydantic import (AfterValidator, BaseModel, BeforeValidator, ConfigDict, Fi
                       WithJsonSchema, model_validator)
 
 from flexlink.errors import InputError
+from flexlink.kinematics import Branch
+from flexlink.materials.mixtures import ShearSource
+from flexlink.scene.contract import SceneKind
 from flexlink.units import parse_quantity, quantity_pattern
 
 
@@ -104,7 +108,15 @@ TRANSLATIONAL = quantity("translational stiffness", 0.0, low_open=False, shown="
 ROTATIONAL = quantity("rotational stiffness", 0.0, low_open=False, shown=">= 0", rigid=True)
 JOINT_MASS = quantity("mass", 0.0, low_open=False, shown=">= 0")
 POSITIVE_MASS = quantity("mass", 0.0, shown="> 0")
-Branch = Literal["open", "crossed"]
+
+
+def choice(kind: type[enum.StrEnum]):
+    """One of the words of ``kind`` (a StrEnum), read as its member: checked as a Literal of
+    the words, so the message for another word lists them and the JSON Schema holds them in
+    place (where an editor also takes the value's noted form), then turned into the member."""
+    return Annotated[Literal[tuple(member.value for member in kind)], AfterValidator(kind)]
+
+
 Point = Annotated[tuple[quantity("length", shown="any"), quantity("length", shown="any")],
                   Unit("length", "[x, y]")]
 
@@ -153,10 +165,10 @@ class CompositeTable(Table):
     matrix: str = doc("Matrix constituent: a shipped name (e.g. 'polyester') or a path.")
     fiber_volume_fraction: number(0.0, 1.0, low_open=True, high_open=True) = doc(
         "Fibre volume fraction Vf of the woven 0/90 laminate (rule of mixtures).")
-    shear_modulus: Literal["printed", "isotropic"] = doc(
+    shear_modulus: choice(ShearSource) = doc(
         "Constituent shear moduli for the laminate's G (used by Timoshenko links and torsion): "
         "'printed' takes each constituent file's G; 'isotropic' takes E / 2 (1 + nu) of each "
-        "(Table I's printed G conflicts with its E and nu).", default="printed")
+        "(Table I's printed G conflicts with its E and nu).", default=ShearSource.PRINTED)
 
 
 class MaterialTable(Table):
@@ -297,7 +309,7 @@ class FourBarLinkage(Table):
     """A four-bar O2-A-B-O4: crank O2A, coupler AB, rocker O4B, ground O2O4. Give the ratios
     R2, R3, R4 with ground, or the four lengths."""
 
-    type: Literal["four-bar"] = doc("Scene kind.", default="four-bar")
+    type: Literal[SceneKind.FOUR_BAR] = doc("Scene kind.", default=SceneKind.FOUR_BAR)
     R2: number(1e-6, 1e6) | None = doc("Crank / ground length ratio L2/L1.", default=None)
     R3: number(1e-6, 1e6) | None = doc("Coupler / ground length ratio L3/L1.", default=None)
     R4: number(1e-6, 1e6) | None = doc("Rocker / ground length ratio L4/L1.", default=None)
@@ -393,10 +405,10 @@ class GeneralLinkage(Table):
     """Any planar linkage of revolute joints with one input. Either a four-bar source
     ([linkage.four_bar] lengths or [linkage.synthesis]) or ground, bodies, guess and driver."""
 
-    type: Literal["general"] = doc("Scene kind.")
+    type: Literal[SceneKind.GENERAL] = doc("Scene kind.")
     four_bar: FourBarLengths | None = doc("A four-bar by its lengths.", default=None)
     synthesis: Synthesis | None = doc("A four-bar from a synthesis method.", default=None)
-    branch: Branch = doc("Assembly branch of a four-bar source.", default="open")
+    branch: choice(Branch) = doc("Assembly branch of a four-bar source.", default=Branch.OPEN)
     ground: dict[str, Point] | None = doc(
         "Ground pivots by name, each [x, y] as two unit strings in the ground frame, e.g. "
         "O1 = ['0 mm', '0 mm']: these joints never move.", default=None)
@@ -443,7 +455,7 @@ class PoseTable(Table):
     transmission_angle: OPEN_ANGLE | None = doc("Transmission angle mu at B.", default=None)
     crank_angle: ANGLE | None = doc("Crank angle theta2 from the ground line O2->O4.",
                                     default=None)
-    branch: Branch = doc("Assembly branch.", default="open")
+    branch: choice(Branch) = doc("Assembly branch.", default=Branch.OPEN)
 
     @model_validator(mode="after")
     def _one(self):
