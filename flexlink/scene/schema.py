@@ -23,9 +23,12 @@ from pydantic import (AfterValidator, BaseModel, BeforeValidator, ConfigDict, Fi
                       WithJsonSchema, model_validator)
 
 from flexlink.errors import InputError
+from flexlink.fe.beams import BeamTheory
+from flexlink.fe.model import Bending
+from flexlink.fe.motions import ModelFamily
 from flexlink.kinematics import Branch
 from flexlink.materials.mixtures import ShearSource
-from flexlink.scene.contract import SceneKind
+from flexlink.scene.contract import LoadFrame, LoadKind, Plausibility, SceneKind
 from flexlink.units import parse_quantity, quantity_pattern
 
 
@@ -209,7 +212,7 @@ class SectionTable(Table):
 
     width: LENGTH | None = doc("Width of a flat bar (the in-plane depth when bending is "
                                "'edgewise').", default=None)
-    bending: Literal["edgewise", "flatwise"] | None = doc(
+    bending: choice(Bending) | None = doc(
         "How a flat bar lies: 'edgewise' puts the width in the mechanism plane (in-plane "
         "bending uses I = thickness width^3 / 12, the stiff way); 'flatwise' puts the "
         "thickness in the plane (I = width thickness^3 / 12, the flexible way, as in most "
@@ -474,18 +477,19 @@ class MeshTable(Table):
 
 
 class ModelTable(Table):
-    family: Literal["planar", "out-of-plane", "3d"] = doc(
+    family: choice(ModelFamily) = doc(
         "Model family: the paper's in-plane frame, out-of-plane bending and torsion, or both.",
-        default="planar")
-    beam: Literal["euler-bernoulli", "timoshenko"] = doc(
+        default=ModelFamily.PLANAR)
+    beam: choice(BeamTheory) = doc(
         "Beam theory of the in-plane links: Euler-Bernoulli (the paper's) or Timoshenko (shear "
-        "strain with k = 5/6 for rectangles, and rotary inertia).", default="euler-bernoulli")
+        "strain with k = 5/6 for rectangles, and rotary inertia).",
+        default=BeamTheory.EULER_BERNOULLI)
 
 
 class ChecksTable(Table):
-    plausibility: Literal["error", "warn"] = doc(
+    plausibility: choice(Plausibility) = doc(
         "Values outside plausible ranges (unit slips such as '300 m'): refuse or only warn.",
-        default="error")
+        default=Plausibility.ERROR)
 
 
 class OperationTable(Table):
@@ -536,8 +540,8 @@ class LoadTable(Table):
     """An external load on one body of the linkage, for the driving torque: a torque, or a
     force at a point of the body; constant, or over the crank angle from a CSV file."""
 
-    kind: Literal["torque", "force"] = doc("What the load is: a torque (counter-clockwise "
-                                           "positive) or a force at point 'at'.")
+    kind: choice(LoadKind) = doc("What the load is: a torque (counter-clockwise positive) or "
+                                 "a force at point 'at'.")
     link: str = doc("The body it acts on: a four-bar's crank, coupler or rocker; a general "
                     "scene's [linkage.bodies] name.")
     torque: quantity("torque", shown="any") | None = doc("A constant torque (kind 'torque').",
@@ -547,9 +551,9 @@ class LoadTable(Table):
     at: Point | None = doc("Where the force acts, [x, y] in the body's frame: origin at the "
                            "body's first joint, x towards its second (kind 'force').",
                            default=None)
-    frame: Literal["global", "body"] = doc(
+    frame: choice(LoadFrame) = doc(
         "Force components along the fixed axes ('global') or along the body's frame, turning "
-        "with it ('body').", default="global")
+        "with it ('body').", default=LoadFrame.GLOBAL)
     csv: str | None = doc(
         "Instead of a constant: a CSV file (path relative to the scene file) with a header row, "
         "the crank angle in degrees in its first column, evenly spaced over one full turn, and "
