@@ -64,3 +64,19 @@ def publish(path: Path, document: dict, files, text: str, as_json: bool) -> None
         return
     click.echo(text)
     announce(document["files"], as_json)
+
+
+def publish_files(documents: dict[Path, dict], tables: dict[Path, str], document: dict,
+                  text: str, as_json: bool) -> None:
+    """The last step of a command over several scenes: each JSON document and text table
+    written to its path atomically, then the printed ``document`` on stdout (``--json``), or
+    else ``text`` printed and its ``files`` listed on stderr."""
+    from flexlink.commands._options import dumps
+    from flexlink.fileio import write_atomic
+
+    for path, part in documents.items():
+        write_atomic(path, dumps(part))
+    for path, table in tables.items():
+        write_atomic(path, table)
+    click.echo(dumps(document) + "\n" if as_json else text, nl=False)
+    announce(document["files"], as_json)

@@ -16,13 +16,33 @@ B is above it too, as drawn in the paper's Fig. 3); "crossed" turns it counter-c
 from __future__ import annotations
 
 import dataclasses
+import enum
 import math
 
 import numpy as np
 
+from flexlink.choices import parse_choice
 from flexlink.errors import InputError, KinematicsError
 
-BRANCHES = ("open", "crossed")
+
+class Branch(enum.StrEnum):
+    """The assembly branch: which side of the diagonal O4-A the pin B lies on."""
+
+    OPEN = "open"
+    CROSSED = "crossed"
+
+
+class GrashofClass(enum.StrEnum):
+    """What a four-bar's links can do, from its shortest (s), longest (l) and other two (p,
+    q) lengths: Grashof (s + l < p + q) by which link is shortest, change-point (s + l = p +
+    q), or non-Grashof (s + l > p + q, a triple rocker)."""
+
+    CRANK_ROCKER = "crank-rocker"
+    DOUBLE_CRANK = "double-crank"
+    DOUBLE_ROCKER = "double-rocker"
+    CHANGE_POINT = "change-point"
+    NON_GRASHOF = "non-Grashof"
+
 CLOSE_TOL = 1e-12  # relative: a toggle closing within this is round-off, not a gap in the loop
 
 
@@ -34,7 +54,7 @@ class FourBarPose:
     theta3: float
     theta4: float
     mu: float
-    branch: str
+    branch: Branch
     joints: dict[str, tuple[float, float]]
 
 
@@ -73,18 +93,18 @@ class FourBar:
         return (self.crank / self.ground, self.coupler / self.ground, self.rocker / self.ground)
 
     # -- classification ----------------------------------------------------------------------
-    def grashof_class(self) -> str:
-        """'crank-rocker', 'double-crank', 'double-rocker' (Grashof), 'change-point'
-        (s + l = p + q) or 'non-Grashof' (triple rocker)."""
+    def grashof_class(self) -> GrashofClass:
+        """The linkage's class; a Grashof one by its shortest link: the ground (double-crank),
+        the crank (crank-rocker), the coupler or the rocker (double-rocker)."""
         lengths = self.lengths
         s, l = min(lengths), max(lengths)
         pq = sum(lengths) - s - l
         if math.isclose(s + l, pq, rel_tol=1e-12):
-            return "change-point"
+            return GrashofClass.CHANGE_POINT
         if s + l > pq:
-            return "non-Grashof"
-        shortest = lengths.index(s)
-        return {0: "double-crank", 1: "crank-rocker", 2: "double-rocker", 3: "double-rocker"}[shortest]
+            return GrashofClass.NON_GRASHOF
+        return (GrashofClass.DOUBLE_CRANK, GrashofClass.CRANK_ROCKER, GrashofClass.DOUBLE_ROCKER,
+                GrashofClass.DOUBLE_ROCKER)[lengths.index(s)]
 
     def crank_turns_fully(self) -> bool:
         """Grashof's criterion with its equality: the crank turns a full revolution when
@@ -93,14 +113,15 @@ class FourBar:
         line and the assembly branch can change."""
         lengths = self.lengths
         s, l = min(lengths), max(lengths)
-        grashof = self.grashof_class() == "change-point" or s + l < sum(lengths) - s - l
+        grashof = (self.grashof_class() is GrashofClass.CHANGE_POINT
+                   or s + l < sum(lengths) - s - l)
         return grashof and min(self.ground, self.crank) == s
 
     def flat_poses(self) -> tuple[float, ...]:
         """Crank angles [rad] in [0, 2 pi) of a change-point linkage's flat poses, where all
         four joints lie on the ground line (crank along it at 0 or 180 deg and the loop
         closing there); none for other linkages."""
-        if self.grashof_class() != "change-point":
+        if self.grashof_class() is not GrashofClass.CHANGE_POINT:
             return ()
         return tuple(t for t in (0.0, math.pi) if self._closes_flat(t))
 
@@ -164,8 +185,9 @@ class FourBar:
                 f"(lengths {self.lengths} m)")
 
     # -- positions ---------------------------------------------------------------------------
-    def pose(self, theta2: float, branch: str = "open") -> FourBarPose:
-        """Joint positions at crank angle ``theta2`` [rad] on the chosen assembly branch.
+    def pose(self, theta2: float, branch: Branch | str = Branch.OPEN) -> FourBarPose:
+        """Joint positions at crank angle ``theta2`` [rad] on the chosen assembly ``branch``
+        (a ``Branch`` or its text).
 
         Raises KinematicsError where the loop cannot close: the diagonal O4-A longer than
         coupler + rocker or shorter than |coupler - rocker| by more than ``CLOSE_TOL``
@@ -173,9 +195,7 @@ class FourBar:
         change-point linkage's flat pose) is a pose like any other: both branches meet there,
         and the callers warn about it (``scene.plausibility.pose_warnings``).
         """
-        if branch not in BRANCHES:
-            raise InputError(f"unknown assembly branch {branch!r}", field="branch",
-                             expected=" or ".join(BRANCHES))
+        branch = parse_choice(Branch, branch, "branch")
         L1, L2, L3, L4 = self.lengths
         A = np.array([L2 * math.cos(theta2), L2 * math.sin(theta2)])
         O4 = np.array([L1, 0.0])
@@ -196,7 +216,7 @@ class FourBar:
         cos_psi3 = (L4**2 + diag**2 - L3**2) / (2 * L4 * diag)
         mu = float(np.arccos(np.clip(self.cos_mu(theta2), -1.0, 1.0)))
         psi3 = math.acos(min(1.0, max(-1.0, cos_psi3)))
-        sign = -1.0 if branch == "open" else 1.0
+        sign = -1.0 if branch is Branch.OPEN else 1.0
         theta4 = math.atan2(d[1], d[0]) + sign * psi3
         B = O4 + L4 * np.array([math.cos(theta4), math.sin(theta4)])
         theta3 = math.atan2(*(B - A)[::-1])
@@ -205,7 +225,8 @@ class FourBar:
         return FourBarPose(theta2=float(theta2), theta3=theta3, theta4=theta4, mu=mu, branch=branch,
                     joints=joints)
 
-    def pose_at_mu(self, mu: float, branch: str = "open", which: int = 0) -> FourBarPose:
+    def pose_at_mu(self, mu: float, branch: Branch | str = Branch.OPEN,
+                   which: int = 0) -> FourBarPose:
         """Pose where the transmission angle is ``mu`` [rad]; ``which`` 0 takes the crank angle
         in [0, 180] deg, 1 its mirror in [180, 360] deg."""
         return self.pose(self.crank_angles_for_mu(mu)[which], branch)
@@ -213,7 +234,7 @@ class FourBar:
     def rocker_swing(self) -> float:
         """Rocker swing angle [rad] of a crank-rocker, between its two toggle (extreme)
         positions where crank and coupler are collinear."""
-        if self.grashof_class() != "crank-rocker":
+        if self.grashof_class() is not GrashofClass.CRANK_ROCKER:
             raise KinematicsError(f"rocker swing is defined for a crank-rocker; this linkage is "
                                   f"{self.grashof_class()}")
         L1, L2, L3, L4 = self.lengths

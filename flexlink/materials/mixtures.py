@@ -29,6 +29,7 @@ gives no crimp data, so none is applied.
 from __future__ import annotations
 
 import dataclasses
+import enum
 import functools
 import os
 import stat as statmode
@@ -37,6 +38,7 @@ from importlib import resources
 from importlib.resources.abc import Traversable
 from pathlib import Path
 
+from flexlink.choices import parse_choice
 from flexlink.errors import InputError
 from flexlink.units import parse_quantity
 
@@ -222,7 +224,12 @@ class BeamMaterial:
     density: float
 
 
-SHEAR_SOURCES = ("printed", "isotropic")
+class ShearSource(enum.StrEnum):
+    """Where a composite's constituent shear moduli come from: the constituent files' own G
+    (PRINTED), or E / 2 (1 + nu) of each (ISOTROPIC)."""
+
+    PRINTED = "printed"
+    ISOTROPIC = "isotropic"
 
 
 def isotropic_shear(material: Constituent) -> Constituent:
@@ -231,14 +238,12 @@ def isotropic_shear(material: Constituent) -> Constituent:
 
 
 def woven_composite(fiber: Constituent, matrix: Constituent, fiber_fraction: float,
-                    shear: str = "printed") -> BeamMaterial:
+                    shear: ShearSource | str = ShearSource.PRINTED) -> BeamMaterial:
     """Beam material of a woven 0/90 laminate (see the module docstring for the formula).
-    ``shear``: "printed" uses the constituents' G as given, "isotropic" E / 2 (1 + nu) of each
-    (Table I's printed G values conflict with its E and nu; both are shown where G matters)."""
-    if shear not in SHEAR_SOURCES:
-        raise InputError(f"unknown shear modulus source {shear!r}", field="shear_modulus",
-                         expected=" or ".join(map(repr, SHEAR_SOURCES)))
-    if shear == "isotropic":
+    ``shear`` (a ``ShearSource`` or its text): PRINTED uses the constituents' G as given,
+    ISOTROPIC E / 2 (1 + nu) of each (Table I's printed G values conflict with its E and nu;
+    both are shown where G matters)."""
+    if parse_choice(ShearSource, shear, "shear_modulus") is ShearSource.ISOTROPIC:
         fiber, matrix = isotropic_shear(fiber), isotropic_shear(matrix)
     ply = rule_of_mixtures(fiber, matrix, fiber_fraction)
     return BeamMaterial(name=f"woven {fiber.name}/{matrix.name} Vf={fiber_fraction:g}",

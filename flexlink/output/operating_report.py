@@ -1,12 +1,14 @@
-"""Modes at an operating point (``studies.operating_point``) as a JSON-ready summary, a text
-table and CSV: each mode beside its paired static mode, the change at speed, its growth rate,
-and the preload's largest axial force."""
+"""Modes at an operating point (``studies.operating_point``) as JSON, a text table and CSV:
+each mode beside its paired static mode, the change at speed, its growth rate, and the
+preload's largest axial force. ``operating_summary`` declares the JSON's field names; the text
+and the CSV show its values."""
 
 from __future__ import annotations
 
 import csv
 import io
 import math
+from pathlib import Path
 
 from flexlink.studies.operating_point import ASSUMPTIONS, OperatingPoint
 from flexlink.units import percent_error
@@ -70,6 +72,34 @@ def stability_note(op: OperatingPoint) -> str | None:
                          "coupling) causes it, and its sign changes over a cycle"
                          if circulatory else ""))
     return "; ".join(notes) or None
+
+
+def operating_document(summaries: list[dict], files, failures: list[dict] | None = None) -> dict:
+    """The JSON document of ``modes --speed``: the scenes' summaries, the files written and,
+    for the run's own printed document, the scenes that failed."""
+    document = {"command": "modes --speed", "cases": summaries, "files": [str(f) for f in files]}
+    return document if failures is None else {**document, "failures": failures}
+
+
+def operating_files(scenes: list[tuple[Path, OperatingPoint]], failures: list[dict]
+                    ) -> tuple[dict[Path, dict], dict[Path, str], dict]:
+    """What ``modes --speed`` writes: modes_at_speed.json and .csv in each scene's folder (the
+    JSON documents and the CSV texts, by path), and the printed document with every scene,
+    every file and the ``failures``."""
+    documents, tables, summaries = {}, {}, []
+    for folder, op in scenes:
+        summary = operating_summary(op)
+        json_path, csv_path = folder / "modes_at_speed.json", folder / "modes_at_speed.csv"
+        documents[json_path] = operating_document([summary], [json_path, csv_path])
+        tables[csv_path] = operating_csv([summary])
+        summaries.append(summary)
+    written = [p for pair in zip(documents, tables) for p in pair]
+    return documents, tables, operating_document(summaries, written, failures)
+
+
+def operating_text(ops: list[OperatingPoint]) -> str:
+    """The text tables of the operating points, each followed by an empty line."""
+    return "".join(format_operating(operating_summary(op)) + "\n\n" for op in ops)
 
 
 def _frequency(row: dict) -> str:

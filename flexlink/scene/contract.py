@@ -17,7 +17,8 @@ import numpy as np
 from flexlink.errors import InputError
 from flexlink.fe.model import DriveSpec, JointSpec, LinkSpec, Section, Topology
 from flexlink.fe.motions import ModelFamily
-from flexlink.kinematics import FourBar, Linkage, State
+from flexlink.kinematics import Branch, FourBar, Linkage, State
+from flexlink.materials.mixtures import ShearSource
 from flexlink.scene.source import Assumption, file_of
 
 CONTINUATION_STEP = math.radians(5.0)  # [rad] between poses continued along a general scene's input
@@ -47,7 +48,7 @@ class Composite:
     fiber: str
     matrix: str
     fiber_volume_fraction: float
-    shear_modulus: str = "printed"  # constituent G: "printed" (Table I) or "isotropic"
+    shear_modulus: ShearSource = ShearSource.PRINTED  # constituent G: Table I's or from E, nu
 
 
 @dataclasses.dataclass(frozen=True)
@@ -145,7 +146,7 @@ class RigidPose:
     crank_angle: float
     joints: dict[str, tuple[float, float]]
     transmission: dict[str, float]
-    branch: str
+    branch: Branch
 
     @property
     def mu(self) -> float | None:
@@ -169,7 +170,7 @@ class Scene:
     linkage: Linkage
     four_bar: FourBar | None
     start: float  # input angle of the analysed pose [rad]
-    branch: str
+    branch: Branch
     guess: dict[str, tuple[float, float]]  # moving joints near the start pose [m]
     transmission: tuple[tuple[str, str], ...]
     links: tuple[LinkSpec, ...]

@@ -15,12 +15,12 @@ from pydantic import BaseModel
 
 from flexlink.errors import InputError
 from flexlink.scene import fourbar, general, parts, schema
-from flexlink.scene.contract import Scene
+from flexlink.scene.contract import Scene, SceneKind
 from flexlink.scene.loads import build_loads
 from flexlink.scene.plausibility import check_scene
 from flexlink.scene.source import SceneSource, overridden, read_scene_source
 
-BUILDERS = {"four-bar": fourbar.build_four_bar, "general": general.build_general}  # linkage.type -> builder
+BUILDERS = {SceneKind.FOUR_BAR: fourbar.build_four_bar, SceneKind.GENERAL: general.build_general}
 
 
 def _members(tp) -> list:
@@ -37,10 +37,12 @@ def _members(tp) -> list:
 
 
 def _tag(cls) -> str | None:
+    """The word (``type = ...``, ``method = ...``) that picks ``cls`` among the alternatives
+    of a choice of tables, as written in a file; None for a plain table."""
     for name in ("type", "method"):
         field = cls.model_fields.get(name)
         if field is not None and typing.get_origin(field.annotation) is typing.Literal:
-            return typing.get_args(field.annotation)[0]
+            return str(typing.get_args(field.annotation)[0])
     return None
 
 
@@ -129,8 +131,10 @@ def _problem(src: SceneSource, error: dict) -> tuple[str, str]:
         message = "missing"
     elif kind == "union_tag_invalid":
         ctx = error.get("ctx", {})
+        _, alternatives = _walk(loc)
+        tags = ", ".join(repr(_tag(m)) for m in alternatives if _tag(m))
         message = (f"unknown {ctx.get('discriminator', 'kind').strip(chr(39))} "
-                   f"{ctx.get('tag')!r} (expected one of {ctx.get('expected_tags')})")
+                   f"{ctx.get('tag')!r} (expected one of {tags})")
     elif kind == "union_tag_not_found":
         message = "missing 'type' (or 'method')"
     else:
@@ -166,7 +170,7 @@ def validate(src: SceneSource) -> schema.SceneFile:
     data = dict(src.data)
     linkage = data.get("linkage")
     if isinstance(linkage, dict) and "type" not in linkage:
-        data["linkage"] = {"type": "four-bar", **linkage}  # the default kind
+        data["linkage"] = {"type": SceneKind.FOUR_BAR.value, **linkage}  # the default kind
     try:
         return schema.SceneFile.model_validate(data)
     except pydantic.ValidationError as exc:

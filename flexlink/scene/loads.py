@@ -15,7 +15,7 @@ import numpy as np
 from flexlink.errors import InputError
 from flexlink.kinematics import Linkage
 from flexlink.scene import parts, schema
-from flexlink.scene.contract import LoadFrame, LoadKind, LoadSpec
+from flexlink.scene.contract import LoadKind, LoadSpec
 from flexlink.scene.source import SceneSource
 from flexlink.units import parse_quantity
 
@@ -89,7 +89,7 @@ def load_spec(src: SceneSource, table: schema.LoadTable, i: int, names: list[str
     if table.link not in names:
         raise parts.unknown_name(src, f"{field}.link", "body", table.link, names)
     at = tuple(table.at) if table.at is not None else (0.0, 0.0)
-    kind, frame = LoadKind(table.kind), LoadFrame(table.frame)
+    kind, frame = table.kind, table.frame
     if table.csv is None:
         value = (table.torque,) if kind is LoadKind.TORQUE else tuple(table.force)
         return LoadSpec(kind, table.link, np.array([value], float), None, at, frame, field)

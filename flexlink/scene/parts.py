@@ -13,7 +13,7 @@ from flexlink.fe.motions import ModelFamily
 from flexlink.materials.mixtures import (BeamMaterial, LossFactor, isotropic, load_constituent,
                                          woven_composite)
 from flexlink.scene import schema
-from flexlink.scene.contract import (Composite, ModalDamping, Options, Plausibility, PrbOptions,
+from flexlink.scene.contract import (Composite, ModalDamping, Options, PrbOptions,
                                      Reference, Variant)
 from flexlink.scene.source import Assumption, SceneSource
 
@@ -260,7 +260,7 @@ def default_assumptions(src: SceneSource, sf: schema.SceneFile,
     own = table.__pydantic_extra__ or {}
     untilted = [j for j in joint_names
                 if table.Ktilt is None and (j not in own or own[j].Ktilt is None)]
-    if ModelFamily(sf.model.family) is ModelFamily.PLANAR or not untilted:
+    if sf.model.family is ModelFamily.PLANAR or not untilted:
         return []
     return [Assumption("joints.Ktilt", "rigid", "assumed (default): joints " + ", ".join(untilted)
                        + " hold both out-of-plane bending moments (Ktilt rigid); Ktilt is not "
@@ -273,9 +273,9 @@ def options(src: SceneSource, sf: schema.SceneFile, joint_names: list[str]) -> O
         p = sf.prb
         prb = PrbOptions(p.strip, p.pivot, p.link, p.clamp, p.gamma, p.K_theta)
     variants = tuple(Variant(v.name or v.field, v.field, tuple(v.values)) for v in sf.family)
-    return Options(family=ModelFamily(sf.model.family), crank_speed=sf.operation.crank_speed,
+    return Options(family=sf.model.family, crank_speed=sf.operation.crank_speed,
                    crank_acceleration=sf.operation.crank_acceleration,
-                   plausibility=Plausibility(sf.checks.plausibility), prb=prb, variants=variants,
+                   plausibility=sf.checks.plausibility, prb=prb, variants=variants,
                    tilt=tilt(sf, joint_names), damping=modal_damping(sf.damping))
 
 

@@ -4,6 +4,7 @@ completion and checking (``flexlink schema``), and the Markdown reference
 
 from __future__ import annotations
 
+import enum
 import typing
 
 from pydantic import BaseModel
@@ -215,7 +216,7 @@ def _type_text(annotation) -> str:
     for alt in _alternatives(annotation):
         origin = typing.get_origin(alt)
         if origin is typing.Literal:
-            names.append(" or ".join(repr(v) for v in typing.get_args(alt)))
+            names.append(" or ".join(repr(str(v)) for v in typing.get_args(alt)))
         elif origin in (list, tuple):
             names.append("list of " + ", ".join(_type_text(a) for a in typing.get_args(alt)
                                                 if a is not Ellipsis))
@@ -238,6 +239,8 @@ def _default_text(field) -> str:
         return "-"
     if isinstance(value, float) and value == 0.0:
         return "0"
+    if isinstance(value, enum.StrEnum):
+        value = value.value
     return f"`{value!r}`" if value != [] else "none"
 
 
@@ -261,7 +264,7 @@ def _tag_text(model: type[BaseModel]) -> str:
     for name in ("type", "method"):
         field = model.model_fields.get(name)
         if field is not None and typing.get_origin(field.annotation) is typing.Literal:
-            return f" ({name} = {typing.get_args(field.annotation)[0]!r})"
+            return f" ({name} = {str(typing.get_args(field.annotation)[0])!r})"
     return ""
 
 

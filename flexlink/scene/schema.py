@@ -14,6 +14,7 @@ Docs and editor support are generated from these models (``reference.py``).
 from __future__ import annotations
 
 import dataclasses
+import enum
 import math
 import typing
 from typing import Annotated, Literal
@@ -22,6 +23,12 @@ from pydantic import (AfterValidator, BaseModel, BeforeValidator, ConfigDict, Fi
                       WithJsonSchema, model_validator)
 
 from flexlink.errors import InputError
+from flexlink.fe.beams import BeamTheory
+from flexlink.fe.model import Bending
+from flexlink.fe.motions import ModelFamily
+from flexlink.kinematics import Branch
+from flexlink.materials.mixtures import ShearSource
+from flexlink.scene.contract import LoadFrame, LoadKind, Plausibility, SceneKind
 from flexlink.units import parse_quantity, quantity_pattern
 
 
@@ -104,7 +111,15 @@ TRANSLATIONAL = quantity("translational stiffness", 0.0, low_open=False, shown="
 ROTATIONAL = quantity("rotational stiffness", 0.0, low_open=False, shown=">= 0", rigid=True)
 JOINT_MASS = quantity("mass", 0.0, low_open=False, shown=">= 0")
 POSITIVE_MASS = quantity("mass", 0.0, shown="> 0")
-Branch = Literal["open", "crossed"]
+
+
+def choice(kind: type[enum.StrEnum]):
+    """One of the words of ``kind`` (a StrEnum), read as its member: checked as a Literal of
+    the words, so the message for another word lists them and the JSON Schema holds them in
+    place (where an editor also takes the value's noted form), then turned into the member."""
+    return Annotated[Literal[tuple(member.value for member in kind)], AfterValidator(kind)]
+
+
 Point = Annotated[tuple[quantity("length", shown="any"), quantity("length", shown="any")],
                   Unit("length", "[x, y]")]
 
@@ -153,10 +168,10 @@ class CompositeTable(Table):
     matrix: str = doc("Matrix constituent: a shipped name (e.g. 'polyester') or a path.")
     fiber_volume_fraction: number(0.0, 1.0, low_open=True, high_open=True) = doc(
         "Fibre volume fraction Vf of the woven 0/90 laminate (rule of mixtures).")
-    shear_modulus: Literal["printed", "isotropic"] = doc(
+    shear_modulus: choice(ShearSource) = doc(
         "Constituent shear moduli for the laminate's G (used by Timoshenko links and torsion): "
         "'printed' takes each constituent file's G; 'isotropic' takes E / 2 (1 + nu) of each "
-        "(Table I's printed G conflicts with its E and nu).", default="printed")
+        "(Table I's printed G conflicts with its E and nu).", default=ShearSource.PRINTED)
 
 
 class MaterialTable(Table):
@@ -197,7 +212,7 @@ class SectionTable(Table):
 
     width: LENGTH | None = doc("Width of a flat bar (the in-plane depth when bending is "
                                "'edgewise').", default=None)
-    bending: Literal["edgewise", "flatwise"] | None = doc(
+    bending: choice(Bending) | None = doc(
         "How a flat bar lies: 'edgewise' puts the width in the mechanism plane (in-plane "
         "bending uses I = thickness width^3 / 12, the stiff way); 'flatwise' puts the "
         "thickness in the plane (I = width thickness^3 / 12, the flexible way, as in most "
@@ -297,7 +312,7 @@ class FourBarLinkage(Table):
     """A four-bar O2-A-B-O4: crank O2A, coupler AB, rocker O4B, ground O2O4. Give the ratios
     R2, R3, R4 with ground, or the four lengths."""
 
-    type: Literal["four-bar"] = doc("Scene kind.", default="four-bar")
+    type: Literal[SceneKind.FOUR_BAR] = doc("Scene kind.", default=SceneKind.FOUR_BAR)
     R2: number(1e-6, 1e6) | None = doc("Crank / ground length ratio L2/L1.", default=None)
     R3: number(1e-6, 1e6) | None = doc("Coupler / ground length ratio L3/L1.", default=None)
     R4: number(1e-6, 1e6) | None = doc("Rocker / ground length ratio L4/L1.", default=None)
@@ -393,10 +408,10 @@ class GeneralLinkage(Table):
     """Any planar linkage of revolute joints with one input. Either a four-bar source
     ([linkage.four_bar] lengths or [linkage.synthesis]) or ground, bodies, guess and driver."""
 
-    type: Literal["general"] = doc("Scene kind.")
+    type: Literal[SceneKind.GENERAL] = doc("Scene kind.")
     four_bar: FourBarLengths | None = doc("A four-bar by its lengths.", default=None)
     synthesis: Synthesis | None = doc("A four-bar from a synthesis method.", default=None)
-    branch: Branch = doc("Assembly branch of a four-bar source.", default="open")
+    branch: choice(Branch) = doc("Assembly branch of a four-bar source.", default=Branch.OPEN)
     ground: dict[str, Point] | None = doc(
         "Ground pivots by name, each [x, y] as two unit strings in the ground frame, e.g. "
         "O1 = ['0 mm', '0 mm']: these joints never move.", default=None)
@@ -443,7 +458,7 @@ class PoseTable(Table):
     transmission_angle: OPEN_ANGLE | None = doc("Transmission angle mu at B.", default=None)
     crank_angle: ANGLE | None = doc("Crank angle theta2 from the ground line O2->O4.",
                                     default=None)
-    branch: Branch = doc("Assembly branch.", default="open")
+    branch: choice(Branch) = doc("Assembly branch.", default=Branch.OPEN)
 
     @model_validator(mode="after")
     def _one(self):
@@ -462,18 +477,19 @@ class MeshTable(Table):
 
 
 class ModelTable(Table):
-    family: Literal["planar", "out-of-plane", "3d"] = doc(
+    family: choice(ModelFamily) = doc(
         "Model family: the paper's in-plane frame, out-of-plane bending and torsion, or both.",
-        default="planar")
-    beam: Literal["euler-bernoulli", "timoshenko"] = doc(
+        default=ModelFamily.PLANAR)
+    beam: choice(BeamTheory) = doc(
         "Beam theory of the in-plane links: Euler-Bernoulli (the paper's) or Timoshenko (shear "
-        "strain with k = 5/6 for rectangles, and rotary inertia).", default="euler-bernoulli")
+        "strain with k = 5/6 for rectangles, and rotary inertia).",
+        default=BeamTheory.EULER_BERNOULLI)
 
 
 class ChecksTable(Table):
-    plausibility: Literal["error", "warn"] = doc(
+    plausibility: choice(Plausibility) = doc(
         "Values outside plausible ranges (unit slips such as '300 m'): refuse or only warn.",
-        default="error")
+        default=Plausibility.ERROR)
 
 
 class OperationTable(Table):
@@ -524,8 +540,8 @@ class LoadTable(Table):
     """An external load on one body of the linkage, for the driving torque: a torque, or a
     force at a point of the body; constant, or over the crank angle from a CSV file."""
 
-    kind: Literal["torque", "force"] = doc("What the load is: a torque (counter-clockwise "
-                                           "positive) or a force at point 'at'.")
+    kind: choice(LoadKind) = doc("What the load is: a torque (counter-clockwise positive) or "
+                                 "a force at point 'at'.")
     link: str = doc("The body it acts on: a four-bar's crank, coupler or rocker; a general "
                     "scene's [linkage.bodies] name.")
     torque: quantity("torque", shown="any") | None = doc("A constant torque (kind 'torque').",
@@ -535,9 +551,9 @@ class LoadTable(Table):
     at: Point | None = doc("Where the force acts, [x, y] in the body's frame: origin at the "
                            "body's first joint, x towards its second (kind 'force').",
                            default=None)
-    frame: Literal["global", "body"] = doc(
+    frame: choice(LoadFrame) = doc(
         "Force components along the fixed axes ('global') or along the body's frame, turning "
-        "with it ('body').", default="global")
+        "with it ('body').", default=LoadFrame.GLOBAL)
     csv: str | None = doc(
         "Instead of a constant: a CSV file (path relative to the scene file) with a header row, "
         "the crank angle in degrees in its first column, evenly spaced over one full turn, and "

@@ -10,12 +10,14 @@ import numpy as np
 
 from flexlink.analysis.families import elastic_modes
 from flexlink.fe.beams import BeamTheory
+from flexlink.materials.mixtures import ShearSource
 from flexlink.scene import Scene, load_scene
 from flexlink.studies.array_shapes import check_shape
 from flexlink.units import percent_error
 
 OTHER_BENDING = {"flatwise": "edgewise", "edgewise": "flatwise"}
-OTHER_SHEAR = {"printed": "isotropic", "isotropic": "printed"}
+OTHER_SHEAR = {ShearSource.PRINTED: ShearSource.ISOTROPIC,
+               ShearSource.ISOTROPIC: ShearSource.PRINTED}
 
 
 def _mean_abs_errors(scene: Scene, computed) -> dict[str, float]:

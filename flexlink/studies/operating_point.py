@@ -21,6 +21,7 @@ import dataclasses
 import numpy as np
 import scipy.sparse as sp
 
+from flexlink.analysis.mesh import choose_mesh
 from flexlink.analysis.modal import pose_system
 from flexlink.analysis.quadratic import QuadraticModes, quadratic_modes
 from flexlink.analysis.eigensolver import AUTO_DENSE_MAX
@@ -35,10 +36,10 @@ from flexlink.fe.model import FrameModel
 from flexlink.fe.preload import axial_forces, inertia_loads, static_displacement
 from flexlink.fe.rotating import rotating_entries
 from flexlink.kinematics.dynamics import RigidMotion, check_speed, rigid_motion
-from flexlink.scene import Scene
+from flexlink.scene import Scene, load_scene
 from flexlink.scene.contract import LoadKind, RigidPose, pose_transmission_angles
 from flexlink.scene.plausibility import model_warnings, pose_warnings
-from flexlink.studies.torque import wrench
+from flexlink.studies.torque import operating_point, wrench
 
 ASSUMPTIONS = (
     ("rigid-body motion prescribed by the crank (constant speed, or the given crank "
@@ -57,6 +58,19 @@ class Terms:
     coriolis: bool = True
     acceleration: bool = True  # the circulatory alpha S term
     geometric: GeometricForm = GeometricForm.CONSISTENT
+
+
+@dataclasses.dataclass(frozen=True)
+class OperatingRequest:
+    """The operating point asked for, None where the scene's own is taken: crank ``speed``
+    [rad/s] (its [operation] crank_speed), ``crank_angle`` [rad] (its pose),
+    ``crank_acceleration`` [rad/s^2] (its [operation] value with its speed, else 0), and which
+    ``terms`` enter."""
+
+    speed: float | None = None
+    crank_angle: float | None = None
+    crank_acceleration: float | None = None
+    terms: Terms = Terms()
 
 
 @dataclasses.dataclass(frozen=True)
@@ -196,6 +210,19 @@ def operating_modes(scene: Scene, speed: float, n_modes: int = 4,
         link_alpha=alpha, axial_forces={l.name: f for l, f in zip(model.links, forces)},
         largest_axial=_largest(model, forces), elements_per_link=topology.links[0].elements,
         loads=loads, warnings=warnings)
+
+
+def scene_operating_modes(path, n_modes: int = 4, elements: int | None = None,
+                          tol: float | None = None,
+                          at: OperatingRequest = OperatingRequest()) -> OperatingPoint:
+    """``operating_modes`` of the scene file at ``path`` at the operating point ``at``, on the
+    mesh of its static modes (``elements`` per link, else the scene's pinned mesh, else the
+    mesh rule at relative tolerance ``tol``)."""
+    scene = load_scene(path)
+    speed, acceleration = operating_point(scene, at.speed, at.crank_acceleration)
+    mesh = choose_mesh(scene, n_modes, elements, tol)
+    return operating_modes(scene, speed, n_modes, mesh.elements, at.crank_angle, acceleration,
+                           at.terms)
 
 
 def link_motion(scene: Scene, model: FrameModel, topology, motion: RigidMotion):

@@ -68,3 +68,20 @@ def test_static_only_options_are_refused_at_speed(tmp_path, extra):
     result = run(CASES_DIR / "case1.toml", "--speed", "100 rev/min", *extra, "-e", "4", "--out",
                  tmp_path)
     assert result.exit_code == 2 and extra[0] in result.output
+
+
+def test_a_scene_that_fails_costs_the_others_nothing(tmp_path):
+    """Two scenes, the first unable to run at speed: the second's files are written and
+    listed, the failure is listed with its file, and the exit status is 2."""
+    wiper, rotor = SCENES_DIR / "compliant_wiper.toml", SCENES_DIR / "rotor.toml"
+    result = run(wiper, rotor, "--speed", "300 rev/min", "-e", "4", "--json", "--out", tmp_path)
+    assert result.exit_code == 2, result.output
+    doc = json.loads(result.stdout)
+    written = [str(tmp_path / "rotor" / f"modes_at_speed.{ext}") for ext in ("json", "csv")]
+    assert [case["file"] for case in doc["cases"]] == [str(rotor)]
+    assert doc["files"] == written
+    assert [failure["file"] for failure in doc["failures"]] == [str(wiper)]
+    assert "links.strip" in doc["failures"][0]["error"] and "links.strip" in result.stderr
+    own = json.loads((tmp_path / "rotor" / "modes_at_speed.json").read_text())
+    assert own == {"command": "modes --speed", "cases": doc["cases"], "files": written}
+    assert not (tmp_path / "compliant_wiper" / "modes_at_speed.json").exists()

@@ -130,7 +130,7 @@ def _tag_of(model) -> tuple[str, str] | None:
     for name in ("type", "method"):
         field = model.model_fields.get(name)
         if field is not None and typing.get_origin(_bare(field.annotation)) is typing.Literal:
-            return name, typing.get_args(_bare(field.annotation))[0]
+            return name, str(typing.get_args(_bare(field.annotation))[0])
     return None
 
 
@@ -460,13 +460,18 @@ def _pair_kind(tp) -> str | None:
 
 
 def choice_cases(place: Place) -> list[Case]:
+    """A word that is not a choice: the message names the word and lists the choices (a tag,
+    ``type`` or ``method``, picks the kind of its table, which the message names)."""
     out = []
     for key, field in place.model.model_fields.items():
         for alt in _alternatives(field.annotation):
             bare = _bare(alt)
-            if typing.get_origin(bare) is typing.Literal and key not in ("type", "method"):
-                out.append(Case(place.base, place.path, {key: "zz-no-such-choice"},
-                                _dotted(place.path, key), ("zz-no-such-choice",)))
+            if typing.get_origin(bare) is typing.Literal:
+                words = tuple(repr(str(word)) for word in typing.get_args(bare))
+                where = _dotted(place.path) if key in ("type", "method") else \
+                    _dotted(place.path, key)
+                out.append(Case(place.base, place.path, {key: "zz-no-such-choice"}, where,
+                                ("zz-no-such-choice", *words)))
             elif bare is bool:
                 out.append(Case(place.base, place.path, {key: "yes"}, _dotted(place.path, key),
                                 ("'yes'",)))
