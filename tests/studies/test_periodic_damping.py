@@ -11,6 +11,7 @@ from flexlink.analysis.damping import damping_ratios
 from flexlink.analysis.modal import analyze
 from flexlink.cli import main
 from flexlink.output.stability_map import stability_document, stability_lines
+from flexlink.output.steady_response import response_document, response_lines
 from flexlink.scene import load_scene
 from flexlink.studies.periodic_damping import DEFAULT_DAMPING_RATIO
 from flexlink.studies.stability_map import periodic_model, stability_map
@@ -38,10 +39,14 @@ def test_declared_ratio_gives_the_map_and_response_of_the_same_given_ratio(given
     assert "--damping-ratio" in given.periodic.damping_source
     maps = [stability_map(m.periodic, SPEEDS).largest_modulus for m in (declared, given, default)]
     assert np.array_equal(maps[0], maps[1]) and not np.allclose(maps[0], maps[2], rtol=1e-3)
-    strains = [steady_response(m, SPEEDS[0], samples=12).strain
-               for m in (declared, given, default)]
-    assert np.array_equal(strains[0], strains[1])
-    assert not np.allclose(strains[0], strains[2], rtol=1e-3)
+    responses = [steady_response(m, SPEEDS[0], samples=12) for m in (declared, given, default)]
+    assert np.array_equal(responses[0].strain, responses[1].strain)
+    assert not np.allclose(responses[0].strain, responses[2].strain, rtol=1e-3)
+    # the response's JSON and text say where the ratios came from
+    document = response_document("case 1", responses[0], declared)
+    assert document["damping_source"] == declared.periodic.damping_source
+    assert document["damping_ratio"] == [0.05] * 9
+    assert any("[damping]" in line for line in response_lines(document))
 
 
 def test_given_ratio_overrides_the_declared_one():
