@@ -58,6 +58,16 @@ class EnumChoice(click.Choice):
 TOLERANCE = FiniteFloatRange(0, 1, min_open=True)  # a relative frequency tolerance, in (0, 1]
 
 
+def stacked(options):
+    """One decorator applying ``options`` (click decorators) in the order listed, so that
+    ``--help`` shows them in that order."""
+    def decorate(command):
+        for option in reversed(options):
+            command = option(command)
+        return command
+    return decorate
+
+
 def mesh_options(method: bool = True):
     """-e/--elements and --tol (the mesh rule of ``analysis.mesh.choose_mesh``), and with
     ``method`` the eigen solver's --method, given to the command as ``solver`` (an
@@ -79,11 +89,7 @@ def mesh_options(method: bool = True):
                                     callback=lambda ctx, param, method: EigenSolver(method),
                                     help="Eigen solver."))
 
-    def decorate(command):
-        for option in reversed(options):
-            command = option(command)
-        return command
-    return decorate
+    return stacked(options)
 
 
 def scheduler_option(runs: str, note: str = ""):
@@ -110,11 +116,7 @@ def map_parallel_options(sorted_map: bool):
                           "process, -1: one per core." + worth),
         scheduler_option(runs, worth))
 
-    def decorate(command):
-        for option in reversed(options):
-            command = option(command)
-        return command
-    return decorate
+    return stacked(options)
 
 
 def speeds_option(help_text: str = "Crank speed range, e.g. '0:3000 rev/min'."):

@@ -18,7 +18,7 @@ from flexlink.errors import InputError
 from flexlink.fe.model import DriveSpec, JointSpec, LinkSpec, Section, Topology
 from flexlink.fe.motions import ModelFamily
 from flexlink.kinematics import FourBar, Linkage, State
-from flexlink.scene.source import Assumption
+from flexlink.scene.source import Assumption, file_of
 
 CONTINUATION_STEP = math.radians(5.0)  # [rad] between poses continued along a general scene's input
 
@@ -191,10 +191,7 @@ class Scene:
 
     def file_of(self, field: str) -> str:
         """The file a dotted key came from (a base file, the scene, or "overrides")."""
-        if field in self.origin:
-            return self.origin[field]
-        below = [f for f in self.origin if f.startswith(field + ".")]
-        return self.origin[below[0]] if below else self.path
+        return file_of(self.origin, field, self.path)
 
     def has_field(self, field: str) -> bool:
         return field in self.origin or any(f.startswith(field + ".") for f in self.origin)

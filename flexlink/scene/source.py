@@ -57,10 +57,7 @@ class SceneSource:
 
     def file_of(self, field: str) -> str:
         """The file a dotted key (or any key below it) came from; the scene file otherwise."""
-        if field in self.origin:
-            return self.origin[field]
-        below = [f for f in self.origin if f.startswith(field + ".")]
-        return self.origin[below[0]] if below else str(self.path)
+        return file_of(self.origin, field, str(self.path))
 
 
 def read_toml(path: Path) -> dict:
@@ -264,3 +261,12 @@ def overridden(src: SceneSource, overrides: dict) -> SceneSource:
     kept = [a for a in src.assumptions if not any(_covers(f, a.field) for f in overrides)]
     unique = {(a.field, a.value): a for a in [*kept, *found]}
     return dataclasses.replace(src, data=data, origin=origin, assumptions=tuple(unique.values()))
+
+
+def file_of(origin: dict[str, str], field: str, default: str) -> str:
+    """The file a dotted key came from in ``origin`` (dotted key -> file): its own entry, else
+    that of the first key below it (a table's file is that of its keys), else ``default``."""
+    if field in origin:
+        return origin[field]
+    below = [f for f in origin if f.startswith(field + ".")]
+    return origin[below[0]] if below else default
