@@ -175,12 +175,14 @@ def deprecated_for(new: str):
 def periodic_basis_options(command):
     """-n/--modes and --damping-ratio of the commands on the periodic equations at speed
     (``stability-map``, ``response``): the static modes the reduced basis must reproduce and
-    the modal damping in it."""
+    the modal damping in it (None when not given: ``studies.periodic_damping`` picks)."""
     options = (
         click.option("-n", "--modes", "n_modes", default=6, show_default=True,
                      type=click.IntRange(1, 50), help="Static modes of the reduced basis."),
-        click.option("--damping-ratio", default=0.01, show_default=True, type=float,
-                     help="Modal damping ratio in [0, 1)."))
+        click.option("--damping-ratio", default=None, type=float,
+                     help="Modal damping ratio in [0, 1) for every basis vector [default: the "
+                          "scene's [damping] table, else the loss factors its materials "
+                          "write, else 0.01]."))
     for option in reversed(options):
         command = option(command)
     return command

@@ -18,13 +18,22 @@ def basis_caveat(model) -> str | None:
             "basis (docs/critical-speeds.md)")
 
 
+def damping_line(ratios: list[float], source: str) -> str:
+    """The damping in one line: the ratios' span over the basis vectors and where they came
+    from."""
+    low, high = min(ratios), max(ratios)
+    span = f"{low:g}" if low == high else f"{low:g} to {high:g} over the basis vectors"
+    return f"damping ratio {span} ({source})"
+
+
 def stability_document(scene_name: str, result, model) -> dict:
     """The JSON document: per speed the largest modulus and growth rate, the ranges, and the
     basis with its check."""
     basis = model.basis
     return {
         "command": "stability-map", "scene": scene_name, "caveat": basis_caveat(model),
-        "damping_ratio": model.damping_ratio, "poses": len(model.angles),
+        "damping_ratio": model.damping_ratio.tolist(), "damping_source": model.damping_source,
+        "poses": len(model.angles),
         "basis": None if basis is None else {
             "size": basis.size, "modes_checked": int(basis.exact.shape[1]),
             "tolerance": basis.tolerance, "largest_frequency_error": basis.error,
@@ -55,8 +64,9 @@ def stability_csv(result) -> str:
 
 def stability_lines(document: dict) -> list[str]:
     basis = document["basis"]
-    out = [f"{document['scene']}: {len(document['basis_frequencies_Hz'])} basis vectors, damping "
-           f"ratio {document['damping_ratio']:g}, {len(document['speeds_rev_per_min'])} speeds"]
+    out = [f"{document['scene']}: {len(document['basis_frequencies_Hz'])} basis vectors, "
+           f"{len(document['speeds_rev_per_min'])} speeds",
+           damping_line(document["damping_ratio"], document["damping_source"])]
     if basis is not None:
         out.append(f"basis check: lowest {basis['modes_checked']} frequencies within "
                    f"{100 * basis['largest_frequency_error']:.3g} % of the full model's at "

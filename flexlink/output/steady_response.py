@@ -8,6 +8,7 @@ import math
 
 import numpy as np
 
+from flexlink.output.stability_map import damping_line
 from flexlink.units import RPM
 
 STRAIN_NOTE = ("strain: bending strain at the fibre y = +depth/2 of the link's local frame "
@@ -27,7 +28,8 @@ def response_document(scene_name: str, response, model) -> dict:
     return {
         "command": "response", "scene": scene_name, "caveat": CAVEAT, "note": STRAIN_NOTE,
         "speed_rev_per_min": response.speed / RPM,
-        "damping_ratio": model.periodic.damping_ratio,
+        "damping_ratio": model.periodic.damping_ratio.tolist(),
+        "damping_source": model.periodic.damping_source,
         "basis_frequencies_Hz": model.periodic.frequencies.tolist(),
         "largest_modulus": response.largest_modulus,
         "crank_deg": deg.tolist(),
@@ -49,7 +51,8 @@ def sweep_document(scene_name: str, sweep, model) -> dict:
         return [None if math.isnan(v) else float(v) for v in values]
     return {
         "command": "response", "scene": scene_name, "caveat": CAVEAT, "note": STRAIN_NOTE,
-        "damping_ratio": model.periodic.damping_ratio,
+        "damping_ratio": model.periodic.damping_ratio.tolist(),
+        "damping_source": model.periodic.damping_source,
         "basis_frequencies_Hz": model.periodic.frequencies.tolist(),
         "speeds_rev_per_min": (sweep.speeds / RPM).tolist(),
         "largest_modulus": listed(sweep.largest_modulus),
@@ -89,8 +92,9 @@ def sweep_csv(sweep) -> str:
 
 def response_lines(document: dict) -> list[str]:
     """The text summary of either document."""
-    out = [f"{document['scene']}: {len(document['basis_frequencies_Hz'])} modes, damping ratio "
-           f"{document['damping_ratio']:g}", f"caveat: {document['caveat']}"]
+    out = [f"{document['scene']}: {len(document['basis_frequencies_Hz'])} basis vectors",
+           damping_line(document["damping_ratio"], document["damping_source"]),
+           f"caveat: {document['caveat']}"]
     if "speeds_rev_per_min" in document:
         speeds = document["speeds_rev_per_min"]
         out.append(f"{len(speeds)} speeds, {speeds[0]:g} to {speeds[-1]:g} rev/min")

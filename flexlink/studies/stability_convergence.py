@@ -14,8 +14,8 @@ from collections.abc import Iterable
 import numpy as np
 
 from flexlink.scene import Scene
-from flexlink.studies.stability_map import (DEFAULT_DAMPING_RATIO, STEP_PHASE,
-                                            InstabilityRange, periodic_model, stability_map)
+from flexlink.studies.stability_map import (STEP_PHASE, InstabilityRange, periodic_model,
+                                            stability_map)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -35,10 +35,11 @@ class MapSetting:
 def map_convergence(scene: Scene, speeds: np.ndarray, n_modes: int,
                     basis_sizes: Iterable[int | None] = (None,), poses: Iterable[int] = (37,),
                     step_phases: Iterable[float] = (STEP_PHASE,),
-                    damping_ratio: float = DEFAULT_DAMPING_RATIO,
+                    damping_ratio: float | None = None,
                     elements_per_link: int | None = None) -> tuple[MapSetting, ...]:
     """The map of ``scene`` over ``speeds`` [rad/s] for every combination of basis size (None:
-    the checked one), pose count and step phase."""
+    the checked one), pose count and step phase; ``damping_ratio`` as ``periodic_model``'s
+    (None: the scene's declared damping, else the default)."""
     out = []
     for count in poses:
         for size in basis_sizes:

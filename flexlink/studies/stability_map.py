@@ -11,8 +11,9 @@ rad/s, and interpolated in theta by their Fourier series (exact for a trigonomet
 polynomial of degree below poses/2), in co-rotating node coordinates. They are projected on
 the basis of ``analysis.pose_basis`` (the static modes of the poses over the turn, reduced by
 SVD and checked against every pose's own lowest frequencies), given as the scene pose's Ritz
-vectors, in which the damping is modal: C = diag(2 zeta omega_i). The period is one
-revolution, T = 2 pi / Omega.
+vectors, in which the damping is modal: C = diag(2 zeta_i omega_i), a ratio per vector from
+``studies.periodic_damping`` (given, else the scene's declared damping, else a default). The
+period is one revolution, T = 2 pi / Omega.
 """
 
 from __future__ import annotations
@@ -37,8 +38,7 @@ from flexlink.kinematics.dynamics import rigid_motion
 from flexlink.parallel import on_cluster, run_tasks, workers
 from flexlink.scene import Scene
 from flexlink.studies.operating_point import external_loads, link_motion, reduced_pair, reducer
-
-DEFAULT_DAMPING_RATIO = 0.01  # modal; light structural damping of bolted metal frames
+from flexlink.studies.periodic_damping import basis_damping, checked_ratio
 
 
 @dataclasses.dataclass(frozen=True)
@@ -47,10 +47,11 @@ class PeriodicModel:
 
     mass, coriolis (per rad/s), stiffness (at Omega = 0), speed_stiffness (per (rad/s)^2):
     (poses, n, n); frequencies (n,): the basis vectors' Ritz frequencies at the scene's pose
-    [Hz], which set the modal damping C = diag(2 zeta omega_i); damping_ratio [-]; basis:
-    how the basis was built and its check (``analysis.pose_basis``), None for equations given
-    directly; then the first ``checked`` frequencies are those the check covers (all of them
-    without a basis)."""
+    [Hz], which set the modal damping C = diag(2 zeta_i omega_i); damping_ratio (n,) [-]: zeta_i
+    per basis vector (a single number is taken for every vector); basis: how the basis was
+    built and its check (``analysis.pose_basis``), None for equations given directly; then the
+    first ``checked`` frequencies are those the check covers (all of them without a basis);
+    damping_source: where the ratios came from, for the outputs."""
 
     angles: np.ndarray
     mass: np.ndarray
@@ -58,8 +59,16 @@ class PeriodicModel:
     stiffness: np.ndarray
     speed_stiffness: np.ndarray
     frequencies: np.ndarray
-    damping_ratio: float
+    damping_ratio: np.ndarray
     basis: PoseBasis | None = None
+    damping_source: str = "given with the equations"
+
+    def __post_init__(self):
+        ratios = np.broadcast_to(np.asarray(self.damping_ratio, dtype=float),
+                                 np.shape(self.frequencies)).copy()
+        if not (np.all(np.isfinite(ratios)) and np.all(ratios >= 0.0)):
+            raise ValueError(f"damping ratios must be finite and >= 0, got {ratios}")
+        object.__setattr__(self, "damping_ratio", ratios)
 
     @property
     def checked(self) -> np.ndarray:
@@ -132,19 +141,20 @@ def fourier_series(samples: np.ndarray, theta: np.ndarray) -> np.ndarray:
 
 
 def periodic_model(scene: Scene, n_modes: int = 6, poses: int = 37,
-                   damping_ratio: float = DEFAULT_DAMPING_RATIO,
+                   damping_ratio: float | None = None,
                    elements_per_link: int | None = None, basis_size: int | None = None,
                    tolerance: float = DEFAULT_TOLERANCE) -> PeriodicModel:
     """The periodic equations of ``scene`` over one crank turn, sampled at ``poses`` (odd)
     crank angles from the scene's pose, in the basis of ``analysis.pose_basis``: the lowest
     ``n_modes`` static modes of every other pose in co-rotating coordinates, reduced by SVD
     to ``basis_size`` vectors (None: the fewest whose lowest ``n_modes`` frequencies match the
-    full model's at every pose to ``tolerance``), given as the scene pose's Ritz vectors."""
+    full model's at every pose to ``tolerance``), given as the scene pose's Ritz vectors.
+    ``damping_ratio`` [-]: every vector's, else (None) the scene's declared damping
+    (``studies.periodic_damping``)."""
     if poses < 3 or poses % 2 == 0:
         raise InputError(f"poses must be an odd count of at least 3, got {poses}")
-    if not 0.0 <= damping_ratio < 1.0:
-        raise InputError(f"damping ratio {damping_ratio} is outside [0, 1)",
-                         field="--damping-ratio", expected="a ratio in [0, 1)")
+    if damping_ratio is not None:  # refused before any work
+        checked_ratio(damping_ratio)
     topology = scene.topology(elements_per_link)
     state0 = scene.rigid_state(None)
     model0, static, _ = pose_modes(topology, state0.points, n_modes)
@@ -160,9 +170,14 @@ def periodic_model(scene: Scene, n_modes: int = 6, poses: int = 37,
         full[:, p] = _pose_matrices(scene, topology, angle, T, n, reduce, link_angles(model0))
     basis = pose_basis(full[2], full[0], n_modes, basis_size, tolerance)
     M, G1, K, K_ext, K2 = (basis.vectors.T @ A @ basis.vectors for A in full)
+    # at the scene's pose the co-rotating DOFs are the global ones
+    shapes = basis.vectors if T is None else np.asarray(T @ basis.vectors)
+    damping = basis_damping(scene, damping_ratio, 2.0 * np.pi * basis.frequencies, model0,
+                            shapes)
     model = PeriodicModel(angles=angles, mass=M, coriolis=G1, stiffness=K + K_ext,
                           speed_stiffness=K2, frequencies=basis.frequencies,
-                          damping_ratio=damping_ratio, basis=basis)
+                          damping_ratio=damping.ratios, basis=basis,
+                          damping_source=damping.source)
     floor = model.stiffness_floor(0.0)
     if floor <= 0.0:
         raise NumericalError(

@@ -36,12 +36,7 @@ from flexlink.fe.timoshenko import shape_functions
 from flexlink.kinematics.dynamics import rigid_motion
 from flexlink.scene import Scene
 from flexlink.studies.operating_point import external_loads, link_motion, reduced_pair, reducer
-from flexlink.studies.stability_map import (
-    DEFAULT_DAMPING_RATIO,
-    PeriodicModel,
-    fourier_series,
-    periodic_model,
-)
+from flexlink.studies.stability_map import PeriodicModel, fourier_series, periodic_model
 
 SAMPLES = 180  # crank angles per revolution of the output (2 deg)
 STEPS = 200  # Magnus steps per revolution at least (more where h omega_max > 1)
@@ -139,13 +134,17 @@ def check_points(scene: Scene, points, field: str = "--at") -> tuple[StrainPoint
 
 
 def forced_model(scene: Scene, n_modes: int = 6, poses: int = 37,
-                 damping_ratio: float = DEFAULT_DAMPING_RATIO,
+                 damping_ratio: float | None = None,
                  points: tuple[StrainPoint, ...] | None = None,
-                 elements_per_link: int | None = None) -> ForcedModel:
+                 elements_per_link: int | None = None,
+                 basis_size: int | None = None) -> ForcedModel:
     """``stability_map.periodic_model`` with the forcing of the rigid motion and the output rows
-    at ``points`` (default: each link's midspan), in the same basis and poses."""
+    at ``points`` (default: each link's midspan), in the same basis and poses; the damping
+    ratio and the basis size as there (None: the scene's declared damping; the checked
+    basis)."""
     points = check_points(scene, midspans(scene) if points is None else points)
-    periodic = periodic_model(scene, n_modes, poses, damping_ratio, elements_per_link)
+    periodic = periodic_model(scene, n_modes, poses, damping_ratio, elements_per_link,
+                              basis_size=basis_size)
     topology = scene.topology(elements_per_link)
     model0 = pose_model(topology, scene.rigid_state(None).points)
     T = rigid_elimination(model0)

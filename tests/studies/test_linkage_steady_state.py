@@ -1,0 +1,98 @@
+"""The steady response of the linkage equals a long damped time integration from rest, run
+until the start-up transient has died out (``studies.steady_response``).
+
+The equations are the model's own samples (M^-1 C, M^-1 G1, M^-1 K, M^-1 K2, M^-1 f at the
+poses), interpolated between poses by their Fourier series written out here and integrated by
+DOP853 from rest. The free motion decays by the largest Floquet multiplier modulus per turn,
+whatever the modal damping says, so the number of turns comes from the multipliers: after N
+turns the transient left is of order |mu|_max^N, driven below 1e-7 before the turn compared.
+In CI a small basis (2 vectors, near 1 kHz; 2 elements per link, 13 poses) at the default
+damping ratio 0.01 keeps DOP853's steps per turn few; the slowest multiplier (0.039 per turn)
+asks for 6 turns. The checked basis of one mode (7 vectors, top near 6 kHz, 19 poses) at
+zeta 0.5 runs with HYPOTHESIS_PROFILE=thorough (about a minute of CPU: its slowest multiplier,
+0.043 per turn, asks for 7 turns).
+"""
+import math
+import os
+
+import numpy as np
+import pytest
+from conftest import CASES_DIR
+from scipy.integrate import solve_ivp
+
+from flexlink.scene import load_scene
+from flexlink.studies.steady_response import forced_model, steady_response
+from flexlink.units import RPM
+
+TRANSIENT = 1e-7  # |mu|_max^N left of the start-up transient at the turn compared
+SAMPLES = 24
+
+
+def _from_rest(model, speed, turns):
+    """The state over the last of ``turns`` turns at the response's crank angles, integrated
+    from rest by DOP853 (rtol 1e-10) on the model's equations written out here."""
+    p = model.periodic
+    n, N = len(p.frequencies), len(p.angles)
+    damping = np.diag(2 * p.damping_ratio * 2 * np.pi * p.frequencies)
+    k = np.fft.fftfreq(N, 1.0 / N)
+    series = [np.fft.fft(np.linalg.solve(p.mass, a), axis=0) / N for a in (
+        np.broadcast_to(damping, p.mass.shape), p.coriolis, p.stiffness, p.speed_stiffness,
+        model.inertia_forcing[..., None], model.external_forcing[..., None])]
+    shapes = [a.shape[1:] for a in series]
+    stacked = np.concatenate([a.reshape(N, -1) for a in series], axis=1)
+    cuts = np.cumsum([int(np.prod(shape)) for shape in shapes])[:-1]
+
+    def rhs(t, x):
+        # t = 0 at the first pose; sample p sits p / N of a turn later
+        flat = (np.exp(1j * k * speed * t) @ stacked).real
+        c, g, k0, k2, f2, fe = (part.reshape(shape) for part, shape in
+                                zip(np.split(flat, cuts), shapes))
+        return np.concatenate([x[n:], speed**2 * f2[:, 0] + fe[:, 0] - (c + speed * g) @ x[n:]
+                               - (k0 + speed**2 * k2) @ x[:n]])
+    period = 2 * np.pi / speed
+    run = solve_ivp(rhs, (0.0, turns * period), np.zeros(2 * n),
+                    method="DOP853", rtol=1e-10, atol=1e-20, dense_output=True)
+    return run.sol, period
+
+
+def _errors(model, speed):
+    """The largest strain difference, relative to the largest strain, between the periodic
+    solution and the integration from rest over its first turn and over its last turn; the
+    largest multiplier modulus and the turns integrated."""
+    response = steady_response(model, speed, samples=SAMPLES)
+    mu = response.largest_modulus
+    turns = math.ceil(math.log(TRANSIENT) / math.log(mu)) + 1
+    sol, period = _from_rest(model, speed, turns)
+    p = model.periodic
+    rows = np.fft.fft(model.curvature, axis=0) / len(p.angles)
+    k = np.fft.fftfreq(len(p.angles), 1.0 / len(p.angles))
+    curvature = np.tensordot(np.exp(1j * np.outer(response.angles - p.angles[0], k)), rows,
+                             axes=(1, 0)).real
+    errors = []
+    for turn in (0, turns - 1):
+        q = sol(turn * period + (response.angles - p.angles[0]) / speed)[:len(p.frequencies)].T
+        strain = -model.half_depth * np.einsum("spn,sn->sp", curvature, q)
+        errors.append(np.abs(response.strain - strain).max() / np.abs(strain).max())
+    return errors, mu, turns
+
+
+def _assert_steady(model, speed):
+    (first, last), mu, turns = _errors(model, speed)
+    # from rest the first turn is far from the steady state (the check is not empty); after
+    # the transient has fallen by 1e-7 the two agree to the integration's tolerance
+    assert first > 1e-2, (first, mu, turns)
+    assert last < 1e-6, (last, mu, turns)
+
+
+def test_linkage_response_equals_a_long_integration_from_rest():
+    model = forced_model(load_scene(CASES_DIR / "case1.toml"), n_modes=1, poses=13,
+                         damping_ratio=0.01, elements_per_link=2, basis_size=2)
+    _assert_steady(model, 1200 * RPM)
+
+
+@pytest.mark.skipif(os.environ.get("HYPOTHESIS_PROFILE") != "thorough",
+                    reason="minutes: run with HYPOTHESIS_PROFILE=thorough")
+def test_checked_basis_response_equals_a_long_integration_from_rest():
+    model = forced_model(load_scene(CASES_DIR / "case1.toml"), n_modes=1, poses=19,
+                         damping_ratio=0.5, elements_per_link=2)
+    _assert_steady(model, 1200 * RPM)
