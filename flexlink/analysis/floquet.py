@@ -70,23 +70,28 @@ def first_order(mass: np.ndarray, damping: np.ndarray, stiffness: np.ndarray) ->
     return a
 
 
+_TAYLOR = np.array([[1.0 / math.factorial(4 * b + i) for i in range(4)] for b in range(3)])
+
+
 def _exponentials(omega: np.ndarray) -> np.ndarray:
     """expm of each (n, n) matrix in omega (m, n, n): scaling and squaring with a degree-12
     Taylor polynomial, all steps at once, the polynomial in Paterson-Stockmeyer form (five
     products instead of eleven). Scaled to norm <= 1/2, the neglected Taylor terms are below
-    0.5^13 / 13! ~ 2e-14 relative."""
+    0.5^13 / 13! ~ 2e-14 relative. The powers I, x, x^2, x^3 are written into one array and
+    the three blocks sum over i < 4 of x^i / (4 b + i)! formed by one product with the
+    coefficients: the cost is the matrix products, not passes over temporaries."""
     norm = np.abs(omega).sum(axis=-2).max() if omega.size else 0.0
     squarings = max(0, int(np.ceil(np.log2(norm / 0.5)))) if norm > 0.5 else 0
-    x1 = omega / 2.0**squarings
-    eye = np.eye(omega.shape[-1])
-    x2 = x1 @ x1
-    x3 = x2 @ x1
-    x4 = x2 @ x2
-    f = [1.0 / math.factorial(j) for j in range(13)]
-
-    def block(j):  # sum over i < 4 of x^i / (j + i)!
-        return f[j] * eye + f[j + 1] * x1 + f[j + 2] * x2 + f[j + 3] * x3
-    result = block(0) + x4 @ (block(4) + x4 @ (block(8) + f[12] * x4))
+    m, n = omega.shape[0], omega.shape[-1]
+    powers = np.empty((4, m, n, n))
+    powers[0] = np.eye(n)
+    np.multiply(omega, 2.0**-squarings, out=powers[1])
+    np.matmul(powers[1], powers[1], out=powers[2])
+    np.matmul(powers[2], powers[1], out=powers[3])
+    x4 = powers[2] @ powers[2]
+    blocks = np.tensordot(_TAYLOR, powers, axes=1)  # (3, m, n, n)
+    blocks[2] += x4 / math.factorial(12)
+    result = blocks[0] + x4 @ (blocks[1] + x4 @ blocks[2])
     for _ in range(squarings):
         result = result @ result
     return result
@@ -103,37 +108,65 @@ def monodromy(system: Callable[[np.ndarray], np.ndarray], period: float,
     steps: fixed steps per period. The steps are formed CHUNK at a time and each chunk's
     exponentials multiplied pairwise (a product tree: log2(CHUNK) stacked products instead of
     CHUNK single ones, the same product in the same order)."""
+    return floquet(propagators(system, period, 1, steps)[0], period)
+
+
+def propagators(system: Callable[[np.ndarray], np.ndarray], period: float, intervals: int,
+                steps: int) -> np.ndarray:
+    """(intervals, n, n): the fundamental matrix of each of ``intervals`` equal consecutive
+    intervals of [0, period] [s] (the k-th maps x(t_k) to x(t_{k+1})), each by ``steps``
+    Magnus steps; their product, later on the left, is Phi(period). Short intervals are
+    formed several at a time, so a fine output grid costs no more calls than one period."""
     if not (np.isfinite(period) and period > 0.0):
         raise NumericalError(f"period must be a positive finite time in s, got {period}")
-    if steps < 1:
-        raise NumericalError(f"steps must be at least 1, got {steps}")
-    h = period / steps
+    if steps < 1 or intervals < 1:
+        raise NumericalError(f"steps and intervals must be at least 1, got {steps}, "
+                             f"{intervals}")
+    h = period / (intervals * steps)
     # a diagonal similarity D^-1 A D by powers of two (exact) that balances the rows and
     # columns: in x = (q, q') the stiffness block is omega^2 where the identity block is 1, so
     # unbalanced, a step's norm needs many more squarings in the exponential
     d = sla.matrix_balance(np.asarray(system(np.array([0.0])), dtype=float)[0],
                            permute=False, separate=True)[1][0]
     ratio = d[None, :] / d[:, None]
-    phi = None
-    for first in range(0, steps, CHUNK):
-        starts = h * np.arange(first, min(steps, first + CHUNK))
-        a1 = np.asarray(system(starts + (0.5 - _GAUSS_OFFSET) * h), dtype=float)
-        a2 = np.asarray(system(starts + (0.5 + _GAUSS_OFFSET) * h), dtype=float)
-        if a1.ndim != 3 or a1.shape[0] != len(starts) or a1.shape[1] != a1.shape[2]:
-            raise NumericalError(f"system must return ({len(starts)}, n, n) matrices, got "
-                                 f"{a1.shape}")
-        omega = 0.5 * h * (a1 + a2) + (np.sqrt(3.0) / 12.0) * h * h * (a2 @ a1 - a1 @ a2)
-        chunk = ordered_product(_exponentials(omega * ratio))
-        phi = chunk if phi is None else chunk @ phi
-    return floquet(phi / ratio, period)
+    out = np.empty((intervals, len(d), len(d)))
+    if steps > CHUNK:
+        for k in range(intervals):
+            phi = None
+            for first in range(k * steps, (k + 1) * steps, CHUNK):
+                chunk = ordered_product(_steps(system, h, first, min((k + 1) * steps,
+                                                                     first + CHUNK), ratio))
+                phi = chunk if phi is None else chunk @ phi
+            out[k] = phi
+    else:
+        group = CHUNK // steps
+        for k in range(0, intervals, group):
+            count = min(group, intervals - k)
+            factors = _steps(system, h, k * steps, (k + count) * steps, ratio)
+            out[k:k + count] = ordered_product(factors.reshape(count, steps, len(d), len(d)))
+    return out / ratio
+
+
+def _steps(system, h: float, first: int, last: int, ratio: np.ndarray) -> np.ndarray:
+    """The balanced exponentials of Magnus steps first..last-1 (of length h [s] from t = 0)."""
+    starts = h * np.arange(first, last)
+    a1 = np.asarray(system(starts + (0.5 - _GAUSS_OFFSET) * h), dtype=float)
+    a2 = np.asarray(system(starts + (0.5 + _GAUSS_OFFSET) * h), dtype=float)
+    if a1.ndim != 3 or a1.shape[0] != len(starts) or a1.shape[1] != a1.shape[2]:
+        raise NumericalError(f"system must return ({len(starts)}, n, n) matrices, got "
+                             f"{a1.shape}")
+    omega = 0.5 * h * (a1 + a2) + (np.sqrt(3.0) / 12.0) * h * h * (a2 @ a1 - a1 @ a2)
+    return _exponentials(omega * ratio)
 
 
 def ordered_product(factors: np.ndarray) -> np.ndarray:
-    """F_{m-1} ... F_1 F_0 of factors (m, n, n), the later factor on the left."""
-    while factors.shape[0] > 1:
-        m = factors.shape[0]
-        factors = np.concatenate([factors[1::2] @ factors[0:m - 1:2], factors[m - m % 2:]])
-    return factors[0]
+    """F_{m-1} ... F_1 F_0 of factors (..., m, n, n) along the axis of m, the later factor on
+    the left (any leading batch axes: one product each)."""
+    while factors.shape[-3] > 1:
+        m = factors.shape[-3]
+        factors = np.concatenate([factors[..., 1::2, :, :] @ factors[..., 0:m - 1:2, :, :],
+                                  factors[..., m - m % 2:, :, :]], axis=-3)
+    return factors[..., 0, :, :]
 
 
 def floquet(phi: np.ndarray, period: float) -> FloquetResult:

@@ -2,7 +2,7 @@
 x' = A(t) x + b(t) with period T, by shooting with the monodromy matrix.
 
 The forcing is carried by one extra, constant state: z = (x, 1) obeys the homogeneous
-z' = [[A, b], [0, 0]] z, so the Magnus integrator of ``floquet.monodromy`` gives over one
+z' = [[A, b], [0, 0]] z, so the Magnus integrator of ``floquet.propagators`` gives over one
 period [[Phi, x_p], [0, 1]], with Phi the monodromy matrix of the unforced system and x_p the
 state after one period from rest. The periodic state at t = 0 solves x0 = Phi x0 + x_p:
 
@@ -19,12 +19,11 @@ to f_max / f_crank, hundreds at low speed, and solve one coupled system of that 
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
 
-from flexlink.analysis.floquet import FloquetResult, floquet, monodromy
+from flexlink.analysis.floquet import FloquetResult, floquet, ordered_product, propagators
 from flexlink.errors import NumericalError
 
 
@@ -45,23 +44,6 @@ class PeriodicSolution:
 
 class UnstableError(NumericalError):
     """The free motion grows (a Floquet multiplier |mu| >= 1): no steady state exists."""
-
-
-def _tabulated(system, times: np.ndarray) -> Callable[[np.ndarray], np.ndarray]:
-    """``system`` evaluated once at every one of ``times`` (sorted), served from that table
-    for the times asked later, evaluated afresh for any other time: one batched evaluation
-    instead of one per interval."""
-    table = np.asarray(system(times))
-
-    def served(t):
-        t = np.asarray(t, dtype=float)
-        i = np.clip(np.searchsorted(times, t), 1, len(times) - 1)
-        i = np.where(np.abs(times[i - 1] - t) < np.abs(times[i] - t), i - 1, i)
-        scale = max(1.0, float(np.abs(times).max()))
-        if np.all(np.abs(times[i] - t) <= 1e-13 * scale):
-            return table[i]
-        return system(t)
-    return served
 
 
 def augmented(system, forcing):
@@ -86,16 +68,8 @@ def periodic_solution(system, forcing, period: float, steps: int,
         raise NumericalError(f"samples must be at least 1, got {samples}")
     per = max(1, math.ceil(steps / samples))
     interval = period / samples
-    h = interval / per
-    starts = h * np.arange(per * samples)
-    gauss = np.sqrt(3.0) / 6.0
-    nodes = np.sort(np.concatenate([starts + (0.5 - gauss) * h, starts + (0.5 + gauss) * h]))
-    whole = _tabulated(augmented(system, forcing), nodes)
-    propagators = [monodromy(lambda t, s=k * interval: whole(t + s), interval, per).monodromy
-                   for k in range(samples)]
-    z = np.eye(propagators[0].shape[0])
-    for p in propagators:
-        z = p @ z
+    steps_between = propagators(augmented(system, forcing), period, samples, per)
+    z = ordered_product(steps_between)
     n = z.shape[0] - 1
     phi, x_p = z[:n, :n], z[:n, n]
     stability = floquet(phi, period)
@@ -104,7 +78,7 @@ def periodic_solution(system, forcing, period: float, steps: int,
                             " >= 1: the free motion grows, no steady state exists")
     state = np.append(np.linalg.solve(np.eye(n) - phi, x_p), 1.0)
     states = np.empty((samples, n))
-    for k, p in enumerate(propagators):
+    for k, p in enumerate(steps_between):
         states[k] = state[:n]
         state = p @ state
     return PeriodicSolution(times=interval * np.arange(samples), states=states,

@@ -23,7 +23,7 @@ import functools
 
 import numpy as np
 
-from flexlink.analysis.floquet import FloquetResult, monodromy
+from flexlink.analysis.floquet import FloquetResult, floquet, monodromy
 from flexlink.analysis.modal import pose_modes
 from flexlink.analysis.pose_basis import DEFAULT_TOLERANCE, PoseBasis, pose_basis
 from flexlink.analysis.solve import MECHANISM
@@ -105,19 +105,37 @@ class PeriodicModel:
                                               self.speed_stiffness), axis=1)
         return np.linalg.solve(self.mass[:, None], blocks)
 
-    def system(self, speed: float):
+    @functools.cached_property
+    def energy_scale(self) -> np.ndarray:
+        """R (n, n) [rad/s]: the symmetric square root of the turn's mean M^-1 K at rest
+        (positive definite: the model refuses an indefinite stiffness at rest). In the
+        coordinates (R q, q') the stiffness and velocity parts of the state weigh alike, so
+        A's norm is near its spectral radius there (in (q, q') it is up to 65 times larger
+        on Table II case 1, and each doubling is one more squaring in every step's
+        exponential)."""
+        mean = self._first_order_samples[:, 2].mean(axis=0)
+        values, vectors = np.linalg.eigh(0.5 * (mean + mean.T))
+        return (vectors * np.sqrt(values)) @ vectors.T
+
+    def system(self, speed: float, *, energy_coordinates: bool = False):
         """times (m,) [s] -> A(t) (m, 2n, 2n) at crank speed ``speed`` [rad/s], t = 0 at the
-        scene's pose."""
+        scene's pose, for the state (q, q'), or with ``energy_coordinates`` for (R q, q'), R
+        the ``energy_scale`` (the same multipliers; a similarity, exact)."""
         samples = self._first_order_samples
         n = samples.shape[-1]
         weights = np.array([1.0, speed, 1.0, speed**2])[:, None, None]
         damping = (samples[:, :2] * weights[:2]).sum(axis=1)
         stiffness = (samples[:, 2:] * weights[2:]).sum(axis=1)
+        coupling = np.eye(n)
+        if energy_coordinates:  # [[0, R], [-K R^-1, -D]] = S A S^-1, S = diag(R, I)
+            coupling = self.energy_scale
+            stiffness = np.linalg.solve(coupling, np.swapaxes(stiffness, -1, -2))
+            stiffness = np.swapaxes(stiffness, -1, -2)
 
         def a(t):
             theta = speed * np.asarray(t, dtype=float)
             out = np.zeros(theta.shape + (2 * n, 2 * n))
-            out[..., :n, n:] = np.eye(n)
+            out[..., :n, n:] = coupling
             out[..., n:, :n] = -fourier_series(stiffness, theta)
             out[..., n:, n:] = -fourier_series(damping, theta)
             return out
@@ -221,9 +239,13 @@ def speed_multipliers(model: PeriodicModel, speed: float, steps: int = 200,
     low speed one revolution spans many periods of the highest basis frequency, and the
     Magnus step's error grows with h omega_max (docs/critical-speeds.md, convergence)."""
     period = 2.0 * np.pi / speed
-    system = model.system(speed)
+    system = model.system(speed, energy_coordinates=True)
     size = np.abs(np.linalg.eigvals(system((model.angles - model.angles[0]) / speed))).max()
-    return monodromy(system, period, max(steps, int(np.ceil(period * size / step_phase))))
+    scaled = monodromy(system, period, max(steps, int(np.ceil(period * size / step_phase))))
+    n = len(model.frequencies)
+    scale = np.eye(2 * n)
+    scale[:n, :n] = model.energy_scale
+    return floquet(np.linalg.solve(scale, scaled.monodromy @ scale), period)
 
 
 @dataclasses.dataclass(frozen=True)

@@ -9,7 +9,7 @@ from scipy.integrate import solve_ivp
 from scipy.linalg import eigh_tridiagonal
 from scipy.optimize import brentq
 
-from flexlink.analysis.floquet import first_order, monodromy
+from flexlink.analysis.floquet import first_order, monodromy, ordered_product, propagators
 
 PERIOD = 2.0 * np.pi
 STEPS = 200
@@ -142,3 +142,18 @@ def test_wrong_period_is_seen():
     # tongue's centre is unstable only over the true period.
     assert multipliers(0.25, 0.3).largest_modulus > 1.1
     assert multipliers(0.25, 0.3, period=np.pi).largest_modulus == pytest.approx(1.0, abs=1e-6)
+
+
+@pytest.mark.parametrize("intervals, steps", [(40, 30), (2, 1500)])
+def test_interval_propagators_multiply_to_the_monodromy(intervals, steps):
+    # The same Magnus steps grouped by interval (40 x 30: 34 intervals formed at once, then 6;
+    # 2 x 1500: an interval longer than one chunk): their ordered product is the monodromy of
+    # intervals x steps steps, and the k-th maps the solution from t_k to t_{k+1}. Only the
+    # association of the products differs, so 1e-12 (round-off on entries of order one).
+    system = mathieu(0.3, 0.4, 0.02)
+    parts = propagators(system, PERIOD, intervals, steps)
+    whole = multipliers(0.3, 0.4, 0.02, steps=intervals * steps).monodromy
+    assert np.allclose(ordered_product(parts), whole, rtol=0, atol=1e-12)
+    first = monodromy(system, PERIOD / intervals, steps).monodromy
+    assert np.allclose(parts[0], first, rtol=0, atol=1e-12)
+    assert not np.allclose(ordered_product(parts[::-1]), whole, rtol=0, atol=1e-6)

@@ -1,0 +1,54 @@
+"""The stability map integrates in energy coordinates (R q, q'), R^2 the turn's mean stiffness:
+a similarity, so the multipliers are those of (q, q'), with a step norm near its spectral
+radius."""
+import numpy as np
+import pytest
+from conftest import CASES_DIR
+
+from flexlink.analysis.floquet import monodromy
+from flexlink.scene import load_scene
+from flexlink.studies.stability_map import periodic_model, speed_multipliers
+from flexlink.units import RPM
+
+
+@pytest.fixture(scope="module")
+def model():
+    # the coarse case 1 of the convergence test: cheap, with the stiff directions of a checked
+    # basis (top Ritz frequency several kHz)
+    return periodic_model(load_scene(CASES_DIR / "case1.toml"), n_modes=2, poses=13,
+                          elements_per_link=2)
+
+
+def test_energy_scale_squares_to_the_mean_stiffness(model):
+    R = model.energy_scale
+    mean = np.linalg.solve(model.mass, model.stiffness).mean(axis=0)
+    # R is symmetric and R^2 the symmetric part of the mean M^-1 K: round-off of an eigh on
+    # entries up to omega_max^2, 1e-9 relative
+    assert np.allclose(R, R.T, rtol=0, atol=1e-12 * np.abs(R).max())
+    assert np.allclose(R @ R, 0.5 * (mean + mean.T), rtol=0, atol=1e-9 * np.abs(mean).max())
+
+
+@pytest.mark.parametrize("rpm", [300.0, 2200.0])
+def test_multipliers_are_those_of_the_plain_coordinates(model, rpm):
+    # the same Magnus steps on S A S^-1 and on A: Phi differs by the similarity only, so the
+    # monodromy (turned back) agrees to round-off amplified by the steps: 1e-9 of its size
+    speed = rpm * RPM
+    scaled = speed_multipliers(model, speed)
+    plain_system = model.system(speed)
+    size = np.abs(np.linalg.eigvals(plain_system((model.angles - model.angles[0]) / speed)))
+    steps = max(200, int(np.ceil(2 * np.pi / speed * size.max() / 2.0)))
+    plain = monodromy(plain_system, 2 * np.pi / speed, steps)
+    scale = np.abs(plain.monodromy).max()
+    assert np.allclose(scaled.monodromy, plain.monodromy, rtol=0, atol=1e-9 * scale)
+    assert scaled.largest_modulus == pytest.approx(plain.largest_modulus, rel=1e-9)
+
+
+def test_step_norm_is_near_the_spectral_radius(model):
+    # why the coordinates: a step of h omega_max = 2 has a 1-norm of a few units in (R q, q')
+    # (scaling and squaring then needs ~4 squarings), against tens in the balanced (q, q')
+    speed = 1000 * RPM
+    t = np.linspace(0, 2 * np.pi / speed, 64, endpoint=False)
+    energy = model.system(speed, energy_coordinates=True)(t)
+    radius = np.abs(np.linalg.eigvals(energy)).max()
+    norm = np.abs(energy).sum(axis=-2).max()
+    assert norm < 4.0 * radius
