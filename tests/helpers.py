@@ -48,3 +48,29 @@ def bending_frequencies(result, n):
     """Elastic frequencies [rad/s] of the bending modes: modes whose shape is mostly transverse."""
     omegas = 2 * np.pi * result.frequencies
     return omegas[np.array([k == "elastic" for k in result.kinds])][:n]
+
+
+def written_out_equations(model, speed):
+    """x' = f(t, x) of a ``steady_response.ForcedModel`` at crank speed ``speed`` [rad/s],
+    x = (q, q'), t = 0 at the model's first pose: the reduced equations written out from the
+    model's samples (M^-1 C, M^-1 G1, M^-1 K, M^-1 K2 and M^-1 f at the poses), interpolated
+    between poses by their Fourier series, independently of the study's own integrator."""
+    p = model.periodic
+    n, N = len(p.frequencies), len(p.angles)
+    damping = np.diag(2 * p.damping_ratio * 2 * np.pi * p.frequencies)
+    k = np.fft.fftfreq(N, 1.0 / N)
+    coefficients = [np.fft.fft(np.linalg.solve(p.mass, a), axis=0) / N for a in (
+        np.broadcast_to(damping, p.mass.shape), p.coriolis, p.stiffness, p.speed_stiffness,
+        model.inertia_forcing[..., None], model.external_forcing[..., None])]
+    # one Fourier sum for all six series a call (the integrator calls this thousands of times)
+    shapes = [a.shape[1:] for a in coefficients]
+    stacked = np.concatenate([a.reshape(N, -1) for a in coefficients], axis=1)
+    cuts = np.cumsum([int(np.prod(shape)) for shape in shapes])[:-1]
+
+    def rhs(t, x):
+        flat = (np.exp(1j * k * speed * t) @ stacked).real
+        c, g, k0, k2, f2, fe = (part.reshape(shape) for part, shape in
+                                zip(np.split(flat, cuts), shapes))
+        return np.concatenate([x[n:], speed**2 * f2[:, 0] + fe[:, 0] - (c + speed * g) @ x[n:]
+                               - (k0 + speed**2 * k2) @ x[:n]])
+    return rhs

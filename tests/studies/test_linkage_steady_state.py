@@ -18,6 +18,7 @@ import os
 import numpy as np
 import pytest
 from conftest import CASES_DIR
+from helpers import written_out_equations
 from scipy.integrate import solve_ivp
 
 from flexlink.scene import load_scene
@@ -31,24 +32,8 @@ SAMPLES = 24
 def _from_rest(model, speed, turns):
     """The state over the last of ``turns`` turns at the response's crank angles, integrated
     from rest by DOP853 (rtol 1e-10) on the model's equations written out here."""
-    p = model.periodic
-    n, N = len(p.frequencies), len(p.angles)
-    damping = np.diag(2 * p.damping_ratio * 2 * np.pi * p.frequencies)
-    k = np.fft.fftfreq(N, 1.0 / N)
-    series = [np.fft.fft(np.linalg.solve(p.mass, a), axis=0) / N for a in (
-        np.broadcast_to(damping, p.mass.shape), p.coriolis, p.stiffness, p.speed_stiffness,
-        model.inertia_forcing[..., None], model.external_forcing[..., None])]
-    shapes = [a.shape[1:] for a in series]
-    stacked = np.concatenate([a.reshape(N, -1) for a in series], axis=1)
-    cuts = np.cumsum([int(np.prod(shape)) for shape in shapes])[:-1]
-
-    def rhs(t, x):
-        # t = 0 at the first pose; sample p sits p / N of a turn later
-        flat = (np.exp(1j * k * speed * t) @ stacked).real
-        c, g, k0, k2, f2, fe = (part.reshape(shape) for part, shape in
-                                zip(np.split(flat, cuts), shapes))
-        return np.concatenate([x[n:], speed**2 * f2[:, 0] + fe[:, 0] - (c + speed * g) @ x[n:]
-                               - (k0 + speed**2 * k2) @ x[:n]])
+    n = len(model.periodic.frequencies)
+    rhs = written_out_equations(model, speed)
     period = 2 * np.pi / speed
     run = solve_ivp(rhs, (0.0, turns * period), np.zeros(2 * n),
                     method="DOP853", rtol=1e-10, atol=1e-20, dense_output=True)

@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 import scipy.linalg as la
 from conftest import CASES_DIR
+from helpers import written_out_equations
 from scipy.integrate import solve_ivp
 
 from flexlink.errors import InputError
@@ -71,25 +72,8 @@ def test_periodic_solution_is_the_time_integration_over_a_turn(case1):
     response = steady_response(model, speed, samples=24)
     x0 = periodic_solution(model.system(speed), model.forcing(speed), 2 * np.pi / speed,
                            magnus_steps(model, speed), 24).states
-    # the model interpolates M^-1 C, M^-1 G1, M^-1 K, M^-1 K2 and M^-1 f between its poses
-    n, N = len(p.frequencies), len(p.angles)
-    damping = np.diag(2 * p.damping_ratio * 2 * np.pi * p.frequencies)
-    k = np.fft.fftfreq(N, 1.0 / N)
-    coefficients = [np.fft.fft(np.linalg.solve(p.mass, a), axis=0) / N for a in (
-        np.broadcast_to(damping, p.mass.shape), p.coriolis, p.stiffness, p.speed_stiffness,
-        model.inertia_forcing[..., None], model.external_forcing[..., None])]
-
-    # one Fourier sum for all six series a call (the integrator calls this thousands of times)
-    shapes = [a.shape[1:] for a in coefficients]
-    stacked = np.concatenate([a.reshape(N, -1) for a in coefficients], axis=1)
-    cuts = np.cumsum([int(np.prod(shape)) for shape in shapes])[:-1]
-
-    def rhs(t, x):
-        flat = (np.exp(1j * k * speed * t) @ stacked).real
-        c, g, k0, k2, f2, fe = (part.reshape(shape) for part, shape in
-                                zip(np.split(flat, cuts), shapes))
-        return np.concatenate([x[n:], speed**2 * f2[:, 0] + fe[:, 0] - (c + speed * g) @ x[n:]
-                               - (k0 + speed**2 * k2) @ x[:n]])
+    n = len(p.frequencies)
+    rhs = written_out_equations(model, speed)
     period = 2 * np.pi / speed
     run = solve_ivp(rhs, (0, period), x0[0], method="DOP853", rtol=1e-10, atol=1e-20,
                     dense_output=True)
