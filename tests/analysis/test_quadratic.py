@@ -116,3 +116,26 @@ def test_every_mode_of_a_pencil_beyond_the_whole_pencil_size():
                                       rng.uniform(0, 40, blocks))
     modes = quadratic_modes(M, G, K, 2 * blocks)
     np.testing.assert_allclose(np.abs(modes.eigenvalues.imag), exact, rtol=1e-11)
+
+
+def test_backward_errors_and_phase_are_as_documented():
+    # the normwise backward error recomputed from its definition, and each shape's largest
+    # component real and positive (so shapes compare across runs)
+    rng = np.random.default_rng(13)
+    blocks = 20
+    M, G, K, _ = gyroscopic_pairs(rng.uniform(50, 5000, blocks), rng.uniform(50, 5000, blocks),
+                                  rng.uniform(0, 40, blocks))
+    M = M @ sp.diags(rng.uniform(0.5, 2.0, 2 * blocks))  # unequal masses: ||M||_1 != 1
+    modes = quadratic_modes(M, G, K, 5)
+    s, X = modes.eigenvalues, modes.shapes
+    norm1 = [np.abs(A.toarray()).sum(axis=0).max() for A in (M, G, K)]
+    for j in range(len(s)):
+        x = X[:, j]
+        # the residual is round-off (~1e-16 relative): summed in the solver's order, so that
+        # the two quotients agree to their own round-off
+        r = (M @ x) * s[j] ** 2 + (G @ x) * s[j] + K @ x
+        expected = np.linalg.norm(r) / ((abs(s[j]) ** 2 * norm1[0] + abs(s[j]) * norm1[1]
+                                         + norm1[2]) * np.linalg.norm(x))
+        assert modes.backward_errors[j] == pytest.approx(expected, rel=1e-9, abs=0)
+        big = np.argmax(np.abs(x))
+        assert x[big].real > 0 and abs(x[big].imag) <= 1e-14 * abs(x[big])
