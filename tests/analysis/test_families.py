@@ -62,3 +62,18 @@ def test_in_plane_only_note_names_the_family():
     assert in_plane_only_note(family_scene("planar"), "the map") is None
     note = in_plane_only_note(family_scene("3d"), "the map")
     assert note.startswith("model.family = '3d': the map holds the in-plane modes only")
+
+
+def test_out_of_plane_modes_are_the_same_by_either_solver_path():
+    # small models go straight into dense reduced matrices, others through sparse assembly:
+    # the same K and M, so the same spectrum to the eigen solvers' round-off
+    from flexlink.analysis.eigensolver import EigenSolver
+    from flexlink.analysis.outofplane import analyze_out_of_plane
+
+    scene = family_scene("out-of-plane")
+    dense = analyze_out_of_plane(scene, 4, ELEMENTS, EigenSolver("dense"))
+    sparse = analyze_out_of_plane(scene, 4, ELEMENTS, EigenSolver("sparse"))
+    assert not EigenSolver("sparse").assembles_dense(1)  # the sparse path was taken
+    np.testing.assert_allclose(sparse.elastic_frequencies[:4], dense.elastic_frequencies[:4],
+                               rtol=1e-10)
+    assert sparse.kinds == dense.kinds
