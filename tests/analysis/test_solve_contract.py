@@ -52,11 +52,15 @@ def test_a_model_without_mass_is_refused():
         sv.prepare(np.eye(2), np.zeros((2, 2)))
 
 
-def test_a_failing_dense_solve_says_why():
+def test_a_failing_eigen_solve_says_why():
     # K - shift M = diag(-5, 1) + 1 I is indefinite: LAPACK's Cholesky of it fails
     with pytest.raises(NumericalError, match=r"dense eigen solve failed: .*not positive "
                        r"definite \(K indefinite\?\)"):
         lowest_pairs(Method.DENSE, np.diag([-5.0, 1.0]), np.eye(2), 1, shift=-1.0)
+    # shift-invert about an eigenvalue: K - shift M is exactly singular, its LU fails
+    K = sp.diags(np.arange(1.0, 13.0)).tocsr()
+    with pytest.raises(NumericalError, match="^sparse eigen solve failed: .*singular"):
+        lowest_pairs(Method.SPARSE, K, sp.identity(12, format="csr"), 2, shift=1.0)
 
 
 def test_a_mode_under_the_round_off_floor_is_refused_with_its_frequency():
