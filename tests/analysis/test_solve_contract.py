@@ -93,18 +93,19 @@ def test_refined_eigenvalues_refuse_lost_vectors_and_sort(caplog):
     shapes = np.eye(3)
 
     def energy(s):
-        return np.array([4.0, 1.0, 1e-12])  # a mechanism's quotient last
+        return np.array([4.0, 1.0, 1e-3])  # a mechanism's quotient last
 
-    vals, order = sv.refined_eigenvalues(None, shapes, energy, 1.0, 1e6, 1e-6)
-    np.testing.assert_array_equal(vals[order], [1e-12, 1.0, 4.0])
-    # eps lambda_max / lambda_1 over the elastic modes (1.0, not the mechanism's 1e-12)
+    # lambda_ref = 1e4: modes below 1e-6 lambda_ref = 1e-2 are mechanisms
+    vals, order = sv.refined_eigenvalues(None, shapes, energy, 1e4, 1e6, 1e-6)
+    np.testing.assert_array_equal(vals[order], [1e-3, 1.0, 4.0])
+    # eps lambda_max / lambda_1 over the elastic modes (1.0, not the mechanism's 1e-3)
     eps = np.finfo(float).eps
     with caplog.at_level(logging.WARNING, logger="flexlink.analysis.solve"):
-        sv.refined_eigenvalues(None, shapes, energy, 1.0, 0.05 / eps, 1e-6)  # 0.05: warned
+        sv.refined_eigenvalues(None, shapes, energy, 1e4, 0.05 / eps, 1e-6)  # 0.05: warned
     assert "eps lambda_max / lambda_1 = 0.05" in caplog.text
     with pytest.raises(NumericalError, match="too fine for double precision.* = 11,"):
-        sv.refined_eigenvalues(None, shapes, energy, 1.0, 11 / eps, 1e-6)
-    sv.refined_eigenvalues(None, shapes, energy, 1.0, 9 / eps, 1e-6)  # below 10: warned only
+        sv.refined_eigenvalues(None, shapes, energy, 1e4, 11 / eps, 1e-6)
+    sv.refined_eigenvalues(None, shapes, energy, 1e4, 9 / eps, 1e-6)  # below 10: warned only
 
 
 def spectrum(mechanisms, elastic):
