@@ -12,6 +12,7 @@ from flexlink.analysis.mac import (compare_models, link_frame, link_frame_mass, 
 from flexlink.errors import InputError
 from flexlink.fe.assembly import assemble
 from flexlink.fe.model import JointSpec, LinkSpec, Topology, build_model
+from flexlink.fe.motions import Part
 
 from helpers import SECTION, single_beam
 
@@ -128,3 +129,25 @@ def test_compare_models_refuses_different_links():
         compare_models(first, shapes, other, shapes)
     assert err.value.field == "links"
     assert "same link names" in err.value.expected
+
+
+def test_out_of_plane_comparison_matches_one_field_on_two_meshes():
+    # deflection w cubic (w' = -ty in the link frame) and twist tx linear: both meshes hold
+    # them exactly, so each field has MAC 1 with itself across the meshes and 0 with the other
+    # (w and twist sit in separate rows of the sampled values)
+    angle = 0.5
+    c, s = math.cos(angle), math.sin(angle)
+
+    def field(model, w, dw, tx):
+        x = np.linspace(0.0, 1.0, len(model.nodes))
+        ty = -dw(x)
+        return np.column_stack([w(x), c * tx(x) - s * ty, s * tx(x) + c * ty]).ravel()
+
+    coarse, fine = single_beam("free-free", 2, angle=angle), single_beam("free-free", 5, angle=angle)
+    fields = [(lambda t: t**3 - 2 * t, lambda t: 3 * t**2 - 2, lambda t: 0 * t),
+              (lambda t: 0 * t, lambda t: 0 * t, lambda t: 1 - 3 * t)]
+    A = np.column_stack([field(coarse, *f) for f in fields])
+    B = np.column_stack([field(fine, *f) for f in fields])
+    # exact sampling on both meshes: round-off only
+    np.testing.assert_allclose(compare_models(coarse, A, fine, B, part=Part.OUT_OF_PLANE),
+                               np.eye(2), atol=1e-13)
