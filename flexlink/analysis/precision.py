@@ -30,26 +30,35 @@ from flexlink.fe.model import Topology
 BETA1_4 = 4.730040744862704**4  # (beta_1 L)^4 of a free-free beam: cos b cosh b = 1
 
 
-def roundoff_ratio(topology: Topology, points: Mapping[str, tuple[float, float]]) -> float:
-    """Estimate (a lower bound, see module docstring) of eps lambda_max / lambda_1 for
-    ``topology`` meshed between the joint positions ``points`` [m]."""
-    lam_max, lam_1 = 0.0, math.inf
+def _ratio_terms(topology: Topology, points) -> tuple[float, float]:
+    """The rotation and the axial term of the estimate of eps lambda_max / lambda_1: each
+    link's largest diagonal ratio of that kind over the softest link's lambda_1."""
+    rotation, axial, lam_1 = 0.0, 0.0, math.inf
     for spec in topology.links:
         s = spec.section
         length = math.dist(points[spec.start], points[spec.end])
         h = length / spec.elements
-        lam_max = max(lam_max, 420 * s.EI / (s.mass_per_length * h**4),
-                      3 * s.EA / (s.mass_per_length * h**2))
+        rotation = max(rotation, 420 * s.EI / (s.mass_per_length * h**4))
+        axial = max(axial, 3 * s.EA / (s.mass_per_length * h**2))
         lam_1 = min(lam_1, BETA1_4 * s.EI / (s.mass_per_length * length**4))
-    return float(np.finfo(float).eps * lam_max / lam_1)
+    eps = np.finfo(float).eps
+    return float(eps * rotation / lam_1), float(eps * axial / lam_1)
+
+
+def roundoff_ratio(topology: Topology, points: Mapping[str, tuple[float, float]]) -> float:
+    """Estimate (a lower bound, see module docstring) of eps lambda_max / lambda_1 for
+    ``topology`` meshed between the joint positions ``points`` [m]."""
+    return max(_ratio_terms(topology, points))
 
 
 def finest_supported(topology: Topology, points, limit: float) -> int:
-    """The largest uniform elements per link whose ``roundoff_ratio`` is at most ``limit``
-    (the ratio grows as n^4)."""
+    """The largest uniform elements per link n whose ``roundoff_ratio`` is at most ``limit``:
+    the rotation term grows as n^4, the axial one as n^2 (which dominates coarse meshes of a
+    slender link, up to n ~ L / (3.4 t) for a strip of thickness t)."""
     one = dataclasses.replace(topology, links=tuple(dataclasses.replace(l, elements=1)
                                                     for l in topology.links))
-    return max(1, int((limit / roundoff_ratio(one, points)) ** 0.25))
+    rotation, axial = _ratio_terms(one, points)
+    return max(1, int(min((limit / rotation) ** 0.25, (limit / axial) ** 0.5)))
 
 
 def refuse_too_fine(topology: Topology, points, limit: float) -> None:

@@ -64,13 +64,14 @@ def stacked_modes(K: np.ndarray, M: np.ndarray, lambda_ref: np.ndarray, checked:
                                  "definite") from None
     Li = factor  # L^-1
     A = Li @ K @ Li.transpose(0, 2, 1)
+    finite = np.isfinite(A).all(axis=(1, 2))
+    if not finite.all():  # checked before LAPACK, whose LinAlgError on them would name no pose
+        raise _fail(not_finite_message(), ~finite)
     vals, V = np.linalg.eigh((A + A.transpose(0, 2, 1)) / 2)
     X = Li.transpose(0, 2, 1) @ V
     diagonal = np.einsum("pii->pi", K) / np.einsum("pii->pi", M)
     lambda_max = diagonal.max(axis=1)
     zero = np.maximum(ZERO_TOL * lambda_ref, roundoff_floor(lambda_max))
-    if not np.all(np.isfinite(vals)):
-        raise _fail(not_finite_message(), ~np.isfinite(vals).all(axis=1))
     negative = vals[:, 0] < -zero
     if negative.any():
         raise _fail(negative_message(vals[:, 0].min()), negative)

@@ -349,8 +349,10 @@ def parallel_modal_sweep(topology: Topology, poses: Iterable[Mapping[str, tuple[
     starting the workers costs more."""
     poses = list(poses)
     chunks = [c for c in np.array_split(np.arange(len(poses)), workers(n_jobs)) if len(c)]
+    if not chunks:  # no poses: nothing to spread over workers
+        return modal_sweep(topology, poses, n_modes, solver, reduction=reduction)
     parts = run_tasks(modal_sweep, [(topology, [poses[i] for i in chunk], n_modes, solver, None,
                                      reduction) for chunk in chunks], n_jobs=n_jobs)
     return SweepResult(frequencies=np.concatenate([p.frequencies for p in parts]),
                        mechanism_counts=np.concatenate([p.mechanism_counts for p in parts]),
-                       note=parts[0].note if parts else None)
+                       note=parts[0].note)

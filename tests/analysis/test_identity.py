@@ -171,3 +171,28 @@ def test_a_joint_mass_kinetic_fraction_is_its_share_of_u_m_u():
         row = identity_json(identity, j)
         assert row["kinetic_energy"]["B"] == pytest.approx(expected[j], rel=1e-10)
         assert row["effective_mass_kg"] == {"x": masses[j, 0], "y": masses[j, 1]}
+
+
+def test_joints_are_named_by_their_share_and_fractions_are_scale_free():
+    # a bar on translational springs 100 and 300 N/m: its second mode stores more energy in
+    # the stiffer spring. Swapping the springs mirrors the system, so it must swap the names
+    def bar(k_start, k_end):
+        soft = Topology(links=(LinkSpec("bar", "S", "E", SECTION, 8),),
+                        joints=(JointSpec("S", ground=True, Kt=k_start, Kr=0.0),
+                                JointSpec("E", ground=True, Kt=k_end, Kr=0.0)))
+        return build_model(soft, {"S": (0.0, 0.0), "E": (1.0, 0.0)})
+
+    labels = []
+    for model in (bar(100.0, 300.0), bar(300.0, 100.0)):
+        shapes = modes_of(model, 3).shapes
+        parts = energy_parts(model, shapes)
+        j = 1
+        share = {name: parts.strain[parts.names.index(name), j] for name in "SE"}
+        first, second = sorted(share, key=lambda name: -share[name])
+        assert share[second] > 0.2 * share[first]  # both springs carry a named share
+        labels.append(mode_labels(parts)[j])
+        # fractions do not depend on the shapes' scale; the bar's own strain is a difference
+        # of nearly equal nodal terms (it hardly bends), so its share carries ~1e-12 round-off
+        for scaled, plain in zip(energy_parts(model, 3.0 * shapes).fractions(), parts.fractions()):
+            np.testing.assert_allclose(scaled, plain, rtol=0, atol=1e-10)
+    assert labels == ["joint springs E, S (axial)", "joint springs S, E (axial)"]

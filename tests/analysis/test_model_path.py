@@ -160,3 +160,11 @@ def test_too_many_modes_is_said_even_where_the_top_modes_fail_their_checks(tmp_p
     assert result.exit_code == 2
     assert "19 elastic modes asked for, but the model has only 18 (26 DOFs, 8 of them" \
         in result.stderr, result.stderr
+
+
+def test_a_pose_system_times_its_assembly_and_its_solve():
+    # the convergence study reads these two timings by name
+    scene = load_scene(CASE1)
+    system = modal.pose_system(scene.topology(4), scene.rigid_pose().joints, 2)
+    assert set(system.seconds) == {"assembly", "solve"}
+    assert all(seconds >= 0 for seconds in system.seconds.values())
