@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import click
 
-from flexlink.commands._options import EnumChoice
+from flexlink.commands._options import EnumChoice, stacked
 from flexlink.fe.geometric import GeometricForm
 
 _OPTIONS = (
@@ -30,11 +30,7 @@ _OPTIONS = (
 )
 
 
-def operating_options(command):
-    """Decorator: the at-speed options of ``modes`` (passed on as keyword arguments)."""
-    for option in reversed(_OPTIONS):
-        command = option(command)
-    return command
+operating_options = stacked(_OPTIONS)  # the at-speed options of ``modes``, as keywords
 
 
 def operating_request(speed, crank_angle, crank_acceleration, no_preload, no_centrifugal,

@@ -183,6 +183,9 @@ def periodic_basis_options(command):
                      help="Modal damping ratio in [0, 1) for every basis vector [default: the "
                           "scene's [damping] table, else the loss factors its materials "
                           "write, else 0.01]."))
-    for option in reversed(options):
-        command = option(command)
-    return command
+    return stacked(options)(command)
+
+
+harmonics_option = click.option(
+    "--harmonics", default=10, show_default=True, type=click.IntRange(1, 10000),
+    help="Crank harmonics n = 1 ... this number.")

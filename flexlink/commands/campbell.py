@@ -5,7 +5,7 @@ from __future__ import annotations
 import click
 
 from flexlink.commands._failures import names_scene
-from flexlink.commands._options import (crank_acceleration_option, json_option,
+from flexlink.commands._options import (crank_acceleration_option, harmonics_option, json_option,
                                        map_parallel_options, mesh_options, out_option,
                                        parse_crank_acceleration, parse_speeds, speeds_option)
 
@@ -20,8 +20,7 @@ from flexlink.commands._options import (crank_acceleration_option, json_option,
 @mesh_options(method=False)
 @click.option("--margin", default=0.05, show_default=True, type=click.FloatRange(0, 1),
               help="Relative distance from a band that counts as critical.")
-@click.option("--harmonics", default=10, show_default=True, type=click.IntRange(1, 10000),
-              help="Crank harmonics n = 1 ... this number.")
+@harmonics_option
 @click.option("--dynamic", is_flag=True,
               help="Also the bands at each speed from the modes at speed (inertia preload, "
                    "centrifugal, Coriolis), and how they move the critical speed ranges.")

@@ -5,7 +5,8 @@ from __future__ import annotations
 import click
 
 from flexlink.commands._failures import names_scene
-from flexlink.commands._options import (json_option, map_parallel_options, mesh_options,
+from flexlink.commands._options import (harmonics_option, json_option, map_parallel_options,
+                                       mesh_options,
                                        out_option)
 
 
@@ -22,8 +23,7 @@ from flexlink.commands._options import (json_option, map_parallel_options, mesh_
                    "direction, checked at |speed|).")
 @click.option("--margin", default=0.05, show_default=True, type=click.FloatRange(0, 1),
               help="Relative distance that counts as near a natural frequency.")
-@click.option("--harmonics", default=10, show_default=True, type=click.IntRange(1, 10000),
-              help="Crank harmonics n = 1 ... this number.")
+@harmonics_option
 @click.option("--track/--sorted", default=True, show_default=True,
               help="Follow each mode's shape from pose to pose by MAC (crossings and veerings "
                    "marked), or list the n-th lowest frequency at each pose (faster).")

@@ -149,6 +149,14 @@ class Linkage:
             pts[name] = x[2 * i:2 * i + 2]
         return pts
 
+    def _per_joint(self, rates):
+        """A rate of the moving joints' coordinates (x', x'') as one 2-vector per joint, zero at
+        the ground joints."""
+        per_joint = {name: np.zeros(2) for name in self.ground}
+        for i, name in enumerate(self.moving):
+            per_joint[name] = rates[2 * i:2 * i + 2]
+        return per_joint
+
     def _equations(self, x, q):
         """Residual Phi, Jacobian dPhi/dx, dPhi/dq, and a function giving the quadratic terms
         gamma(x') of the second derivative."""
@@ -228,14 +236,9 @@ class Linkage:
         _, J, phi_q, quadratic = self._equations(x, q)
         self._check_jacobian(J, q)
         xd = np.linalg.solve(J, -phi_q)
-        dp = {k: np.zeros(2) for k in self.ground}
-        for i, name in enumerate(self.moving):
-            dp[name] = xd[2 * i:2 * i + 2]
+        dp = self._per_joint(xd)
         gamma = np.array([g(dp) for g in quadratic])
-        xdd = np.linalg.solve(J, -gamma)
-        ddp = {k: np.zeros(2) for k in self.ground}
-        for i, name in enumerate(self.moving):
-            ddp[name] = xdd[2 * i:2 * i + 2]
+        ddp = self._per_joint(np.linalg.solve(J, -gamma))
         pts = self._unpack(x)
         angles, K, L = [], [], []
         for b in self.bodies:
