@@ -22,14 +22,14 @@ ONE_BLAS_THREAD = {name: "1" for name in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREA
 
 
 @pytest.fixture(scope="module")
-def cluster():
-    """(scheduler address, a client of it) of a LocalCluster of two worker processes."""
-    from distributed import Client, LocalCluster
+def cluster(dask_cluster):
+    """(scheduler address, a client of it) of the session's LocalCluster of two worker
+    processes (conftest)."""
+    from distributed import Client
 
-    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                      dashboard_address=None) as local, Client(local) as client:
+    with Client(dask_cluster) as client:
         client.get_task_stream()  # starts the scheduler's record of every task from here on
-        yield local.scheduler_address, client
+        yield dask_cluster.scheduler_address, client
 
 
 def flexlink_json(*args) -> dict:
