@@ -37,7 +37,7 @@ ARGS = {
     "response": [CASE1, "--speed", "1200 rev/min", "-n", "1"],
     "schema": [],
     "stability": [CASE1],
-    "stability-map": [CASE1, "--speeds", "0:600 rev/min", "--count", "3", "-n", "2"],
+    "stability-map": [CASE1, "--speeds", "0:600 rev/min", "--count", "3", "-n", "2", "--poses", "13"],
     "torque": [CASE1, "--speed", "600 rev/min", "--poses", "8"],
 }
 
