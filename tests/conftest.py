@@ -33,3 +33,13 @@ def root() -> Path:
 @pytest.fixture(params=TABLE2_CASES, ids=lambda p: p.stem)
 def table2_case(request) -> Path:
     return request.param
+
+
+@pytest.fixture(scope="session")
+def dask_cluster():
+    """One LocalCluster of two single-threaded worker processes for every dask test: starting
+    one, warming its workers' imports and closing it costs seconds each time."""
+    distributed = pytest.importorskip("distributed")
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  dashboard_address=None) as cluster:
+        yield cluster

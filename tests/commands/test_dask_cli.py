@@ -11,6 +11,7 @@ import os
 import subprocess
 import sys
 import time
+from pathlib import Path
 
 import pytest
 
@@ -22,24 +23,46 @@ ONE_BLAS_THREAD = {name: "1" for name in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREA
 
 
 @pytest.fixture(scope="module")
-def cluster():
-    """(scheduler address, a client of it) of a LocalCluster of two worker processes."""
-    from distributed import Client, LocalCluster
+def cluster(dask_cluster):
+    """(scheduler address, a client of it) of the session's LocalCluster of two worker
+    processes (conftest)."""
+    from distributed import Client
 
-    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                      dashboard_address=None) as local, Client(local) as client:
+    with Client(dask_cluster) as client:
         client.get_task_stream()  # starts the scheduler's record of every task from here on
-        yield local.scheduler_address, client
+        yield dask_cluster.scheduler_address, client
 
 
-def flexlink_json(*args) -> dict:
-    """The --json document of `flexlink ARGS`, run in a fresh process with one BLAS thread."""
+def flexlink_started(*args) -> subprocess.Popen:
+    """`flexlink ARGS --json` started in a fresh process with one BLAS thread."""
     env = {**os.environ, **ONE_BLAS_THREAD,
            "PYTHONPATH": os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")])}
-    done = subprocess.run([sys.executable, "-m", "flexlink.cli", *map(str, args), "--json"],
-                          capture_output=True, text=True, env=env, cwd=ROOT, timeout=120)
-    assert done.returncode == 0, done.stderr[-2000:]
-    return json.loads(done.stdout)
+    return subprocess.Popen([sys.executable, "-m", "flexlink.cli", *map(str, args), "--json"],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env,
+                            cwd=ROOT)
+
+
+def flexlink_json(child: subprocess.Popen, out: Path) -> dict:
+    """The --json document of a run of ``flexlink_started`` into the folder ``out``, once it
+    has ended, with ``out`` written as OUT in the file names it lists."""
+    try:
+        stdout, stderr = child.communicate(timeout=300)  # a guard against a hang only
+    finally:
+        child.kill()
+    assert child.returncode == 0, stderr[-2000:]
+    return json.loads(stdout.replace(str(out), "OUT"))
+
+
+def serial_and_distributed(run: tuple, address: str, tmp_path: Path,
+                           serial_options=()) -> tuple[dict, dict]:
+    """The --json documents of ``run`` on this machine and on the cluster at ``address``, each
+    into a folder of its own under ``tmp_path``. The two processes run side by side: the
+    serial one sends no task to the cluster, and their results are bitwise the same whatever
+    else runs (one BLAS thread each)."""
+    folders = tmp_path / "serial", tmp_path / "distributed"
+    serial = flexlink_started(*run, *serial_options, "--out", folders[0])
+    distributed = flexlink_started(*run, "--scheduler", address, "--out", folders[1])
+    return flexlink_json(serial, folders[0]), flexlink_json(distributed, folders[1])
 
 
 def untimed(document):
@@ -59,11 +82,9 @@ def cluster_tasks(client, since: float) -> int:
 
 def test_modes_sensitivity_on_cluster_same_as_serial(cluster, tmp_path):
     address, client = cluster
-    run = ("modes", ROOT / "cases" / "case2.toml", "-n", "2", "--sensitivity", "--samples", "10",
-           "--out", tmp_path)
-    serial = flexlink_json(*run, "-j", "1")
+    run = ("modes", ROOT / "cases" / "case2.toml", "-n", "2", "--sensitivity", "--samples", "10")
     since = time.time()
-    distributed = flexlink_json(*run, "--scheduler", address)
+    serial, distributed = serial_and_distributed(run, address, tmp_path, ("-j", "1"))
     assert untimed(distributed) == untimed(serial)
     sensitivity = serial["cases"][0]["sensitivity"]
     # the nominal model, both ends of every ranged input, then the Monte Carlo samples
@@ -73,10 +94,9 @@ def test_modes_sensitivity_on_cluster_same_as_serial(cluster, tmp_path):
 @pytest.mark.parametrize("order", ["--track", "--sorted"])
 def test_cycle_on_cluster_same_as_serial(cluster, tmp_path, order):
     address, client = cluster
-    run = ("cycle", ROOT / "cases" / "case1.toml", "--poses", "36", order, "--out", tmp_path)
-    serial = flexlink_json(*run)
+    run = ("cycle", ROOT / "cases" / "case1.toml", "--poses", "36", order)
     since = time.time()
-    distributed = flexlink_json(*run, "--scheduler", address)
+    serial, distributed = serial_and_distributed(run, address, tmp_path)
     assert untimed(distributed) == untimed(serial)
     # tracked: 4 chunks of poses per worker; sorted: the Craig-Bampton map as one task
     assert cluster_tasks(client, since) == (8 if order == "--track" else 1)

@@ -9,17 +9,16 @@ import pytest
 pytest.importorskip("distributed")
 
 from conftest import ROOT
-from test_dask_cli import cluster, cluster_tasks, flexlink_json, untimed  # noqa: F401
+from test_dask_cli import cluster, cluster_tasks, serial_and_distributed, untimed  # noqa: F401
 
 
 def test_stability_map_on_cluster_same_as_serial(cluster, tmp_path):  # noqa: F811
     address, client = cluster
     # high speeds: few Magnus steps a revolution, so the test stays cheap
     run = ("stability-map", ROOT / "cases" / "case1.toml", "--speeds", "2600:3000 rev/min",
-           "--count", "5", "-n", "2", "--poses", "13", "--out", tmp_path)
-    serial = flexlink_json(*run)
+           "--count", "5", "-n", "2", "--poses", "13")
     since = time.time()
-    distributed = flexlink_json(*run, "--scheduler", address)
+    serial, distributed = serial_and_distributed(run, address, tmp_path)
     assert untimed(distributed) == untimed(serial)
     # two workers, four chunks each, capped at one speed a chunk
     assert cluster_tasks(client, since) == 5

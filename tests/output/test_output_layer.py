@@ -37,17 +37,20 @@ ARGS = {
     "response": [CASE1, "--speed", "1200 rev/min", "-n", "1"],
     "schema": [],
     "stability": [CASE1],
-    "stability-map": [CASE1, "--speeds", "0:600 rev/min", "--count", "3", "-n", "2"],
+    "stability-map": [CASE1, "--speeds", "0:600 rev/min", "--count", "3", "-n", "2", "--poses", "13"],
     "torque": [CASE1, "--speed", "600 rev/min", "--poses", "8"],
 }
 
 
 @pytest.fixture(scope="module", autouse=True)
 def studies_once():
-    """The two heavy studies (calibration, the stability checks) are computed once and
-    reused by every run here: what is under test is how their results are written."""
+    """The heavy studies (calibration, the stability checks, the periodic models with the
+    stability map and the steady response computed on them) are computed once and reused by
+    every run here: what is under test is how their results are written."""
     import flexlink.studies.calibration_study
     import flexlink.studies.stability
+    import flexlink.studies.stability_map
+    import flexlink.studies.steady_response
 
     def once(function, key):
         cache = {}
@@ -66,6 +69,15 @@ def studies_once():
         mp.setattr(flexlink.studies.stability, "run_checks", once(
             flexlink.studies.stability.run_checks, lambda scene, **k: (scene.path,
                                                                        k.get("slow"))))
+        # a scene is loaded afresh by every run, a model is the cached one (kept alive by the
+        # cache, so its id names it)
+        for module, build, solve in (
+                (flexlink.studies.stability_map, "periodic_model", "stability_map"),
+                (flexlink.studies.steady_response, "forced_model", "steady_response")):
+            mp.setattr(module, build, once(getattr(module, build), lambda scene, *a, **k: (
+                scene.path, repr(a), repr(sorted(k.items())))))
+            mp.setattr(module, solve, once(getattr(module, solve), lambda model, *a, **k: (
+                id(model), repr(a), repr(sorted(k.items())))))
         yield
 
 
