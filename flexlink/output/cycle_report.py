@@ -11,6 +11,7 @@ import numpy as np
 
 from flexlink.fileio import write_atomic
 from flexlink.output.figures import cycle_axes, write_figure
+from flexlink.output.synthesis_text import synthesis_line
 from flexlink.output.tracking_report import (events_json, periodicity_json, plot_tracked,
                                              reseeds_json, tracked_csv, tracking_lines,
                                              unsampled_json)
@@ -100,8 +101,7 @@ def cycle_text(document: dict, study: CycleStudy) -> str:
         out.append(document["note"])
     synthesis = document["synthesis"]
     if synthesis:
-        out.append(f"synthesis {synthesis['method']}: " + ", ".join(
-            f"{k} {1e3 * v:.3f} mm" for k, v in synthesis["lengths_m"].items()))
+        out.append(synthesis_line(synthesis, inputs=False))
     out.append(f"{'mode':>4} {'min [Hz]':>10} {'at [deg]':>9} {'max [Hz]':>10} {'at [deg]':>9}")
     labels = document["tracking"].get("labels", [])
     for m in document["modes"]:

@@ -9,6 +9,7 @@ from pathlib import Path
 from flexlink.kinematics.linkage import Cycle
 from flexlink.fileio import write_atomic
 from flexlink.kinematics.motion import Extremes
+from flexlink.output.synthesis_text import synthesis_line
 from flexlink.studies.kinematics import BodyMotion, MotionStudy, VariantMotion
 from flexlink.units import rev_per_min
 
@@ -73,8 +74,7 @@ def motion_text(study: MotionStudy) -> str:
     lines = [study.scene.name]
     s = study.scene.synthesis
     if s:
-        lines.append(f"  synthesis {s['method']} {s['inputs']}: " + ", ".join(
-            f"{k} {1e3 * v:.3f} mm" for k, v in s["lengths_m"].items()))
+        lines.append("  " + synthesis_line(s))
     lines.append("  extremes over the cycle as value@crank angle [deg]")
     lines.append(f"  {'body':<9} {'angle [deg]':^27} {'K = dtheta/dq':^29} {'L = dK/dq':^29}")
     for name, b in study.bodies.items():

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import math
 
+from flexlink.output.synthesis_text import synthesis_line
 from flexlink.studies.prb import PrbComparison
 
 
@@ -30,8 +31,7 @@ def prb_text(document: dict) -> str:
     s, prb, fe = document["synthesis"], document["prb"], document["fe_Hz"]
     out = [document["scene"]]
     if s:
-        out.append(f"  synthesis {s['method']} {s['inputs']}: " + ", ".join(
-            f"{k} {1e3 * v:.3f} mm" for k, v in s["lengths_m"].items()))
+        out.append("  " + synthesis_line(s))
     out.append(f"  pose: crank {document['pose_crank_deg']:.3f} deg (strip straight)")
     out.append("  FE modes [Hz]: " + ", ".join(f"{f:.3f}" for f in fe))
     out.append(f"  PRB: K = {prb['spring_N_m_per_rad']:.4f} N m/rad, k_q = "
