@@ -68,8 +68,12 @@ def strain_convergence(scene: Scene, speeds: np.ndarray,
     other arguments as ``forced_model``'s and ``steady_response``'s."""
     speeds = np.asarray(speeds, dtype=float)
     modes, sizes, errors, peaks, points_used = [], [], [], [], points
+    checked = {}  # n_modes -> the checked basis' model, built once for all its settings
     for n_modes, extra in settings:
-        model = forced_model(scene, n_modes, poses, damping_ratio, points, elements_per_link)
+        if n_modes not in checked:
+            checked[n_modes] = forced_model(scene, n_modes, poses, damping_ratio, points,
+                                            elements_per_link)
+        model = checked[n_modes]
         if extra:
             model = forced_model(scene, n_modes, poses, damping_ratio, points,
                                  elements_per_link, basis_size=model.periodic.basis.size + extra)
