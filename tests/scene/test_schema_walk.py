@@ -734,3 +734,32 @@ def test_the_bases_are_valid_scenes():
         data = copy.deepcopy(data)
         data.setdefault("linkage", {}).setdefault("type", "four-bar")
         schema.SceneFile.model_validate(data)
+
+
+def test_every_range_in_si_matches_its_own_text():
+    """Each key's ``Unit`` states its range twice: as text (the reference's "accepted" column,
+    the oracle of the cases above) and as SI bounds with their open/closed flags, for generated
+    tests. The two must say the same thing: a bound, a flag or an argument slipped between the
+    two (``quantity``'s positional ``Unit(...)``) passes every other check."""
+    units = []
+    for model in reachable():
+        for field in model.model_fields.values():
+            for alt in _alternatives(field.annotation):
+                unit = _unit(alt, field.metadata) or (
+                    _unit(typing.get_args(_bare(alt))[0])
+                    if typing.get_origin(_bare(alt)) is list and typing.get_args(_bare(alt))
+                    else None)
+                if unit is not None and unit.range != "[x, y]":  # a point: its parts have ranges
+                    units.append(unit)
+    assert len(units) > 50  # a guard on the walk (62 such keys today)
+    for unit in units:
+        said = claim(unit)
+        if said is None:
+            assert (unit.low, unit.high) == (None, None), unit
+            continue
+        factor = 1.0 if said.unit == "" else UNITS_FACTOR[said.unit]
+        for si, text in ((unit.low, said.low), (unit.high, said.high)):
+            assert (si is None) == (text is None), unit
+            if text is not None:
+                assert si == pytest.approx(text * factor, rel=1e-15, abs=0.0), unit  # rounding
+        assert (unit.low_open, unit.high_open) == (said.low_open, said.high_open), unit
