@@ -4,20 +4,23 @@ value."""
 
 import math
 
+import numpy as np
 import pytest
 
 from flexlink.errors import InputError
+from flexlink.fe.energy import lumped_mass
 from flexlink.fe.model import JointSpec, LinkSpec, Section, Topology, build_model
 from flexlink.fe.strip import out_of_plane_eigen_scale
 
 
-def _strip_model(scale: float):
+def _strip_model(scale: float, elements: int = 4, angle: float = 0.0):
     """A 0.5 m strip of 20 x 2 mm, every length multiplied by ``scale``."""
     strip = Section.rectangle(E=70e9, G=26e9, density=2700.0, width=0.02 * scale,
                               thickness=0.002 * scale)
     joints = (JointSpec("S", True, math.inf, 0.0), JointSpec("E", False, 0.0, 0.0))
-    topology = Topology(links=(LinkSpec("strip", "S", "E", strip, 4),), joints=joints)
-    return build_model(topology, {"S": (0.0, 0.0), "E": (0.5 * scale, 0.0)})
+    topology = Topology(links=(LinkSpec("strip", "S", "E", strip, elements),), joints=joints)
+    end = 0.5 * scale * np.array([math.cos(angle), math.sin(angle)])
+    return build_model(topology, {"S": (0.0, 0.0), "E": tuple(end)})
 
 
 @pytest.mark.parametrize("scale", [0.5, 3.0])
@@ -41,3 +44,18 @@ def test_an_unnamed_tube_is_as_unnamed_as_any_section():
         Section.tube(70e9, 26e9, 2700.0, 0.01, 0.012)
     assert refusal.value.source is None
     assert refusal.value.field == "tube"
+
+
+def test_the_lumped_mass_is_positive_with_the_hrz_rotary_share():
+    """HRZ lumping (Hinton, Rock and Zienkiewicz 1976) scales the consistent matrix's diagonal
+    to the element mass: an element end gets m / 2 in x and y and, from the consistent
+    diagonal's ratio 4 h^2 / 156, m h^2 / 78 in rotation; so at every node of a link the
+    rotary entry is h^2 / 39 times the translational one, and every entry is positive (a mass
+    matrix: kinetic energy > 0 for any velocity)."""
+    model = _strip_model(1.0, elements=5, angle=0.7)
+    h = 0.5 / 5
+    diag = lumped_mass(model).diagonal().reshape(-1, 3)
+    assert (diag > 0).all()
+    np.testing.assert_allclose(diag[:, 0], diag[:, 1], rtol=1e-15)  # rotation invariant
+    np.testing.assert_allclose(diag[:, 2] / diag[:, 0], h**2 / 39, rtol=1e-13)  # rounding
+    assert diag[:, 0].sum() == pytest.approx(2700.0 * 0.02 * 0.002 * 0.5, rel=1e-13)
