@@ -98,6 +98,8 @@ def test_a_constant_torque_has_one_row_no_angles_and_acts_at_the_origin(tmp_path
     ("crank_angle_deg,torque\n0,1\n180,1\n", "2 row(s)"),
     ("crank_angle_deg,torque\n0,1\n120,1\n120,1\n240,1\n", "do not increase at row 4"),
     ("crank_angle_deg,torque\n0,1\n120,2\n240,1\n360,1.5\n", "differs from the one at 0 deg"),
+    # equal means equal to 1e-9 relative, with no absolute floor: a torque 0 is not 1e-9
+    ("crank_angle_deg,torque\n0,0\n120,2\n240,1\n360,1e-9\n", "differs from the one at 0 deg"),
     ("crank_angle_deg,torque\n0,1\n120,1\n240,inf\n", "row 4, column 'torque': unreadable"),
     (grid(range(0, 340, 10), [1.0] * 34), "not one full turn"),
     (grid(range(0, 720, 10), [1.0] * 72), "not one full turn"),
