@@ -9,6 +9,7 @@ import pytest
 
 from flexlink.errors import InputError
 from flexlink.fe.energy import lumped_mass
+from flexlink.fe.link import link_matrices
 from flexlink.fe.model import JointSpec, LinkSpec, Section, Topology, build_model
 from flexlink.fe.strip import out_of_plane_eigen_scale
 
@@ -59,3 +60,59 @@ def test_the_lumped_mass_is_positive_with_the_hrz_rotary_share():
     np.testing.assert_allclose(diag[:, 0], diag[:, 1], rtol=1e-15)  # rotation invariant
     np.testing.assert_allclose(diag[:, 2] / diag[:, 0], h**2 / 39, rtol=1e-13)  # rounding
     assert diag[:, 0].sum() == pytest.approx(2700.0 * 0.02 * 0.002 * 0.5, rel=1e-13)
+
+
+SECTION = dict(E=70e9, G=26e9, density=2700.0, area=4e-5, second_moment=1.3e-11, depth=0.002)
+
+
+@pytest.mark.parametrize("field", [*SECTION, "shear_factor"])
+@pytest.mark.parametrize("bad", [0.0, -1.0, math.inf, math.nan])
+def test_a_section_refuses_a_non_positive_or_non_finite_value_naming_it(field, bad):
+    with pytest.raises(InputError) as refusal:
+        Section(**{**SECTION, field: bad}, name="strip")
+    assert (refusal.value.field, refusal.value.source) == (field, "strip")
+
+
+def test_a_bending_that_is_not_a_choice_is_refused_naming_the_field():
+    with pytest.raises(InputError) as refusal:
+        Section(**SECTION, bending="sideways")
+    assert refusal.value.field == "section.bending"
+    assert "edgewise" in refusal.value.expected and "flatwise" in refusal.value.expected
+    with pytest.raises(InputError) as refusal:
+        Section.rectangle(70e9, 26e9, 2700.0, 0.02, 0.002, bending="sideways")
+    assert refusal.value.field == "section.bending"
+    assert "unknown bending 'sideways'" in str(refusal.value)
+    assert refusal.value.expected == "edgewise or flatwise"  # the choices, as a user types them
+
+
+def test_an_unknown_beam_theory_is_refused_naming_it_and_the_theories():
+    with pytest.raises(InputError) as refusal:
+        Section(**SECTION, beam="bernoulli", name="strip")
+    assert (refusal.value.field, refusal.value.source) == ("model.beam", "strip")
+    assert "unknown beam theory 'bernoulli'" in str(refusal.value)
+    assert refusal.value.expected == "euler-bernoulli or timoshenko"
+
+
+@pytest.mark.parametrize("argument", ["length", "EA", "EI", "mass_per_length"])
+def test_link_matrices_refuse_a_non_positive_input_naming_it(argument):
+    """A link 1 mm long with EA = EI = mass per length = 1e-3 (small, all valid) is accepted;
+    each input set to 0 is refused naming it."""
+    good = dict(length=1e-3, EA=1e-3, EI=1e-3, mass_per_length=1e-3)
+    link_matrices(good["length"], 2, good["EA"], good["EI"], good["mass_per_length"])
+    bad = {**good, argument: 0.0}
+    with pytest.raises(InputError) as refusal:
+        link_matrices(bad["length"], 2, bad["EA"], bad["EI"], bad["mass_per_length"])
+    assert refusal.value.field == argument
+    assert "positive and finite, got 0.0" in str(refusal.value)
+
+
+def test_a_pose_without_a_joint_or_with_a_zero_length_link_is_refused():
+    strip = Section.rectangle(E=70e9, G=26e9, density=2700.0, width=0.02, thickness=0.002)
+    joints = (JointSpec("S", True, math.inf, 0.0), JointSpec("E", False, 0.0, 0.0))
+    topology = Topology(links=(LinkSpec("strip", "S", "E", strip, 2),), joints=joints)
+    with pytest.raises(InputError) as refusal:
+        build_model(topology, {"S": (0.0, 0.0)})
+    assert refusal.value.field == "pose" and "'E'" in str(refusal.value)
+    with pytest.raises(InputError) as refusal:
+        build_model(topology, {"S": (0.1, 0.2), "E": (0.1, 0.2)})
+    assert refusal.value.field == "links.strip" and "zero length" in str(refusal.value)
