@@ -22,7 +22,7 @@ import math
 
 import numpy as np
 
-from flexlink.choices import parse_choice
+from flexlink.choices import parse_choice, spelled
 from flexlink.errors import InputError
 from flexlink.fe.beams import THEORIES, BeamTheory, beam_matrices
 from flexlink.fe.joints import GROUND as GROUND  # the models' name for the ground DOF
@@ -73,7 +73,7 @@ class Section:
                                  source=self.name or None, field=field)
         if self.beam not in THEORIES:
             raise InputError(f"unknown beam theory {self.beam!r}", source=self.name or None,
-                             field="model.beam", expected=" or ".join(map(repr, THEORIES)))
+                             field="model.beam", expected=spelled(BeamTheory))
         # the Python edge: text choices become members
         object.__setattr__(self, "beam", BeamTheory(self.beam))
         object.__setattr__(self, "bending", parse_choice(Bending, self.bending, "section.bending"))
@@ -88,7 +88,7 @@ class Section:
         in-plane bending uses I = width thickness^3 / 12 (the flexible way)."""
         if bending not in BENDINGS:
             raise InputError(f"unknown bending {bending!r}", source=name or None,
-                             field="section.bending", expected=" or ".join(map(repr, BENDINGS)))
+                             field="section.bending", expected=spelled(Bending))
         depth, across = (width, thickness) if bending == Bending.EDGEWISE else (thickness, width)
         return cls(E=E, G=G, density=density, area=width * thickness,
                    second_moment=across * depth**3 / 12.0, depth=depth, name=name, beam=beam,

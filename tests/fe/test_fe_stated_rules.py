@@ -10,6 +10,7 @@ import pytest
 from flexlink.errors import InputError
 from flexlink.fe.energy import lumped_mass
 from flexlink.fe.link import link_matrices
+from flexlink.fe.modeshape import sample_shapes
 from flexlink.fe.model import JointSpec, LinkSpec, Section, Topology, build_model
 from flexlink.fe.strip import out_of_plane_eigen_scale
 
@@ -116,3 +117,18 @@ def test_a_pose_without_a_joint_or_with_a_zero_length_link_is_refused():
     with pytest.raises(InputError) as refusal:
         build_model(topology, {"S": (0.1, 0.2), "E": (0.1, 0.2)})
     assert refusal.value.field == "links.strip" and "zero length" in str(refusal.value)
+
+
+def test_one_subdivision_samples_the_nodes_only():
+    """``sample_shapes``' stated range: subdivisions >= 1, and 1 gives the nodes only, so the
+    samples are the model's own nodes and nodal values (any shape vector); 0 is refused."""
+    model = _strip_model(1.0, elements=3, angle=0.4)
+    shapes = np.random.default_rng(5).normal(size=(model.n_dofs, 2))
+    sampled = sample_shapes(model, shapes, subdivisions=1)
+    np.testing.assert_array_equal(sampled.point_node, np.arange(len(model.nodes)))
+    np.testing.assert_allclose(sampled.points, model.nodes, rtol=0, atol=1e-15)  # metres
+    nodal = shapes.reshape(-1, 3, 2)
+    np.testing.assert_allclose(sampled.displacement, nodal[:, :2], rtol=1e-14, atol=1e-15)
+    np.testing.assert_allclose(sampled.rotation, nodal[:, 2], rtol=1e-14, atol=1e-15)
+    with pytest.raises(ValueError, match="subdivisions must be >= 1"):
+        sample_shapes(model, shapes, subdivisions=0)
