@@ -1,6 +1,7 @@
 """Claims of the scene stage that the mutation runs found unguarded (docs/testing.md, fourth
 round): the messages' stated contents and the scene's conventions."""
 
+import numpy as np
 import pytest
 from conftest import CASES_DIR, SCENES_DIR
 
@@ -40,3 +41,19 @@ def test_a_table_the_scene_replaces_whole_takes_its_origin_from_the_scene(tmp_pa
     assert material == {"material.isotropic": str(path)}
     assert src.file_of("material") == str(path)
     assert src.file_of("linkage.R2") == str(CASES_DIR / "case1.toml")  # the rest keeps its file
+
+
+@pytest.mark.parametrize("crank", [0.3, 2.0])
+def test_a_crossed_four_bar_poses_on_its_own_branch(crank):
+    """The two assembly branches of a four-bar share O2, A and O4; B of the crossed one is B
+    of the open one mirrored in the line A O4 (both lie at the coupler's length from A and
+    the rocker's from O4). The scene's branch, not a default, must pick it."""
+    case1 = CASES_DIR / "case1.toml"
+    open_ = load_scene(case1).rigid_pose(crank).joints
+    crossed = load_scene(case1, overrides={"pose.branch": "crossed"}).rigid_pose(crank).joints
+    a, o4, b = (np.array(open_[j]) for j in ("A", "O4", "B"))
+    along = (o4 - a) / np.linalg.norm(o4 - a)
+    mirrored = a + 2 * ((b - a) @ along) * along - (b - a)
+    np.testing.assert_allclose(crossed["B"], mirrored, rtol=0, atol=1e-12)  # metres, round-off
+    for joint in ("O2", "A", "O4"):
+        np.testing.assert_allclose(crossed[joint], open_[joint], rtol=0, atol=1e-15)
