@@ -57,3 +57,15 @@ def test_a_crossed_four_bar_poses_on_its_own_branch(crank):
     np.testing.assert_allclose(crossed["B"], mirrored, rtol=0, atol=1e-12)  # metres, round-off
     for joint in ("O2", "A", "O4"):
         np.testing.assert_allclose(crossed[joint], open_[joint], rtol=0, atol=1e-15)
+
+
+def test_a_four_bar_takes_its_own_link_tables_but_not_their_ends_or_mesh(tmp_path):
+    """A four-bar's [links.NAME] may give a link its own section, never its joints or
+    elements (fixed by the kind; the mesh is [mesh] elements_per_link)."""
+    base = f'base = "{(CASES_DIR / "case1.toml").as_posix()}"\n'
+    path = tmp_path / "thicker.toml"
+    path.write_text(base + '[links.coupler.section]\nthickness = "3 mm"\n')
+    assert load_scene(path).sections["coupler"].depth == pytest.approx(3e-3, rel=1e-15)
+    error = _refusal(tmp_path, base + "[links.coupler]\nelements = 4\n")
+    assert error.field == "links.coupler.elements"
+    assert "elements_per_link" in str(error)
