@@ -35,11 +35,57 @@ def table2_case(request) -> Path:
     return request.param
 
 
-@pytest.fixture(scope="session")
+# The dask tests share one LocalCluster: starting one, warming its workers' imports and closing it
+# costs seconds. It is closed after the last of them, not at the end of the session, because
+# its idle workers still take CPU from the tests that follow (their heartbeats: about 5 % of a
+# core each, measured). Those tests run one after another (``pytest_collection_modifyitems``).
+_CLUSTER_USERS = "dask_cluster"
+_cluster = None
+
+
+@pytest.fixture
 def dask_cluster():
-    """One LocalCluster of two single-threaded worker processes for every dask test: starting
-    one, warming its workers' imports and closing it costs seconds each time."""
+    """The shared LocalCluster of two single-threaded worker processes, started by the first
+    test that asks for it. Its scheduler's HTTP server takes a free port (":0"): without a
+    dashboard address it still serves on 8787, or on another port with a warning when a second
+    run on the machine holds 8787."""
+    global _cluster
     distributed = pytest.importorskip("distributed")
-    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                                  dashboard_address=None) as cluster:
-        yield cluster
+    if _cluster is None:
+        _cluster = distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                            dashboard_address=":0")
+    return _cluster
+
+
+def _close_cluster() -> None:
+    global _cluster
+    if _cluster is not None:
+        _cluster.close()
+        _cluster = None
+
+
+@pytest.hookimpl(wrapper=True)
+def pytest_runtest_teardown(item, nextitem):
+    yield  # the test's own fixtures (a client of the cluster) are torn down first
+    if nextitem is None or _CLUSTER_USERS not in nextitem.fixturenames:
+        _close_cluster()
+
+
+def pytest_sessionfinish():
+    _close_cluster()  # a run stopped early (-x) between two users of the cluster
+
+
+@pytest.hookimpl(tryfirst=True)  # before pytest-xdist reads the groups (its hook is plain)
+def pytest_collection_modifyitems(items):
+    """The cluster's users run one after another, at the place of the first; on parallel
+    workers (``-n``, ``--dist loadgroup``: scripts/test.sh) they form one group, so one worker
+    starts the cluster, and every other test goes with its own file, so a module-scoped
+    fixture is built once."""
+    users = [item for item in items if _CLUSTER_USERS in item.fixturenames]
+    if users:
+        others = [item for item in items if _CLUSTER_USERS not in item.fixturenames]
+        first = items.index(users[0])
+        items[:] = others[:first] + users + others[first:]
+    for item in items:
+        group = _CLUSTER_USERS if item in users else item.nodeid.split("::")[0]
+        item.add_marker(pytest.mark.xdist_group(group))
