@@ -11,6 +11,13 @@ from pathlib import Path
 import pytest
 from hypothesis import HealthCheck, settings
 
+# On a pytest-xdist worker (one per core: scripts/test.sh), BLAS threads of its own would only
+# compete with the other workers for the same cores. Set before numpy is first imported (by a
+# test module, after this file).
+if os.environ.get("PYTEST_XDIST_WORKER"):
+    for _name in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+        os.environ.setdefault(_name, "1")
+
 ROOT = Path(__file__).resolve().parent.parent
 CASES_DIR = ROOT / "cases"
 SCENES_DIR = ROOT / "scenes"
