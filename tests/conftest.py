@@ -45,7 +45,8 @@ def table2_case(request) -> Path:
 # The dask tests share one LocalCluster: starting one, warming its workers' imports and closing it
 # costs seconds. It is closed after the last of them, not at the end of the session, because
 # its idle workers still take CPU from the tests that follow (their heartbeats: about 5 % of a
-# core each, measured). Those tests run one after another (``pytest_collection_modifyitems``).
+# core each, measured). Those tests run one after another (``pytest_collection_modifyitems``);
+# a later one starts a new cluster.
 _CLUSTER_USERS = "dask_cluster"
 _cluster = None
 
@@ -82,17 +83,12 @@ def pytest_sessionfinish():
     _close_cluster()  # a run stopped early (-x) between two users of the cluster
 
 
-@pytest.hookimpl(tryfirst=True)  # before pytest-xdist reads the groups (its hook is plain)
 def pytest_collection_modifyitems(items):
-    """The cluster's users run one after another, at the place of the first; on parallel
-    workers (``-n``, ``--dist loadgroup``: scripts/test.sh) they form one group, so one worker
-    starts the cluster, and every other test goes with its own file, so a module-scoped
-    fixture is built once."""
+    """The cluster's users run one after another, at the place of the first, so one cluster
+    serves them all in a serial run. A parallel run (scripts/test.sh) hands out whole files:
+    a worker starts a cluster for each run of consecutive users it is given."""
     users = [item for item in items if _CLUSTER_USERS in item.fixturenames]
     if users:
         others = [item for item in items if _CLUSTER_USERS not in item.fixturenames]
         first = items.index(users[0])
         items[:] = others[:first] + users + others[first:]
-    for item in items:
-        group = _CLUSTER_USERS if item in users else item.nodeid.split("::")[0]
-        item.add_marker(pytest.mark.xdist_group(group))
