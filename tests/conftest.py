@@ -5,6 +5,7 @@ and derandomised, so a CI run is reproducible; ``thorough`` is for a deliberate 
 ``HYPOTHESIS_PROFILE=thorough python -m pytest tests/properties``.
 """
 
+import logging
 import os
 from pathlib import Path
 
@@ -66,9 +67,16 @@ def dask_cluster():
 
 
 def _close_cluster() -> None:
+    """Close the cluster without its INFO lines: mid-run, they would land between the dots."""
     global _cluster
     if _cluster is not None:
-        _cluster.close()
+        log = logging.getLogger("distributed")
+        level = log.level
+        log.setLevel(logging.ERROR)
+        try:
+            _cluster.close()
+        finally:
+            log.setLevel(level)
         _cluster = None
 
 
