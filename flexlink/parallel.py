@@ -40,9 +40,9 @@ def use_scheduler(address: str | None) -> Iterator[object]:
         raise InputError("dask.distributed is not installed", field="--scheduler",
                          expected="pip install 'flexlink[dask]'") from None
     cluster = None
-    if address == "local":
+    if address == "local":  # the status page on any free port: 8787 may be another cluster's
         cluster = LocalCluster(n_workers=os.cpu_count() or 1, threads_per_worker=1,
-                               processes=True, dashboard_address=None)
+                               processes=True, dashboard_address=":0")
     try:
         client = Client(cluster if cluster is not None else address, timeout="30s")
     except OSError as exc:

@@ -3,4 +3,7 @@
 source "$(dirname "$0")/venv.sh"
 bash scripts/browser-deps.sh  # headless Chromium for the report's browser test
 ruff check flexlink tests benchmarks scripts  # the rules and their reasons: pyproject.toml
-python -m pytest -q "$@"
+# One pytest-xdist worker per core; each file's tests stay on one worker, so a module's fixtures
+# are built once. (--dist loadgroup would not group: pytest-xdist 3.8 renames the tests of a
+# group through an attribute that pytest 9 no longer reads.)
+python -m pytest -q -n logical --dist loadfile "$@"

@@ -114,6 +114,8 @@ def _ritz_frequencies(Kr: np.ndarray, Mr: np.ndarray, count: int) -> np.ndarray:
 
 
 def _reference_ritz(V: np.ndarray, K0: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """V (M_0-orthonormal) turned to the reference pose's Ritz vectors, and their [Hz]."""
+    """V (M_0-orthonormal) turned to the reference pose's Ritz vectors, and their [Hz]. The
+    Ritz values are at least K_0's lowest eigenvalue, which ``lowest_modes`` has required to be
+    positive, so their square roots are real."""
     values, Q = np.linalg.eigh(V.T @ K0 @ V)
-    return V @ Q, np.sqrt(np.clip(values, 0.0, None)) / (2.0 * np.pi)
+    return V @ Q, np.sqrt(values) / (2.0 * np.pi)

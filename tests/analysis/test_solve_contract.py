@@ -82,7 +82,9 @@ def test_label_warns_where_round_off_reaches_the_frequency_tolerance(caplog):
     # eps lambda_max / lambda_1 = 2.2e-16 * 1e12 / 1 = 2.2e-4 > 1e-6
     with caplog.at_level(logging.WARNING, logger="flexlink.analysis.solve"):
         sv.label(np.array([1.0, 2.0]), 1e-6, 1.0, 1e-6, refined=False, lambda_max=1e12)
-    assert "relative round-off" in caplog.text
+    assert caplog.messages == [
+        "eigenvalues carry about 0.0002 relative round-off (eps lambda_max / lambda_1): the "
+        "mesh is finer than double precision supports without the energy refinement"]
     caplog.clear()
     with caplog.at_level(logging.WARNING, logger="flexlink.analysis.solve"):
         sv.label(np.array([1.0, 2.0]), 1e-6, 1.0, 1e-6, refined=False, lambda_max=1e6)
@@ -152,3 +154,21 @@ def test_more_elastic_modes_than_the_model_has_are_refused_with_the_count():
     with pytest.raises(InputError, match="7 elastic modes asked for, but the model has only 6"):
         sv.require_elastic(few, 7)
     assert sv.require_elastic(few, 6) is few
+
+
+@pytest.mark.parametrize("refined", [False, True])
+def test_mechanism_threshold_is_zero_tol_times_the_model_scale(refined):
+    # lambda_ref = 1e4, zero_tol 1e-6: modes below 1e-2 (rad/s)^2 are mechanisms, on the plain
+    # and on the energy-refined path alike (the refined quotients carry no round-off floor,
+    # but the physical threshold stays); 5e-3 below it, 2e-2 above it
+    K = np.diag([5e-3, 2e-2, 1e4])
+
+    def energy(shapes):
+        return np.einsum("ij,ij->j", shapes, K @ shapes)  # exact: K is diagonal
+
+    result = sv.solve_modes(K, np.eye(3), 3, lambda_ref=1e4, solver=DENSE,
+                            energy=energy if refined else None)
+    assert result.refined == refined
+    # unrefined, each eigenvalue carries about eps lambda_max = 2e-12 absolute
+    np.testing.assert_allclose(result.eigenvalues, [5e-3, 2e-2, 1e4], rtol=1e-12, atol=1e-10)
+    assert result.kinds == (sv.MECHANISM, sv.ELASTIC, sv.ELASTIC)

@@ -38,8 +38,11 @@ def test_check_refuses_nan_and_negative_eigenvalues():
     vals, vecs = sv.eigen_solve(p, 2, "dense", lambda_ref=1.0)
     with pytest.raises(NumericalError, match="NaN"):
         sv.check(p, np.array([np.nan, 4.0]), vecs, zero=1e-6, method="dense")
-    with pytest.raises(NumericalError, match="negative eigenvalue"):
+    with pytest.raises(NumericalError) as err:
         sv.check(p, np.array([-1.0, 4.0]), vecs, zero=1e-6, method="dense")
+    # the whole sentence: the value with its unit, and which inputs to look at
+    assert str(err.value) == ("negative eigenvalue -1 rad^2/s^2: K is not positive "
+                              "semi-definite (check spring and section inputs)")
     with pytest.raises(NumericalError, match="backward error"):
         sv.check(p, vals * 1.01, vecs, zero=1e-6, method="dense")
 

@@ -1,7 +1,7 @@
 """Monte Carlo on a dask.distributed LocalCluster of worker processes gives exactly the serial
 result (samples are drawn in the parent; results come back in task order).
 
-``use_scheduler("local")`` is given the session's cluster (conftest) in place of a new one:
+``use_scheduler("local")`` is given the tests' shared cluster (conftest) in place of a new one:
 the stand-in records what was asked for and whether the block closed it."""
 
 import os
@@ -29,9 +29,9 @@ def _worker_and(value):
 
 
 class SessionCluster:
-    """Stands in for ``distributed.LocalCluster``: hands out the session's cluster, records
-    the keyword arguments it was asked with, and takes ``close`` as a note (the session closes
-    the real one)."""
+    """Stands in for ``distributed.LocalCluster``: hands out the shared cluster, records the
+    keyword arguments it was asked with, and takes ``close`` as a note (conftest closes the
+    real one)."""
 
     def __init__(self, cluster):
         self.cluster, self.asked, self.closed = cluster, None, False

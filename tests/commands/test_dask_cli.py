@@ -22,9 +22,9 @@ ONE_BLAS_THREAD = {name: "1" for name in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREA
                                           "MKL_NUM_THREADS")}
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture
 def cluster(dask_cluster):
-    """(scheduler address, a client of it) of the session's LocalCluster of two worker
+    """(scheduler address, a client of it) of the tests' shared LocalCluster of two worker
     processes (conftest)."""
     from distributed import Client
 
