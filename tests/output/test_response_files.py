@@ -6,6 +6,7 @@ frequencies and the damping of the model, so a plain namespace stands in for it.
 import csv
 import io
 import math
+import re
 from types import SimpleNamespace
 
 import numpy as np
@@ -109,3 +110,24 @@ def test_sweep_marks_unstable_speeds_and_draws_every_campbell_line_in_range(tmp_
     assert (ax.get_xlabel(), ax.get_ylabel()) == ("crank speed [rev/min]",
                                                   "peak bending strain [1e-6]")
     assert math.isclose(ax.get_xlim()[1], 3000.0)
+
+
+def test_report_page_shows_the_documents_curves_and_peaks_in_its_units():
+    from flexlink.output.html_report import _steady_response_part
+    from flexlink.output.steady_response import response_document
+
+    # strains 10 x the others' (up to 3000 microstrain): the table's 3 decimals then show
+    # a factor off by 1e-6
+    document = response_document("case1", SteadyResponse(1200 * RPM, ANGLES, DEFLECTION,
+                                                         10 * STRAIN, 0.75), MODEL)
+    figures = []
+    html = _steady_response_part({"id": "case1"}, figures, document)
+    [figure] = figures
+    for trace, k in zip(figure["data"], range(len(POINTS)), strict=True):
+        assert trace["x"] == document["crank_deg"]
+        assert trace["y"] == pytest.approx(10 * STRAIN[:, k] * 1e6)  # microstrain, as the axis says
+    assert figure["layout"]["yaxis"]["title"]["text"] == "bending strain [1e-6]"
+    rows = [re.findall(r"<td[^>]*>([^<]*)</td>", row) for row in html.split("<tr>")[2:]]
+    # peak strain [1e-6] and peak deflection [mm], by hand: 3000 and 600 microstrain, 1 and 3 mm
+    assert [(r[0], *(float(x.replace(",", "")) for x in r[1:])) for r in rows] == [
+        ("coupler@60mm", 3000.0, 1.0), ("rocker@100mm", 600.0, 3.0)]
