@@ -45,7 +45,9 @@ def command(scene_path, n_modes, poses, elements, tol, speed, margin, harmonics,
     from ._written import folder_and_scene, publish
 
     folder, scene = folder_and_scene(out_dir, scene_path)
+    # "none" and a bare 0 skip the check, as the option's help says (0 is 0 in any unit)
     omega = (scene.options.crank_speed if speed is None else
+             0.0 if speed.strip().lower() in ("none", "0") else
              parse_quantity(speed, "angular speed", source="command line", field="--speed"))
     with use_scheduler(scheduler):
         study = cycle_study(scene, n_modes, poses, elements, tol, omega, margin, harmonics, track,

@@ -376,7 +376,7 @@ def large_sparse(scene: Scene, sizes=(12_500, 25_000, 50_000, 100_000)) -> Check
                      "seconds": time.perf_counter() - t0})
     # The work's own memory (peak minus what the interpreter and imports already held), so
     # that the fixed start-up memory cannot make a linear growth look otherwise.
-    per_dof = [r["work_MB"] * 1e3 / r["dofs"] for r in rows]
+    per_dof = [r["work_MB"] * 1024 / r["dofs"] for r in rows]  # [kB per DOF]: MB = kB / 1024
     exponent = float(np.polyfit(np.log([r["dofs"] for r in rows]),
                                 np.log([r["work_MB"] for r in rows]), 1)[0])
     accuracy = max(_rel(r["f1_Hz"], r["closed_form_Hz"]) for r in rows)

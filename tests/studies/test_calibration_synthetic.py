@@ -10,6 +10,7 @@ columns each move a number checked here.
 
 import dataclasses
 import math
+import re
 from pathlib import Path
 
 import numpy as np
@@ -21,6 +22,7 @@ from flexlink.studies.calibration import (FreeParameter, Problem, cross_validati
                                           leave_one_out_problems)
 from flexlink.studies.calibration_study import StudySettings, run_study
 from flexlink.output.calibration_json import study_document
+from flexlink.output.calibration_report import report_markdown, summary_text
 from flexlink.studies.jacobian import CaseModes
 
 from conftest import CASES_DIR as CASES
@@ -178,3 +180,53 @@ def test_the_result_type_refuses_arrays_of_the_wrong_shape(scenes):
         dataclasses.replace(study, per_case=study.per_case[:1])
     with pytest.raises(ValueError, match=r"FitResult.values has shape \(2,\), expected \(1,\)"):
         dataclasses.replace(study.fit_ex, values=np.ones(2))
+
+
+def _floats(text: str) -> list[float]:
+    return [float(x) for x in re.findall(r"[-+]?\d+\.?\d*(?:e[-+]?\d+)?", text)]
+
+
+def _row(markdown: str, first: str) -> list[str]:
+    """The cells of the first table row of ``markdown`` whose first cell is ``first``."""
+    return next(cells for line in markdown.splitlines() if line.startswith("| ")
+                for cells in [[c.strip() for c in line.strip("|").split("|")]]
+                if cells[0] == first)
+
+
+def test_summary_text_and_report_state_the_document(scenes):
+    settings = StudySettings(starts=2, seed=0, samples=3, elements=None, n_jobs=1)
+    study = run_study(scenes, "planar", (L1_FREE,), settings)
+    doc = study_document(study)
+    e = doc["errors_mean_abs_pct"]
+    order = ("assumed_inputs_vs_Ex", "calibrated_to_Ex_in_sample", "cross_validated_vs_Ex",
+             "paper_FE_vs_Ex")
+    # each fit's own mean |error| is the comparison of that fit with its reference
+    assert doc["fit_Ex"]["mean_abs_error_pct"] == pytest.approx(e["calibrated_to_Ex_in_sample"])
+    assert doc["fit_FE"]["mean_abs_error_pct"] == pytest.approx(e["calibrated_to_FE_vs_FE"])
+    first, fitted, inside = summary_text([study]).splitlines()
+    # the text rounds each mean |error| to 0.1 %
+    assert _floats(first.split(":", 2)[2]) == pytest.approx([round(e[k], 1) for k in order])
+    [p] = doc["fit_Ex"]["parameters"]
+    assert fitted == f"  fitted to Ex: L1 = {p['value']:.4g} m"
+    u = doc["uncertainty_calibrated"]
+    assert inside.endswith(f"{u['Ex_inside_count']} of {u['count']} modes")
+
+    plots = {"planar": {k: f"{k}.png" for k in
+                        ("frequencies", "cross_validation", "ratios", "intervals")}}
+    report = report_markdown([study], plots, "flexlink calibrate s1.toml s2.toml")
+    assert "Starts per fit: 2, seed 0" in report
+    family = report.split("## Family: planar", 1)[1]
+    assert _floats(family.split("\n\n", 2)[1])[:4] == pytest.approx(
+        [round(e[k], 1) for k in order])
+    name, assumed, value, se, bounds, _ = _row(family, "L1")
+    assert _floats(value) == pytest.approx([p["value"]], rel=1e-3)  # 4 significant digits
+    # the standard error of ln L1 is relative: in % of the fitted value
+    assert se == f"±{100 * p['relative_se']:.3g} %"
+    assert _floats(bounds) == pytest.approx([L1_FREE.low, L1_FREE.high])
+    for key in ("uncertainty_nominal", "uncertainty_calibrated"):
+        u = doc[key]
+        assert (f"Ex inside the 95 % interval for {u['Ex_inside_count']} of {u['count']} modes"
+                in family)
+    cells = _row(family.split("inputs calibrated to Ex", 1)[1], "s1")
+    lows, highs = u["first_order_low95_Hz"][0], u["first_order_high95_Hz"][0]
+    assert _floats(cells[5]) == pytest.approx([lows[0], highs[0]], abs=0.051)  # 0.1 Hz shown

@@ -60,8 +60,10 @@ def test_mac_part_resolves_auto_and_refuses_across_families():
     assert mac_part(planar, strip, Part.OUT_OF_PLANE) is Part.OUT_OF_PLANE  # asked: both have it
     with pytest.raises(InputError, match="different model families.*means nothing"):
         mac_part(planar, strip)
-    with pytest.raises(InputError, match="model.family.*3d.*--part in-plane"):
+    with pytest.raises(InputError, match="model.family.*3d.*--part in-plane") as refused:
         mac_part(both, planar)
+    # the refusal names the file and the key that hold the family, not only its text
+    assert (refused.value.source, refused.value.field) == (both.path, "model.family")
 
 
 def test_mac_command_compares_out_of_plane_modes_of_two_meshes(tmp_path):

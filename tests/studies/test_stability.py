@@ -45,6 +45,13 @@ def test_ids_are_descriptive_names(checks):
         assert key.replace("-", "").isalpha() and key == key.lower(), key
 
 
+def test_every_check_says_in_words_what_it_expected_and_got(checks):
+    """The command prints name, expected and got for people: each must be text, not empty."""
+    for key, check in checks.items():
+        for text in (check.name, check.expected, check.got):
+            assert isinstance(text, str) and text.strip(), (key, text)
+
+
 def test_bearing_sweep(scene, checks):
     """Kt = Kr = k from 0 to 1e30. At k = 0 only the drive holds anything: each of the three
     links moves as a rigid body in the plane (3 DOFs each) except the crank's rotation, held by

@@ -70,6 +70,10 @@ def test_document_lists_instability_ranges(model):
     assert document["instability_ranges"] == []
     assert document["largest_modulus"][0] == 1.0
     assert stability_csv(result).count("\n") == 3
+    # each checked mode's band over the turn: the full model's frequencies at the checked poses
+    band, exact = document["frequencies_over_turn_Hz"], model.basis.exact
+    assert band == {"low": exact.min(axis=0).tolist(), "high": exact.max(axis=0).tolist()}
+    assert np.all(np.array(band["low"]) < np.array(band["high"]))  # the four-bar's modes move
 
 
 def mathieu_model(speed_stiffness: float) -> PeriodicModel:

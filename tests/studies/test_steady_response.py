@@ -30,6 +30,7 @@ from flexlink.studies.steady_response import (
     forced_model,
     magnus_steps,
     midspans,
+    parse_point,
     response_sweep,
     steady_response,
 )
@@ -225,6 +226,15 @@ def test_a_point_outside_its_link_is_refused(case1):
     with pytest.raises(InputError, match="no beam link named 'arm'"):
         forced_model(case1, n_modes=2, poses=3, elements_per_link=2,
                      points=(StrainPoint("arm", 0.0),))
+
+
+def test_a_point_is_read_as_link_and_distance_or_refused_saying_what_is_expected():
+    assert parse_point(" coupler : 60 mm") == StrainPoint("coupler", pytest.approx(0.06))
+    for text in ("coupler", ":60 mm"):
+        with pytest.raises(InputError, match="LINK:DISTANCE") as refused:
+            parse_point(text, field="--point")
+        assert (refused.value.source, refused.value.field) == ("command line", "--point")
+        assert "coupler:60 mm" in refused.value.expected  # an example of the accepted form
 
 
 def test_default_points_are_the_midspans(case1):
