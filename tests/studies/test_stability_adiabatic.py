@@ -41,3 +41,9 @@ def test_map_finds_the_same_unstable_speeds(model):
     fast = stability_map(model, speeds, integrator=Integrator.ADIABATIC)
     assert np.array_equal(magnus.largest_modulus > 1.0, fast.largest_modulus > 1.0)
     assert fast.largest_modulus == pytest.approx(magnus.largest_modulus, rel=1e-3)
+    # and the map did take the adiabatic steps: its moduli are those of speed_multipliers
+    # with them, bit for bit, not the Magnus ones
+    alone = [speed_multipliers(model, w, integrator=Integrator.ADIABATIC).largest_modulus
+             for w in speeds]
+    assert np.array_equal(fast.largest_modulus, alone)
+    assert not np.array_equal(fast.largest_modulus, magnus.largest_modulus)
