@@ -52,6 +52,7 @@ from flexlink.errors import NumericalError
 
 DAMPING_PHASE = 2.0  # max Re(kappa) h / 2 in a step [-]: the factors exp(kappa s) below e^2
 COUPLING_STEP = 0.25  # max h ||Q||_1 in a step [-]: the smooth part's Magnus error
+SLOW = 0.5  # |kappa| h / 2 below which an entry counts as slow in the second Magnus term
 
 
 @dataclass(frozen=True)
@@ -201,12 +202,52 @@ def _step_exponentials(basis, speed, bounds):
     j = _moments(z, up, down)  # int_{-1}^{1} u^p exp(z u) du, p = 0..3
     b0 = hh * (qm * j[0] + slope * hh * j[1] + curve * hh * hh * j[2])
     b1 = 0.5 * hh * (qm * j[1] + slope * hh * j[2] + curve * hh * hh * j[3])
-    r0, r1 = _real_form(b0), _real_form(b1)
-    exponent = r0 + r1 @ r0 - r0 @ r1
+    exponent = _real_form(b0) + _real_form(_second_order(qm, b0, b1, z, hh * j[0],
+                                                         down, hh))
     steps = _exponentials(exponent)
     # the diagonal factors E(b, m) on the left and E(m, a) on the right, as 2 x 2 rotations
     steps = _scaled_rows(steps, np.exp(phase[b] - phase[mid]))
     return _scaled_columns(steps, np.exp(phase[mid] - phase[a]))
+
+
+def _second_order(q, b0, b1, z, phi, down, hh):
+    """The second Magnus term of a step (tracked half's rows). Between slow entries
+    (|z| < SLOW) the fourth-order [B1, B0]; every pair with a fast entry, where [B1, B0]
+    misses the secular part, by the exact double integral of the mid-point Q: with
+    G(a, b) = int int_{s2 < s1} exp(a s1 + b s2) = (phi(a + b) - exp(-b h/2) phi(a)) / b and
+    G(a, b) - G(b, a) = 2 G(a, b) - phi(a) phi(b) = phi(a) phi(b) - 2 G(b, a), written so that
+    only a fast entry's kappa is divided by, the sum over the middle index is six products:
+    1/2 [phi o (Qd F - F Qd) - Pd Fe + Fe Pd + Pf Ps - Ps Pf], F = Q / kappa and Fe = F
+    exp(-z) on the fast entries, P = Q phi, s and f the slow and fast parts, Qd = Qf + 2 Qs,
+    Pd = Pf + 2 Ps (phi = int exp(kappa s) ds over the step)."""
+    slow = np.abs(z) < SLOW
+    r0, r1 = (_real_form(np.where(slow, b, 0.0)) for b in (b0, b1))
+    qs, qf = np.where(slow, q, 0.0), np.where(slow, 0.0, q)
+    ps, pf = qs * phi, qf * phi
+    f = qf * (hh / np.where(slow, 1.0, z))
+    fe = f * down
+    qd, pd = qf + 2.0 * qs, pf + 2.0 * ps
+    fast = 0.5 * (phi * (qd @ _full(f) - f @ _full(qd)) - pd @ _full(fe) + fe @ _full(pd)
+                  + pf @ _full(ps) - ps @ _full(pf))
+    return _complex_form(r1 @ r0 - r0 @ r1) + fast
+
+
+def _full(rows: np.ndarray) -> np.ndarray:
+    """The whole (2 n, 2 n) complex matrix of conjugate-symmetric tracked-half rows."""
+    n = rows.shape[-2]
+    return np.concatenate([rows, np.concatenate([rows[..., n:].conj(), rows[..., :n].conj()],
+                                                axis=-1)], axis=-2)
+
+
+def _complex_form(real: np.ndarray) -> np.ndarray:
+    """The tracked half's rows (steps, n, 2 n) of a real-form matrix, ``_real_form``'s
+    inverse: P + R and P - R read from its blocks [[Re(P + R), Im(P - R)], [-Im(P + R),
+    Re(P - R)]]."""
+    n = real.shape[-1] // 2
+    a, b = real[..., :n, :n], real[..., :n, n:]
+    c, d = real[..., n:, :n], real[..., n:, n:]
+    plus, minus = a - 1j * c, d + 1j * b  # P + R and P - R
+    return np.concatenate([0.5 * (plus + minus), 0.5 * (plus - minus)], axis=-1)
 
 
 def _moments(z: np.ndarray, up: np.ndarray, down: np.ndarray) -> np.ndarray:
