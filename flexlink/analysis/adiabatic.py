@@ -30,15 +30,16 @@ written with the step's moments,
 
 Q (P0 + P1 + Omega P2, the phase's curvature folded in) a parabola through a, m and b, and the
 turning factor exp(kappa s), kappa the step's mean rate, integrated in closed form (a Filon
-rule: exact however fast the factor turns). The steps are bounded by the damping (Re(kappa)
+rule: exact however fast the factor turns). [B1, B0] stands for the second Magnus term only
+between slow entries; a pair with an entry that turns within the step takes the exact
+double integral of the mid-point Q instead (``_second_order``). The steps are bounded by the damping (Re(kappa)
 h / 2 <= DAMPING_PHASE keeps the factors below e^2) and by the couplings' size (h ||Q|| <=
 COUPLING_STEP), not by the stiffest frequency. The conjugate halves are folded into real
 2 x 2 blocks, so a step costs real products of the state's size.
 
-Accuracy (docs/critical-speeds.md, "Speed"): fourth order in the step where the couplings are
-smooth (the Mathieu equation); on a linkage's basis the [B1, B0] term is only an estimate of
-the second-order term of entries that turn within a step, which leaves an error in ln |mu|
-per turn of 1e-4 to 5e-4 at 512 steps that does not fall steadily with the step.
+Accuracy (docs/critical-speeds.md, "Speed"): fourth order where the couplings are smooth
+(the Mathieu equation); on Table II case 1's basis ln |mu| per turn within 5.5e-5 of fine
+Magnus steps at 512 steps, 10 to 3000 rev/min.
 """
 from __future__ import annotations
 
