@@ -19,10 +19,13 @@ period is one revolution, T = 2 pi / Omega.
 from __future__ import annotations
 
 import dataclasses
+import enum
 import functools
+import logging
 
 import numpy as np
 
+from flexlink.analysis import adiabatic
 from flexlink.analysis.floquet import FloquetResult, floquet, monodromy
 from flexlink.analysis.modal import pose_modes
 from flexlink.analysis.pose_basis import DEFAULT_TOLERANCE, PoseBasis, pose_basis
@@ -39,6 +42,20 @@ from flexlink.parallel import on_cluster, run_tasks, workers
 from flexlink.scene import Scene
 from flexlink.studies.operating_point import external_loads, link_motion, reduced_pair, reducer
 from flexlink.studies.periodic_damping import basis_damping, checked_ratio
+
+log = logging.getLogger(__name__)
+ADIABATIC_GRID = 2048  # crank angles of the adiabatic basis per turn: 1024 steps at most
+ADIABATIC_STEPS = 512  # adiabatic steps per turn at least (docs/critical-speeds.md, "Speed")
+
+
+class Integrator(enum.Enum):
+    """How a speed's monodromy is integrated: MAGNUS, the fourth-order Magnus steps of
+    ``analysis.floquet`` (h omega_max <= step_phase: the reference); ADIABATIC, the
+    interaction-picture steps of ``analysis.adiabatic`` (a step count independent of the
+    stiffest frequency; less accurate, see docs/critical-speeds.md)."""
+
+    MAGNUS = "magnus"
+    ADIABATIC = "adiabatic"
 
 
 @dataclasses.dataclass(frozen=True)
@@ -117,6 +134,23 @@ class PeriodicModel:
         values, vectors = np.linalg.eigh(0.5 * (mean + mean.T))
         return (vectors * np.sqrt(values)) @ vectors.T
 
+    @functools.cached_property
+    def adiabatic(self) -> adiabatic.AdiabaticBasis:
+        """A0, A0', A1, A2 of dx/dtheta = (A0 / Omega + A1 + Omega A2) x, x = (q, q'),
+        decomposed over ADIABATIC_GRID crank angles (``analysis.adiabatic``): built once, used
+        at every speed."""
+        samples = self._first_order_samples
+        n = samples.shape[-1]
+        theta = 2.0 * np.pi * np.arange(ADIABATIC_GRID + 1) / ADIABATIC_GRID
+        a0, a0_prime, a1, a2 = (np.zeros((len(theta), 2 * n, 2 * n)) for _ in range(4))
+        a0[:, :n, n:] = np.eye(n)
+        for order, out in ((0, a0), (1, a0_prime)):
+            out[:, n:, :n] = -fourier_series(samples[:, 2], theta, order)
+            out[:, n:, n:] = -fourier_series(samples[:, 0], theta, order)
+        a1[:, n:, n:] = -fourier_series(samples[:, 1], theta)
+        a2[:, n:, :n] = -fourier_series(samples[:, 3], theta)
+        return adiabatic.adiabatic_basis(self.angles[0] + theta, a0, a0_prime, a1, a2)
+
     def system(self, speed: float, *, energy_coordinates: bool = False):
         """times (m,) [s] -> A(t) (m, 2n, 2n) at crank speed ``speed`` [rad/s], t = 0 at the
         scene's pose, for the state (q, q'), or with ``energy_coordinates`` for (R q, q'), R
@@ -142,10 +176,11 @@ class PeriodicModel:
         return a
 
 
-def fourier_series(samples: np.ndarray, theta: np.ndarray) -> np.ndarray:
+def fourier_series(samples: np.ndarray, theta: np.ndarray, derivative: int = 0) -> np.ndarray:
     """Trigonometric interpolation over one turn of samples (N, ...) taken at N equal steps
     from angle 0, at angles theta (m,) [rad]: N odd, so every harmonic has its pair and the
-    interpolant is real; evaluated as a real cosine-sine sum."""
+    interpolant is real; evaluated as a real cosine-sine sum. ``derivative``: 0 for the
+    interpolant, 1 for its exact derivative in theta [per rad]."""
     N = samples.shape[0]
     c = np.fft.rfft(samples, axis=0) / N
     k = np.arange(c.shape[0])
@@ -153,6 +188,10 @@ def fourier_series(samples: np.ndarray, theta: np.ndarray) -> np.ndarray:
     flat = c.reshape(c.shape[0], -1)
     weights = np.full(c.shape[0], 2.0)
     weights[0] = 1.0
+    if derivative:  # d/dtheta (a cos k theta - b sin k theta) = -k (a sin + b cos)
+        values = -np.sin(angle) @ ((k * weights)[:, None] * flat.real) \
+            - np.cos(angle) @ ((k * weights)[:, None] * flat.imag)
+        return values.reshape(np.shape(theta) + samples.shape[1:])
     values = np.cos(angle) @ (weights[:, None] * flat.real) \
         - np.sin(angle) @ (weights[:, None] * flat.imag)
     return values.reshape(np.shape(theta) + samples.shape[1:])
@@ -233,11 +272,21 @@ STEP_PHASE = 2.0  # h omega_max bound [rad]: ln|mu| within 1.3e-4 per turn of h 
 
 
 def speed_multipliers(model: PeriodicModel, speed: float, steps: int = 200,
-                      step_phase: float = STEP_PHASE) -> FloquetResult:
+                      step_phase: float = STEP_PHASE,
+                      integrator: Integrator = Integrator.MAGNUS) -> FloquetResult:
     """Floquet multipliers over one revolution at crank ``speed`` [rad/s] (> 0), by at least
     ``steps`` Magnus steps, and more where needed to keep h max|eig A| <= ``step_phase``: at
     low speed one revolution spans many periods of the highest basis frequency, and the
-    Magnus step's error grows with h omega_max (docs/critical-speeds.md, convergence)."""
+    Magnus step's error grows with h omega_max (docs/critical-speeds.md, convergence). With
+    ``Integrator.ADIABATIC``, by ADIABATIC_STEPS adiabatic steps at least (more where the
+    damping needs them), and by the Magnus steps where the adiabatic basis' grid cannot give
+    them (logged)."""
+    if integrator is Integrator.ADIABATIC:
+        try:
+            return adiabatic.adiabatic_monodromy(model.adiabatic, speed, ADIABATIC_STEPS)
+        except NumericalError as error:
+            log.warning("adiabatic integrator refused at %.6g rad/s (%s): Magnus steps",
+                        speed, error)
     period = 2.0 * np.pi / speed
     system = model.system(speed, energy_coordinates=True)
     size = np.abs(np.linalg.eigvals(system((model.angles - model.angles[0]) / speed))).max()
@@ -276,17 +325,20 @@ class StabilityMap:
 
 def stability_map(model: PeriodicModel, speeds: np.ndarray, steps: int = 200,
                   harmonics: int = 6, show_progress: bool = False,
-                  step_phase: float = STEP_PHASE) -> StabilityMap:
+                  step_phase: float = STEP_PHASE,
+                  integrator: Integrator = Integrator.MAGNUS) -> StabilityMap:
     """The largest Floquet multiplier over ``speeds`` [rad/s]. At zero speed the equations do
     not vary: nothing is parametrically excited, the modulus is 1 and the rate 0 by definition
     (the damped modes decay). The speeds go out in chunks through ``parallel.run_tasks``: in
     this process, or on the dask cluster of ``parallel.use_scheduler`` (each speed is
-    computed alone, so the result is the same wherever it runs); ``show_progress``: a bar."""
+    computed alone, so the result is the same wherever it runs); ``show_progress``: a bar;
+    ``integrator``: as ``speed_multipliers``."""
     speeds = np.asarray(speeds, dtype=float)
     # on a cluster a few chunks per worker; here one speed a chunk, for the bar
     count = 4 * workers(n_jobs=1) if on_cluster() else len(speeds)
     chunks = np.array_split(np.arange(len(speeds)), max(1, min(len(speeds), count)))
-    parts = run_tasks(_speed_chunk, [(model, speeds[c], steps, step_phase) for c in chunks],
+    parts = run_tasks(_speed_chunk, [(model, speeds[c], steps, step_phase, integrator)
+                                     for c in chunks],
                       n_jobs=1, show_progress=show_progress, label="speed chunks")
     modulus = np.concatenate([p[0] for p in parts])
     rate = np.concatenate([p[1] for p in parts])
@@ -295,12 +347,13 @@ def stability_map(model: PeriodicModel, speeds: np.ndarray, steps: int = 200,
                         _ranges(model, speeds, modulus, rate, floor, harmonics), floor)
 
 
-def _speed_chunk(model: PeriodicModel, speeds: np.ndarray, steps: int, step_phase: float):
+def _speed_chunk(model: PeriodicModel, speeds: np.ndarray, steps: int, step_phase: float,
+                 integrator: Integrator = Integrator.MAGNUS):
     """(largest modulus, growth rate) at each of ``speeds`` [rad/s]."""
     modulus, rate = np.ones(len(speeds)), np.zeros(len(speeds))
     for i, speed in enumerate(speeds):
         if speed > 0.0:
-            result = speed_multipliers(model, speed, steps, step_phase)
+            result = speed_multipliers(model, speed, steps, step_phase, integrator)
             modulus[i], rate[i] = result.largest_modulus, result.growth_rate
     return modulus, rate
 

@@ -1,0 +1,122 @@
+"""The adiabatic integrator against closed forms and the Magnus reference.
+
+Systems in the crank angle theta: dx/dtheta = (A0 / Omega + A1 + Omega A2) x, one turn 2 pi.
+"""
+import numpy as np
+import pytest
+import scipy.linalg as sla
+from scipy.linalg import eigh_tridiagonal
+from scipy.optimize import brentq
+
+from flexlink.analysis.adiabatic import adiabatic_basis, adiabatic_monodromy
+from flexlink.analysis.floquet import monodromy
+
+GRID = 256
+
+
+def _turn(grid: int = GRID) -> np.ndarray:
+    return 2.0 * np.pi * np.arange(grid + 1) / grid
+
+
+def mathieu_basis(delta: float, epsilon: float, c: float = 0.0, grid: int = GRID):
+    """q'' + 2 c q' + (delta + epsilon cos theta) q = 0 as A0 (A1 = A2 = 0)."""
+    theta = _turn(grid)
+    a0 = np.zeros((grid + 1, 2, 2))
+    a0[:, 0, 1] = 1.0
+    a0[:, 1, 0] = -(delta + epsilon * np.cos(theta))
+    a0[:, 1, 1] = -2.0 * c
+    a0_prime = np.zeros_like(a0)
+    a0_prime[:, 1, 0] = epsilon * np.sin(theta)
+    zero = np.zeros_like(a0)
+    return adiabatic_basis(theta, a0, a0_prime, zero, zero)
+
+
+def mathieu_reference(delta, epsilon, c, speed, steps=4000):
+    """The same system in time t = theta / speed by the Magnus steps."""
+    def a(t):
+        out = np.zeros(np.shape(t) + (2, 2))
+        out[..., 0, 1] = 1.0
+        out[..., 1, 0] = -(delta + epsilon * np.cos(speed * t))
+        out[..., 1, 1] = -2.0 * c
+        return out
+    return monodromy(a, 2.0 * np.pi / speed, steps)
+
+
+def test_constant_coefficients_give_the_exact_exponential():
+    # A0 constant (two coupled damped modes), A1 = A2 = 0: nothing turns the eigenbasis and
+    # nothing couples the modes, the monodromy is expm(2 pi A0 / Omega) exactly, from the
+    # phases Phi, the diagonal factors and the real bases alone. 1e-10: round-off of a
+    # 1e2-sized exponent's exponential
+    n = 2
+    stiffness = np.array([[400.0, -50.0], [-50.0, 900.0]])
+    damping = np.array([[0.3, 0.1], [0.1, 0.5]])
+    a0 = np.block([[np.zeros((n, n)), np.eye(n)], [-stiffness, -damping]])
+    grid = 64
+    stack = [np.broadcast_to(m, (grid + 1, 2 * n, 2 * n)) for m in (a0, 0 * a0, 0 * a0, 0 * a0)]
+    basis = adiabatic_basis(_turn(grid), *stack)
+    speed = 7.0
+    exact = sla.expm(2.0 * np.pi * a0 / speed)
+    result = adiabatic_monodromy(basis, speed, least=16)
+    assert np.abs(result.monodromy - exact).max() < 1e-10 * np.abs(exact).max()
+
+
+@pytest.mark.parametrize("speed", [0.5, 1.0, 2.0])
+def test_mathieu_agrees_with_the_magnus_reference_inside_and_outside_the_tongue(speed):
+    # A0's frequency is 2 rad/s, so the first tongue is at speed 4; speeds 0.5 to 2 sit on
+    # higher tongues and between them (growth and decay). The reference has 4000 Magnus steps
+    # (error ~1e-12); 64 adiabatic steps agree to 1e-7 in ln |mu| and 1e-5 in the monodromy
+    # (fourth order; measured 5e-6 at speed 0.5, where A0 turns 16 times per step's
+    # wavelength of the slowest factor)
+    delta, epsilon, c = 4.0, 1.2, 0.002
+    reference = mathieu_reference(delta, epsilon, c, speed)
+    result = adiabatic_monodromy(mathieu_basis(delta, epsilon, c), speed, least=64)
+    assert result.growth_per_period == pytest.approx(reference.growth_per_period, abs=1e-7)
+    assert np.abs(result.monodromy - reference.monodromy).max() < 1e-5 * np.abs(
+        reference.monodromy).max()
+
+
+def test_error_falls_at_fourth_order_in_the_step():
+    # inside the first tongue (speed = 2 omega0, growth 0.155 per turn): halving the step
+    # divides the monodromy's error by 2^4 = 16 for a fourth-order method; 10 leaves room for
+    # the pre-asymptotic constant and fails a second-order one (4)
+    delta, epsilon, c, speed = 100.0, 30.0, 0.1, 19.0
+    basis = mathieu_basis(delta, epsilon, c, grid=1024)
+    reference = mathieu_reference(delta, epsilon, c, speed, steps=20000).monodromy
+    errors = [np.abs(adiabatic_monodromy(basis, speed, least=k).monodromy - reference).max()
+              for k in (32, 64)]
+    assert errors[0] / errors[1] > 10.0
+
+
+def test_undamped_stable_multipliers_stay_on_the_unit_circle():
+    # undamped (Hamiltonian) and between tongues: the multipliers are a pair on the unit
+    # circle; det Phi = 1 exactly for a trace-free system. 1e-9: the method's error at 128
+    # steps on this system
+    result = adiabatic_monodromy(mathieu_basis(4.0, 1.0), 1.3, least=128)
+    assert np.abs(np.abs(result.multipliers) - 1.0).max() < 1e-9
+
+
+def _hill_edges(epsilon: float, order: int = 30) -> tuple[float, float]:
+    """The first tongue's edges of q'' + (delta + epsilon cos t) q = 0 from Hill's determinant
+    on 4 pi periodic solutions (odd harmonics n / 2): eigenvalues of the tridiagonal matrix of
+    diagonal n^2 / 4 and off-diagonal -epsilon / 2 nearest 1/4."""
+    n = np.arange(-(2 * order + 1), 2 * order + 2, 2)
+    values = eigh_tridiagonal(n**2 / 4.0, np.full(n.size - 1, -epsilon / 2.0),
+                              eigvals_only=True)
+    nearest = np.sort(values[np.argsort(np.abs(values - 0.25))[:2]])
+    return float(nearest[0]), float(nearest[1])
+
+
+def test_mathieu_tongue_edges_equal_hills_determinant():
+    # at speed 1 the system is the standard Mathieu equation; an edge of the first tongue is
+    # where the undamped monodromy's trace passes through -2. 1e-8 in delta: the 128-step
+    # error (fourth order) against Hill's determinant, which is exact to round-off
+    epsilon = 0.1  # delta + epsilon cos theta stays positive: A0 underdamped at every angle
+
+    def excess(delta):
+        return -np.trace(adiabatic_monodromy(mathieu_basis(delta, epsilon), 1.0,
+                                             least=128).monodromy) - 2.0
+    low, high = _hill_edges(epsilon)
+    centre = 0.25 - epsilon**2 / 8.0
+    assert brentq(excess, centre, centre - 0.6 * epsilon, xtol=1e-13) == pytest.approx(low, abs=1e-8)
+    assert brentq(excess, centre, centre + 0.6 * epsilon, xtol=1e-13) == pytest.approx(high,
+                                                                                  abs=1e-8)
