@@ -24,12 +24,15 @@ from flexlink.commands._options import (json_option, odd_count, out_option, pars
 @click.option("--basis-tolerance", default=1e-3, show_default=True,
               type=click.FloatRange(0.0, 1.0, min_open=True),
               help="Relative frequency excess the basis may have at any pose.")
+@click.option("--integrator", default="magnus", show_default=True,
+              type=click.Choice(["magnus", "adiabatic"]),
+              help="Monodromy steps: magnus, or adiabatic (faster; docs/critical-speeds.md).")
 @scheduler_option("the speeds in chunks")
 @json_option
 @out_option
 @names_scene("scene_path")
 def command(scene_path, speeds, count, n_modes, damping_ratio, poses, basis_size,
-            basis_tolerance, scheduler, as_json, out_dir):
+            basis_tolerance, integrator, scheduler, as_json, out_dir):
     """Largest Floquet multiplier of SCENE's periodic elastic equations against crank speed
     and the unstable ranges, labelled by the nearest parametric resonance. Writes
     stability-map.png, .csv and .json to OUT/<scene>/."""
@@ -38,7 +41,7 @@ def command(scene_path, speeds, count, n_modes, damping_ratio, poses, basis_size
     from flexlink.parallel import use_scheduler
     from flexlink.output.stability_map import stability_document, stability_lines, write_stability
     from flexlink.studies.campbell import _check_speeds
-    from flexlink.studies.stability_map import periodic_model, stability_map
+    from flexlink.studies.stability_map import Integrator, periodic_model, stability_map
     from ._progress import progress_bar
     from ._written import folder_and_scene, publish
 
@@ -48,7 +51,8 @@ def command(scene_path, speeds, count, n_modes, damping_ratio, poses, basis_size
                            tolerance=basis_tolerance)
     with use_scheduler(scheduler):
         result = stability_map(model, np.linspace(low, high, count),
-                               show_progress=progress_bar("speeds", as_json) is not None)
+                               show_progress=progress_bar("speeds", as_json) is not None,
+                               integrator=Integrator(integrator))
     document = stability_document(scene.name, result, model)
     publish(folder / "stability-map.json", document, write_stability(result, model, folder,
                                                                      scene.name),

@@ -33,7 +33,7 @@ def stability_document(scene_name: str, result, model) -> dict:
     return {
         "command": "stability-map", "scene": scene_name, "caveat": basis_caveat(model),
         "damping_ratio": model.damping_ratio.tolist(), "damping_source": model.damping_source,
-        "poses": len(model.angles),
+        "poses": len(model.angles), "integrator": result.integrator.value,
         "basis": None if basis is None else {
             "size": basis.size, "modes_checked": int(basis.exact.shape[1]),
             "tolerance": basis.tolerance, "largest_frequency_error": basis.error,
@@ -65,7 +65,7 @@ def stability_csv(result) -> str:
 def stability_lines(document: dict) -> list[str]:
     basis = document["basis"]
     out = [f"{document['scene']}: {len(document['basis_frequencies_Hz'])} basis vectors, "
-           f"{len(document['speeds_rev_per_min'])} speeds",
+           f"{len(document['speeds_rev_per_min'])} speeds, {document['integrator']} steps",
            damping_line(document["damping_ratio"], document["damping_source"])]
     if basis is not None:
         out.append(f"basis check: lowest {basis['modes_checked']} frequencies within "

@@ -314,13 +314,15 @@ class InstabilityRange:
 class StabilityMap:
     """Per speed [rad/s]: the largest multiplier modulus [-], growth rate [1/s] and stiffness
     floor [(rad/s)^2] (``PeriodicModel.stiffness_floor``: negative where the frozen frame is
-    quasi-statically divergent at some crank angle)."""
+    quasi-statically divergent at some crank angle); integrator: how each speed's monodromy
+    was integrated."""
 
     speeds: np.ndarray
     largest_modulus: np.ndarray
     growth_rate: np.ndarray
     ranges: tuple[InstabilityRange, ...]
     stiffness_floor: np.ndarray
+    integrator: Integrator = Integrator.MAGNUS
 
 
 def stability_map(model: PeriodicModel, speeds: np.ndarray, steps: int = 200,
@@ -344,7 +346,8 @@ def stability_map(model: PeriodicModel, speeds: np.ndarray, steps: int = 200,
     rate = np.concatenate([p[1] for p in parts])
     floor = np.array([model.stiffness_floor(w) for w in speeds])
     return StabilityMap(speeds, modulus, rate,
-                        _ranges(model, speeds, modulus, rate, floor, harmonics), floor)
+                        _ranges(model, speeds, modulus, rate, floor, harmonics), floor,
+                        integrator)
 
 
 def _speed_chunk(model: PeriodicModel, speeds: np.ndarray, steps: int, step_phase: float,
