@@ -48,7 +48,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.linalg as sla
 
-from flexlink.analysis.floquet import FloquetResult, _exponentials, floquet, ordered_product
+from flexlink.analysis.floquet import FloquetResult, exponentials, floquet, ordered_product
 from flexlink.errors import NumericalError
 
 DAMPING_PHASE = 2.0  # max Re(kappa) h / 2 in a step [-]: the factors exp(kappa s) below e^2
@@ -205,7 +205,7 @@ def _step_exponentials(basis, speed, bounds):
     b1 = 0.5 * hh * (qm * j[1] + slope * hh * j[2] + curve * hh * hh * j[3])
     exponent = _real_form(b0) + _real_form(_second_order(qm, b0, b1, z, hh * j[0],
                                                          down, hh))
-    steps = _exponentials(exponent)
+    steps = exponentials(exponent)
     # the diagonal factors E(b, m) on the left and E(m, a) on the right, as 2 x 2 rotations
     steps = _scaled_rows(steps, np.exp(phase[b] - phase[mid]))
     return _scaled_columns(steps, np.exp(phase[mid] - phase[a]))

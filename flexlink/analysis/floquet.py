@@ -73,7 +73,7 @@ def first_order(mass: np.ndarray, damping: np.ndarray, stiffness: np.ndarray) ->
 _TAYLOR = np.array([[1.0 / math.factorial(4 * b + i) for i in range(4)] for b in range(3)])
 
 
-def _exponentials(omega: np.ndarray) -> np.ndarray:
+def exponentials(omega: np.ndarray) -> np.ndarray:
     """expm of each (n, n) matrix in omega (m, n, n): scaling and squaring with a degree-12
     Taylor polynomial, all steps at once, the polynomial in Paterson-Stockmeyer form (five
     products instead of eleven). Scaled to norm <= 1/2, the neglected Taylor terms are below
@@ -156,7 +156,7 @@ def _steps(system, h: float, first: int, last: int, ratio: np.ndarray) -> np.nda
         raise NumericalError(f"system must return ({len(starts)}, n, n) matrices, got "
                              f"{a1.shape}")
     omega = 0.5 * h * (a1 + a2) + (np.sqrt(3.0) / 12.0) * h * h * (a2 @ a1 - a1 @ a2)
-    return _exponentials(omega * ratio)
+    return exponentials(omega * ratio)
 
 
 def ordered_product(factors: np.ndarray) -> np.ndarray:
