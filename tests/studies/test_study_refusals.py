@@ -1,0 +1,33 @@
+"""What the studies say when an input cannot be used: the calibration's --free refusal quotes
+what it could not read, and a Monte Carlo sample that fails is logged with its file and values
+(and counted as NaN, never dropped)."""
+
+import logging
+
+import numpy as np
+import pytest
+from conftest import CASES_DIR
+
+from flexlink.errors import InputError
+from flexlink.studies.calibration import parse_free
+from flexlink.studies.uncertainty import evaluate, scene_inputs
+
+CASE2 = str(CASES_DIR / "case2.toml")
+
+
+@pytest.mark.parametrize("spec", ["L1 0.1 m 1 m", "colour=1 m:2 m"])
+def test_a_free_parameter_not_read_is_quoted(spec):
+    with pytest.raises(InputError) as refused:
+        parse_free(spec)
+    assert f"cannot read {spec!r}" in str(refused.value) and refused.value.field == "--free"
+
+
+def test_a_failing_sample_is_nan_and_logged_with_its_file_and_values(caplog):
+    inputs = scene_inputs(CASE2, {}, vf_sd=0.05, thickness_sd=0.15e-3)
+    bad = {"linkage.ground": "-1 mm"}  # a negative length: the scene refuses to load
+    with caplog.at_level(logging.INFO, logger="flexlink.studies.uncertainty"):
+        out = evaluate([CASE2], bad, inputs, inputs.nominal, 2, 4)
+    assert out.shape == (1, 2) and np.isnan(out).all()
+    messages = [r.getMessage() for r in caplog.records if r.name == "flexlink.studies.uncertainty"]
+    assert len(messages) == 1
+    assert messages[0].startswith(f"{CASE2} at {inputs.nominal}: ") and "linkage.ground" in messages[0]
