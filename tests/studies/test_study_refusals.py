@@ -1,5 +1,5 @@
 """What the studies say when an input cannot be used: the calibration's --free refusal quotes
-what it could not read, and a Monte Carlo sample that fails is logged with its file and values
+what it could not read, a reference column too short for the fit names its file, and a Monte Carlo sample that fails is logged with its file and values
 (and counted as NaN, never dropped)."""
 
 import logging
@@ -9,7 +9,7 @@ import pytest
 from conftest import CASES_DIR
 
 from flexlink.errors import InputError
-from flexlink.studies.calibration import parse_free
+from flexlink.studies.calibration import Problem, measured, parse_free
 from flexlink.studies.uncertainty import evaluate, scene_inputs
 
 CASE2 = str(CASES_DIR / "case2.toml")
@@ -31,3 +31,12 @@ def test_a_failing_sample_is_nan_and_logged_with_its_file_and_values(caplog):
     messages = [r.getMessage() for r in caplog.records if r.name == "flexlink.studies.uncertainty"]
     assert len(messages) == 1
     assert messages[0].startswith(f"{CASE2} at {inputs.nominal}: ") and "linkage.ground" in messages[0]
+
+
+def test_a_reference_column_too_short_names_its_file_and_field():
+    """Case 2 gives four measured frequencies; a fit of five modes cannot use them."""
+    problem = Problem(scenes=(CASE2,), parameters=(parse_free("L1=100 mm:1 m"),), n_modes=5)
+    with pytest.raises(InputError) as refused:
+        measured(problem)
+    assert refused.value.source == CASE2 and refused.value.field == "reference.Ex_Hz"
+    assert str(refused.value).startswith(f"{CASE2}: reference.Ex_Hz: needs 5 values")
