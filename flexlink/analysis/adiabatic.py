@@ -103,7 +103,8 @@ def adiabatic_basis(angles, a0, a0_prime, a1, a2) -> AdiabaticBasis:
     full = np.concatenate([half, half.conj()], axis=2)
     left = np.linalg.inv(full)[:, :n]  # rows w_i^H of the tracked half, w_i^H v_i = 1
     # tracking: each vector's best overlap at the next angle is its own
-    overlap = np.abs(np.einsum("kin,kni->ki", left[:-1], full[1:, :, :n]))
+    forward = np.einsum("kin,kni->ki", left[:-1], full[1:, :, :n])  # w_k^H v_{k+1}, raw
+    overlap = np.abs(forward)
     rival = np.abs(left[:-1] @ full[1:, :, :n])
     rival[:, np.arange(n), np.arange(n)] = 0.0
     lost = overlap < 2.0 * rival.max(axis=2)
@@ -113,7 +114,6 @@ def adiabatic_basis(angles, a0, a0_prime, a1, a2) -> AdiabaticBasis:
                              f" and {angles[k + 1]:.6g} rad (a veering or crossing faster than "
                              f"the grid of {m} steps): use a finer grid")
     # parallel transport: (g_{k+1} / g_k)^2 = (w_{k+1}^H v_k) / (w_k^H v_{k+1}), raw vectors
-    forward = np.einsum("kin,kni->ki", left[:-1], full[1:, :, :n])
     backward = np.einsum("kin,kni->ki", left[1:], full[:-1, :, :n])
     ratio = np.sqrt(backward / forward)
     ratio = np.where((ratio * forward).real < 0.0, -ratio, ratio)
