@@ -6,6 +6,7 @@ as it was (the runs stay monotone in k, finite and >= 0; the rigid runs and the 
 errors are untouched), so only that criterion can turn the verdict."""
 
 import dataclasses
+import re
 
 import numpy as np
 import pytest
@@ -14,6 +15,7 @@ from conftest import CASES_DIR
 from flexlink.fe.model_at_pose import pose_model
 from flexlink.scene import load_scene
 from flexlink.studies import stability as st
+from flexlink.units import parse_quantity
 
 SHIFT = 2e-4  # relative, on eigenvalues: 1e-4 on frequencies, 100 x the promised 1e-6
 
@@ -40,3 +42,15 @@ def test_a_penalty_path_off_the_rigid_path_fails_the_bearing_sweep(monkeypatch):
     # ... the penalty path is 1e-4 off (sqrt(1 - 2e-4) = 1 - 1e-4, to 1 %), and it fails
     assert d["penalty_vs_exact"] == pytest.approx(1e-4, rel=0.01)
     assert not check.passed
+
+
+def test_the_untouched_sweep_passes_and_states_its_stiffness_in_units_flexlink_reads():
+    check = st.bearing_sweep(load_scene(CASES_DIR / "case1.toml"))
+    assert check.passed
+    # the printed name gives the swept stiffness's units; a reader can type them back into a
+    # scene file, so they must be units the scene reader knows, as written
+    named = re.search(r"\(Kt (.+?) = Kr (.+?)\)", check.name)
+    assert named, check.name
+    translational, rotational = named.groups()
+    assert parse_quantity(f"1 {translational}", "translational stiffness") == 1.0
+    assert parse_quantity(f"1 {rotational}", "rotational stiffness") == 1.0
