@@ -136,8 +136,6 @@ def adiabatic_basis(angles, a0, a0_prime, a1, a2) -> AdiabaticBasis:
     p0 = -np.where(diagonal, 0.0, derivative / np.where(diagonal, 1.0, gap))
     rows = [p0 + left @ a1 @ full, left @ a2 @ full]
     slope = derivative[:, np.arange(n), np.arange(n)]  # dlambda/dtheta
-    start = np.concatenate([half[0].real, half[0].imag], axis=1)
-    end = np.concatenate([half[-1].real, half[-1].imag], axis=1)
     # the eigenvectors' lengths are free: one constant length per mode pair (a diagonal
     # similarity by powers of two, exact) that balances the mean |Q| rows against its columns,
     # where the unit vectors of eig leave the stiff modes' rows many times their columns
@@ -145,14 +143,28 @@ def adiabatic_basis(angles, a0, a0_prime, a1, a2) -> AdiabaticBasis:
     scale = sla.matrix_balance(mean + np.eye(n), permute=False, separate=True)[1][0]
     columns = np.concatenate([scale, scale])
     rows = [r * columns / scale[:, None] for r in rows]
-    start, end = start * columns, end * columns
     h = angles[1] - angles[0]
     increments = 0.5 * h * (lam[:-1] + lam[1:]) + h * h / 12.0 * (slope[:-1] - slope[1:])
     phase = np.concatenate([np.zeros((1, n)), np.cumsum(increments, axis=0)])
-    return AdiabaticBasis(angles=angles, eigenvalues=lam, phase=phase, coupling=rows[0],
-                          speed_coupling=rows[1], start=start, end=end,
+    return AdiabaticBasis(angles=angles, eigenvalues=lam, phase=phase,
+                          coupling=_tracked_columns(rows[0]),
+                          speed_coupling=_tracked_columns(rows[1]),
+                          start=_real_basis(half[0]) * np.repeat(scale, 2),
+                          end=_real_basis(half[-1]) * np.repeat(scale, 2),
                           coupling_norm=np.abs(rows[0]).sum(axis=2).max(axis=1),
                           speed_norm=np.abs(rows[1]).sum(axis=2).max(axis=1))
+
+
+def _tracked_columns(rows: np.ndarray) -> np.ndarray:
+    """The tracked columns M[:, :n] (..., 2 n, n) of conjugate-symmetric matrices M given by
+    their tracked rows M[:n] (..., n, 2 n) = [P, R]: [P; conj R]."""
+    n = rows.shape[-2]
+    return np.concatenate([rows[..., :n], rows[..., n:].conj()], axis=-2)
+
+
+def _real_basis(vectors: np.ndarray) -> np.ndarray:
+    """(N, 2 n): the real basis (Re v_1, Im v_1, Re v_2, Im v_2, ...) of eigenvectors (N, n)."""
+    return np.stack([vectors.real, vectors.imag], axis=-1).reshape(len(vectors), -1)
 
 
 def step_bounds(basis: AdiabaticBasis, speed: float, least: int = 16) -> np.ndarray:
@@ -174,91 +186,101 @@ def step_bounds(basis: AdiabaticBasis, speed: float, least: int = 16) -> np.ndar
 
 def adiabatic_monodromy(basis: AdiabaticBasis, speed: float, least: int = 16) -> FloquetResult:
     """Floquet multipliers over one turn (period 2 pi / speed) at crank ``speed`` [rad/s] > 0,
-    by at least ``least`` steps (``step_bounds``): the monodromy of the original state."""
+    by at least ``least`` steps (``step_bounds``): the monodromy of the original state.
+
+    The diagonal factors between two steps' exponentials are merged, E(m_k, b_k) E(b_k,
+    m_(k-1)) into one (a column scaling of the later step), and E(b_last, m_last) multiplies
+    the product once."""
     bounds = step_bounds(basis, speed, least)
+    ends = basis.phase[bounds] / speed  # Phi / Omega at the step ends and mid points [-]
+    middle = basis.phase[(bounds[:-1] + bounds[1:]) // 2] / speed
+    before = np.concatenate([ends[:1], middle[:-1]])  # m_(k-1), b_0 for the first step
+    turns = np.exp((middle - ends[:-1]) + (ends[:-1] - before))
     product = np.eye(basis.start.shape[1])
     for first in range(0, len(bounds) - 1, STEP_CHUNK):
-        steps = _step_exponentials(basis, speed, bounds[first:first + STEP_CHUNK + 1])
-        product = ordered_product(steps) @ product
+        last = min(first + STEP_CHUNK, len(bounds) - 1)
+        steps = _step_exponentials(basis, speed, bounds[first:last + 1], ends[first:last + 1],
+                                   middle[first:last])
+        product = ordered_product(_scaled_columns(steps, turns[first:last])) @ product
+    product = _scaled_columns(np.eye(len(product))[None], np.exp(ends[-1:] - middle[-1:]))[0] \
+        @ product
     return floquet(basis.end @ product @ np.linalg.inv(basis.start), 2.0 * np.pi / speed)
 
 
-def _step_exponentials(basis, speed, bounds):
-    """(steps, 2 n, 2 n): each step's propagator in the real eigen-coordinates, the k-th from
-    bounds[k] to bounds[k + 1] (module docstring)."""
+def _step_exponentials(basis, speed, bounds, ends, middle):
+    """(steps, 2 n, 2 n): exp(Omega_k) of each step, the k-th from bounds[k] to bounds[k + 1],
+    in the real eigen-coordinates (module docstring); ends (steps + 1, n), middle (steps, n):
+    Phi / Omega at the step ends and mid points."""
     mid = (bounds[:-1] + bounds[1:]) // 2
-    h = basis.angles[bounds[1:]] - basis.angles[bounds[:-1]]
-
-    def columns(values):  # per-index values of the whole eigenbasis' columns
-        return np.concatenate([values, values.conj()], axis=-1)
-
-    ends, middle = basis.phase[bounds] / speed, basis.phase[mid] / speed
+    hh = 0.5 * (basis.angles[bounds[1:]] - basis.angles[bounds[:-1]])[:, None, None]
     total = ends[1:] - ends[:-1]  # (steps, n)
     residual = 0.5 * (ends[:-1] + ends[1:]) - middle
-    # entry (i, j) turns as exp(kappa_ij sigma), kappa_ij h / 2 = z_ij = (total_j - total_i) / 2:
-    # its exponentials are products of one per column and one per row
+    # entry (r, j) of the tracked columns turns as exp(kappa_rj sigma), kappa_rj h / 2 = z_rj
+    # = (total_j - total_r) / 2, r over the tracked half and its conjugates: its exponentials
+    # are products of one per column and one per row
     half_turn = np.exp(0.5 * total)
-    z = 0.5 * (columns(total)[:, None, :] - total[:, :, None])  # (steps, n, size)
-    up = columns(half_turn)[:, None, :] / half_turn[:, :, None]  # exp(z)
-    down = columns(1.0 / half_turn)[:, None, :] * half_turn[:, :, None]  # exp(-z)
-    bend = columns(np.exp(residual))[:, None, :] * np.exp(-residual)[:, :, None]
+    z = 0.5 * (total[:, None, :] - _per_row(total))  # (steps, 2 n, n)
+    up = half_turn[:, None, :] / _per_row(half_turn)  # exp(z)
+    down = (1.0 / half_turn)[:, None, :] * _per_row(half_turn)  # exp(-z)
+    bend = np.exp(residual)[:, None, :] * _per_row(np.exp(-residual))
     at_ends = basis.coupling[bounds] + speed * basis.speed_coupling[bounds]
     qm = basis.coupling[mid] + speed * basis.speed_coupling[mid]
-    qa, qb = at_ends[:-1] * bend, at_ends[1:] * bend
-    hh = (0.5 * h)[:, None, None]
     # Q(sigma) = qm + slope sigma + curve sigma^2 on sigma in [-h/2, h/2], written per power
-    # of hh: c1 = slope hh, c2 = curve hh^2
-    c1 = 0.5 * (qb - qa)
-    c2 = 0.5 * (qa + qb) - qm
+    # of hh: c1 = slope hh, c2 = curve hh^2 (qa, qb: the ends' Q times bend)
+    bend *= 0.5
+    c1 = (at_ends[1:] - at_ends[:-1]) * bend
+    c2 = (at_ends[1:] + at_ends[:-1]) * bend - qm
     j = _moments(z, up, down)  # int_{-1}^{1} u^p exp(z u) du, p = 0..3
     b0 = hh * (qm * j[0] + c1 * j[1] + c2 * j[2])
     b1 = 0.5 * hh * (qm * j[1] + c1 * j[2] + c2 * j[3])
-    rows, real = _second_order(qm, b0, b1, z, hh * j[0], down, hh)
-    exponent = _real_form(b0 + rows) + real
-    steps = exponentials(exponent)
-    # the diagonal factors E(b, m) on the left and E(m, a) on the right, as 2 x 2 rotations
-    steps = _scaled_rows(steps, np.exp(basis.phase[bounds[1:]] / speed - middle))
-    return _scaled_columns(steps, np.exp(middle - ends[:-1]))
+    phi = hh * j[0]
+    columns, real = _second_order(qm, b0, b1, z, phi, down, hh)
+    columns += b0
+    real += _real_form(columns)
+    return exponentials(real)
+
+
+def _per_row(values: np.ndarray) -> np.ndarray:
+    """(steps, 2 n, 1): per-mode values (steps, n) on the rows of the tracked columns, the
+    tracked half then its conjugates."""
+    return np.concatenate([values, values.conj()], axis=-1)[:, :, None]
 
 
 def _second_order(q, b0, b1, z, phi, down, hh):
-    """The second Magnus term of a step, as tracked-half rows and a real-form part whose
-    sum (``_real_form(rows) + real``) is the term. Between slow entries
-    (|z| < SLOW) the fourth-order [B1, B0]; every pair with a fast entry, where [B1, B0]
-    misses the secular part, by the exact double integral of the mid-point Q: with
-    G(a, b) = int int_{s2 < s1} exp(a s1 + b s2) = (phi(a + b) - exp(-b h/2) phi(a)) / b and
-    G(a, b) - G(b, a) = 2 G(a, b) - phi(a) phi(b) = phi(a) phi(b) - 2 G(b, a), written so that
-    only a fast entry's kappa is divided by, the sum over the middle index is three
-    commutators: 1/2 [phi o [Qd, F] + [Fe, Pd] + [Pf, Ps]], F = Q / kappa and Fe = F
-    exp(-z) on the fast entries, P = Q phi, s and f the slow and fast parts, Qd = Qf + 2 Qs,
-    Pd = Pf + 2 Ps (phi = int exp(kappa s) ds over the step). The commutators of
-    conjugate-symmetric matrices are formed in the real form, where a product costs half the
-    complex one; the Hadamard product with phi needs the rows."""
+    """The second Magnus term of a step, as tracked columns and a real-form part whose sum
+    (``_real_form(columns) + real``) is the term. Between slow entries (|z| < SLOW) the
+    fourth-order [B1, B0]; every pair with a fast entry, where [B1, B0] misses the secular
+    part, by the exact double integral of the mid-point Q: with G(a, b) = int int_{s2 < s1}
+    exp(a s1 + b s2) = (phi(a + b) - exp(-b h/2) phi(a)) / b and G(a, b) - G(b, a) =
+    2 G(a, b) - phi(a) phi(b) = phi(a) phi(b) - 2 G(b, a), written so that only a fast
+    entry's kappa is divided by, the sum over the middle index is three commutators:
+    1/2 [phi o [Qd, F] + [Fe, Pd] + [Pf, Ps]], F = Q / kappa and Fe = F exp(-z) on the fast
+    entries, P = Q phi, s and f the slow and fast parts, Qd = Qf + 2 Qs, Pd = Pf + 2 Ps
+    (phi = int exp(kappa s) ds over the step). The last two are one commutator,
+    [Fe, Pd] + [Pf, Ps] = [Fe - Ps, Pd] (bilinear and antisymmetric; Pd = Q phi + Ps). The
+    commutators of conjugate-symmetric matrices are formed in the real form, where a product
+    costs half the complex one; the Hadamard product with phi needs the columns."""
     slow = np.abs(z) < SLOW
     qs = np.where(slow, q, 0.0)
-    ps = _real_form(qs * phi)
+    qd = q + qs
     f = np.where(slow, 0.0, q * hh / np.where(slow, 1.0, z))
-    pf = _real_form((q - qs) * phi)
-    outer = _complex_form(_commutator(_real_form(q + qs), _real_form(f)))
-    real = (_commutator(_real_form(np.where(slow, b1, 0.0)), _real_form(np.where(slow, b0, 0.0)))
-            + 0.5 * (_commutator(_real_form(f * down), pf + 2.0 * ps) + _commutator(pf, ps)))
-    return 0.5 * phi * outer, real
-
-
-def _commutator(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """[a, b] = a b - b a of stacked matrices."""
-    return a @ b - b @ a
-
-
-def _complex_form(real: np.ndarray) -> np.ndarray:
-    """The tracked half's rows (steps, n, 2 n) of a real-form matrix, ``_real_form``'s
-    inverse: P + R and P - R read from its blocks [[Re(P + R), Im(P - R)], [-Im(P + R),
-    Re(P - R)]]."""
-    n = real.shape[-1] // 2
-    a, b = real[..., :n, :n], real[..., :n, n:]
-    c, d = real[..., n:, :n], real[..., n:, n:]
-    plus, minus = a - 1j * c, d + 1j * b  # P + R and P - R
-    return np.concatenate([0.5 * (plus + minus), 0.5 * (plus - minus)], axis=-1)
+    factors = np.empty((6,) + q.shape, dtype=complex)  # [B1s, (Fe - Ps) / 2, Qd; B0s, Pd, F]
+    np.multiply(b1, slow, out=factors[0])
+    np.multiply(f, down, out=factors[1])
+    factors[1] -= qs * phi
+    factors[1] *= 0.5
+    factors[2] = qd
+    np.multiply(b0, slow, out=factors[3])
+    np.multiply(qd, phi, out=factors[4])
+    factors[5] = f
+    forms = _real_form(factors)
+    left, right = forms[:3], forms[3:]
+    brackets = left @ right
+    brackets -= right @ left
+    brackets[0] += brackets[1]
+    outer = _complex_form(brackets[2])
+    outer *= 0.5 * phi
+    return outer, brackets[0]
 
 
 def _moments(z: np.ndarray, up: np.ndarray, down: np.ndarray) -> np.ndarray:
@@ -285,33 +307,38 @@ def _moments(z: np.ndarray, up: np.ndarray, down: np.ndarray) -> np.ndarray:
     return out
 
 
-def _real_form(rows: np.ndarray) -> np.ndarray:
-    """The real (2 n, 2 n) form of a conjugate-symmetric matrix given by its tracked half's
-    rows (steps, n, 2 n): with P, R the blocks on the tracked half and on its conjugates,
-    [[Re(P + R), Im(P - R)], [-Im(P + R), Re(P - R)]] (the matrix in the coordinates of the
-    real basis (Re V, Im V))."""
-    n = rows.shape[1]
-    p, r = rows[..., :n], rows[..., n:]
-    out = np.empty(rows.shape[:-2] + (2 * n, 2 * n))
-    np.add(p.real, r.real, out=out[..., :n, :n])
-    np.subtract(p.imag, r.imag, out=out[..., :n, n:])
-    np.add(p.imag, r.imag, out=out[..., n:, :n])
-    np.negative(out[..., n:, :n], out=out[..., n:, :n])
-    np.subtract(p.real, r.real, out=out[..., n:, n:])
+def _real_form(columns: np.ndarray) -> np.ndarray:
+    """The real (2 n, 2 n) form of conjugate-symmetric matrices given by their tracked columns
+    (..., 2 n, n) = [P; conj R]: the matrix in the coordinates of the real basis (Re v_1,
+    Im v_1, Re v_2, ...), whose 2 x 2 block (i, j) is [[Re(P + R), Im(P - R)], [-Im(P + R),
+    Re(P - R)]]_ij. Its row pair i read as complex numbers (one per column pair) is P + conj R
+    and i (P - conj R)."""
+    n = columns.shape[-1]
+    top, bottom = columns[..., :n, :], columns[..., n:, :]
+    out = np.empty(columns.shape[:-2] + (n, 2, n), dtype=complex)
+    np.add(top, bottom, out=out[..., 0, :])
+    np.subtract(top, bottom, out=out[..., 1, :])
+    out[..., 1, :] *= 1j
+    return out.view(float).reshape(columns.shape[:-2] + (2 * n, 2 * n))
+
+
+def _complex_form(real: np.ndarray) -> np.ndarray:
+    """The tracked columns (..., 2 n, n) of real-form matrices (..., 2 n, 2 n), ``_real_form``'s
+    inverse: with A, B the row pairs read as complex numbers, P = (A - i B) / 2 and conj R =
+    (A + i B) / 2."""
+    n = real.shape[-1] // 2
+    pairs = np.ascontiguousarray(real).view(complex).reshape(real.shape[:-2] + (n, 2, n))
+    turned = 1j * pairs[..., 1, :]
+    out = np.empty(real.shape[:-2] + (2 * n, n), dtype=complex)
+    np.subtract(pairs[..., 0, :], turned, out=out[..., :n, :])
+    np.add(pairs[..., 0, :], turned, out=out[..., n:, :])
+    out *= 0.5
     return out
 
 
-def _scaled_rows(m: np.ndarray, e: np.ndarray) -> np.ndarray:
-    """diag(e, conj e) m in the real form: each pair's rows turned and scaled."""
-    n = e.shape[-1]
-    c, s = e.real[..., None], e.imag[..., None]
-    top, bottom = m[..., :n, :], m[..., n:, :]
-    return np.concatenate([c * top + s * bottom, c * bottom - s * top], axis=-2)
-
-
 def _scaled_columns(m: np.ndarray, e: np.ndarray) -> np.ndarray:
-    """m diag(e, conj e) in the real form."""
-    n = e.shape[-1]
-    c, s = e.real[..., None, :], e.imag[..., None, :]
-    left, right = m[..., :n], m[..., n:]
-    return np.concatenate([c * left - s * right, s * left + c * right], axis=-1)
+    """m diag(e, conj e) in the real form, in place: each column pair read as complex numbers
+    is multiplied by its e (m (..., 2 n, 2 n) C-contiguous, e (..., n))."""
+    pairs = m.view(complex)
+    pairs *= e[..., None, :]
+    return m
