@@ -70,11 +70,12 @@ class AdiabaticBasis:
 
     angles (m + 1,) [rad]: the grid over one turn (both ends; m even); eigenvalues (m + 1, n)
     [1/s]: the half of A0's with positive imaginary part, tracked; phase (m + 1, n) [rad/s x
-    rad]: Phi = int lambda dtheta from angles[0]; coupling, speed_coupling (m + 1, n, 2 n):
-    rows of P0 + P1 and of P2 for the tracked half, columns over the tracked half then its
-    conjugates; start, end
-    (2 n, 2 n): the real eigenbasis (Re V, Im V) at the two ends; coupling_norm,
-    speed_norm (m + 1,): the largest row sums of |P0 + P1| and |P2| [1/rad, 1/rad per rad/s]."""
+    rad]: Phi = int lambda dtheta from angles[0]; coupling, speed_coupling (2 n, m + 1, n):
+    the tracked columns of P0 + P1 and of P2 (rows over the tracked half then its
+    conjugates; the grid's axis between the rows and the columns, as the steps' arrays have
+    it); start, end (2 n, 2 n): the real eigenbasis (Re v_1, Im v_1, Re v_2, ...) at the two
+    ends; coupling_norm, speed_norm (m + 1,): the largest row sums of |P0 + P1| and |P2|
+    [1/rad, 1/rad per rad/s]."""
 
     angles: np.ndarray
     eigenvalues: np.ndarray
@@ -147,8 +148,8 @@ def adiabatic_basis(angles, a0, a0_prime, a1, a2) -> AdiabaticBasis:
     increments = 0.5 * h * (lam[:-1] + lam[1:]) + h * h / 12.0 * (slope[:-1] - slope[1:])
     phase = np.concatenate([np.zeros((1, n)), np.cumsum(increments, axis=0)])
     return AdiabaticBasis(angles=angles, eigenvalues=lam, phase=phase,
-                          coupling=_tracked_columns(rows[0]),
-                          speed_coupling=_tracked_columns(rows[1]),
+                          coupling=_tracked_columns(rows[0]).transpose(1, 0, 2).copy(),
+                          speed_coupling=_tracked_columns(rows[1]).transpose(1, 0, 2).copy(),
                           start=_real_basis(half[0]) * np.repeat(scale, 2),
                           end=_real_basis(half[-1]) * np.repeat(scale, 2),
                           coupling_norm=np.abs(rows[0]).sum(axis=2).max(axis=1),
@@ -210,26 +211,33 @@ def adiabatic_monodromy(basis: AdiabaticBasis, speed: float, least: int = 16) ->
 def _step_exponentials(basis, speed, bounds, ends, middle):
     """(steps, 2 n, 2 n): exp(Omega_k) of each step, the k-th from bounds[k] to bounds[k + 1],
     in the real eigen-coordinates (module docstring); ends (steps + 1, n), middle (steps, n):
-    Phi / Omega at the step ends and mid points."""
+    Phi / Omega at the step ends and mid points.
+
+    The steps' tracked columns are arrays (2 n, steps, n) and their real forms (2 n, steps,
+    2 n): the steps' axis between the rows and the columns keeps every elementwise pass over
+    long contiguous runs (a per-step value is spread over a row's n columns), the real form's
+    row pairs included, and each step's matrix is still a strided view that the matrix
+    products take as it is."""
+    n = ends.shape[1]
     mid = (bounds[:-1] + bounds[1:]) // 2
-    hh = 0.5 * (basis.angles[bounds[1:]] - basis.angles[bounds[:-1]])[:, None, None]
+    hh = np.repeat(0.5 * (basis.angles[bounds[1:]] - basis.angles[bounds[:-1]]), n)
+    hh = hh.reshape(1, -1, n)
     total = ends[1:] - ends[:-1]  # (steps, n)
     residual = 0.5 * (ends[:-1] + ends[1:]) - middle
     # entry (r, j) of the tracked columns turns as exp(kappa_rj sigma), kappa_rj h / 2 = z_rj
     # = (total_j - total_r) / 2, r over the tracked half and its conjugates: its exponentials
     # are products of one per column and one per row
     half_turn = np.exp(0.5 * total)
-    z = 0.5 * (total[:, None, :] - _per_row(total))  # (steps, 2 n, n)
-    up = half_turn[:, None, :] / _per_row(half_turn)  # exp(z)
-    down = (1.0 / half_turn)[:, None, :] * _per_row(half_turn)  # exp(-z)
-    bend = np.exp(residual)[:, None, :] * _per_row(np.exp(-residual))
-    at_ends = basis.coupling[bounds] + speed * basis.speed_coupling[bounds]
-    qm = basis.coupling[mid] + speed * basis.speed_coupling[mid]
+    z = 0.5 * (total - _per_row(total))  # (2 n, steps, n)
+    up = half_turn / _per_row(half_turn)  # exp(z)
+    down = (1.0 / half_turn) * _per_row(half_turn)  # exp(-z)
+    bend = np.exp(residual) * _per_row(0.5 * np.exp(-residual))
+    at_ends = basis.coupling[:, bounds] + speed * basis.speed_coupling[:, bounds]
+    qm = basis.coupling[:, mid] + speed * basis.speed_coupling[:, mid]
     # Q(sigma) = qm + slope sigma + curve sigma^2 on sigma in [-h/2, h/2], written per power
-    # of hh: c1 = slope hh, c2 = curve hh^2 (qa, qb: the ends' Q times bend)
-    bend *= 0.5
-    c1 = (at_ends[1:] - at_ends[:-1]) * bend
-    c2 = (at_ends[1:] + at_ends[:-1]) * bend - qm
+    # of hh: c1 = slope hh, c2 = curve hh^2 (the ends' Q times the phase's curvature, bend)
+    c1 = (at_ends[:, 1:] - at_ends[:, :-1]) * bend
+    c2 = (at_ends[:, 1:] + at_ends[:, :-1]) * bend - qm
     j = _moments(z, up, down)  # int_{-1}^{1} u^p exp(z u) du, p = 0..3
     b0 = hh * (qm * j[0] + c1 * j[1] + c2 * j[2])
     b1 = 0.5 * hh * (qm * j[1] + c1 * j[2] + c2 * j[3])
@@ -237,13 +245,13 @@ def _step_exponentials(basis, speed, bounds, ends, middle):
     columns, real = _second_order(qm, b0, b1, z, phi, down, hh)
     columns += b0
     real += _real_form(columns)
-    return exponentials(real)
+    return exponentials(real.transpose(1, 0, 2))
 
 
 def _per_row(values: np.ndarray) -> np.ndarray:
-    """(steps, 2 n, 1): per-mode values (steps, n) on the rows of the tracked columns, the
+    """(2 n, steps, 1): per-mode values (steps, n) on the rows of the tracked columns, the
     tracked half then its conjugates."""
-    return np.concatenate([values, values.conj()], axis=-1)[:, :, None]
+    return np.concatenate([values, values.conj()], axis=-1).T[:, :, None]
 
 
 def _second_order(q, b0, b1, z, phi, down, hh):
@@ -259,7 +267,8 @@ def _second_order(q, b0, b1, z, phi, down, hh):
     (phi = int exp(kappa s) ds over the step). The last two are one commutator,
     [Fe, Pd] + [Pf, Ps] = [Fe - Ps, Pd] (bilinear and antisymmetric; Pd = Q phi + Ps). The
     commutators of conjugate-symmetric matrices are formed in the real form, where a product
-    costs half the complex one; the Hadamard product with phi needs the columns."""
+    costs half the complex one; the Hadamard product with phi needs the columns. Arrays as
+    in ``_step_exponentials``."""
     slow = np.abs(z) < SLOW
     qs = np.where(slow, q, 0.0)
     qd = q + qs
@@ -273,10 +282,12 @@ def _second_order(q, b0, b1, z, phi, down, hh):
     np.multiply(b0, slow, out=factors[3])
     np.multiply(qd, phi, out=factors[4])
     factors[5] = f
-    forms = _real_form(factors)
+    forms = _real_form(factors).transpose(0, 2, 1, 3)  # (6, steps, 2 n, 2 n) views
     left, right = forms[:3], forms[3:]
-    brackets = left @ right
-    brackets -= right @ left
+    brackets, reverse = np.empty((2, 3) + forms.shape[2:3] + forms.shape[1:2] + forms.shape[3:])
+    np.matmul(left, right, out=brackets.transpose(0, 2, 1, 3))
+    np.matmul(right, left, out=reverse.transpose(0, 2, 1, 3))
+    brackets -= reverse
     brackets[0] += brackets[1]
     outer = _complex_form(brackets[2])
     outer *= 0.5 * phi
@@ -308,30 +319,30 @@ def _moments(z: np.ndarray, up: np.ndarray, down: np.ndarray) -> np.ndarray:
 
 
 def _real_form(columns: np.ndarray) -> np.ndarray:
-    """The real (2 n, 2 n) form of conjugate-symmetric matrices given by their tracked columns
-    (..., 2 n, n) = [P; conj R]: the matrix in the coordinates of the real basis (Re v_1,
-    Im v_1, Re v_2, ...), whose 2 x 2 block (i, j) is [[Re(P + R), Im(P - R)], [-Im(P + R),
-    Re(P - R)]]_ij. Its row pair i read as complex numbers (one per column pair) is P + conj R
-    and i (P - conj R)."""
+    """The real (2 n, 2 n) forms of conjugate-symmetric matrices given by their tracked
+    columns (..., 2 n, steps, n) = [P; conj R]: (..., 2 n, steps, 2 n), each step's matrix in
+    the coordinates of the real basis (Re v_1, Im v_1, Re v_2, ...), whose 2 x 2 block (i, j)
+    is [[Re(P + R), Im(P - R)], [-Im(P + R), Re(P - R)]]_ij. Its row pair i read as complex
+    numbers (one per column pair) is P + conj R and i (P - conj R)."""
     n = columns.shape[-1]
-    top, bottom = columns[..., :n, :], columns[..., n:, :]
-    out = np.empty(columns.shape[:-2] + (n, 2, n), dtype=complex)
-    np.add(top, bottom, out=out[..., 0, :])
-    np.subtract(top, bottom, out=out[..., 1, :])
-    out[..., 1, :] *= 1j
-    return out.view(float).reshape(columns.shape[:-2] + (2 * n, 2 * n))
+    top, bottom = columns[..., :n, :, :], columns[..., n:, :, :]
+    out = np.empty(top.shape[:-2] + (2,) + top.shape[-2:], dtype=complex)
+    np.add(top, bottom, out=out[..., 0, :, :])
+    np.subtract(top, bottom, out=out[..., 1, :, :])
+    out[..., 1, :, :] *= 1j
+    return out.view(float).reshape(columns.shape[:-1] + (2 * n,))
 
 
 def _complex_form(real: np.ndarray) -> np.ndarray:
-    """The tracked columns (..., 2 n, n) of real-form matrices (..., 2 n, 2 n), ``_real_form``'s
-    inverse: with A, B the row pairs read as complex numbers, P = (A - i B) / 2 and conj R =
-    (A + i B) / 2."""
+    """The tracked columns (2 n, steps, n) of real forms (2 n, steps, 2 n) (C-contiguous),
+    ``_real_form``'s inverse: with A, B the row pairs read as complex numbers,
+    P = (A - i B) / 2 and conj R = (A + i B) / 2."""
     n = real.shape[-1] // 2
-    pairs = np.ascontiguousarray(real).view(complex).reshape(real.shape[:-2] + (n, 2, n))
-    turned = 1j * pairs[..., 1, :]
-    out = np.empty(real.shape[:-2] + (2 * n, n), dtype=complex)
-    np.subtract(pairs[..., 0, :], turned, out=out[..., :n, :])
-    np.add(pairs[..., 0, :], turned, out=out[..., n:, :])
+    pairs = real.view(complex).reshape((n, 2) + real.shape[1:2] + (n,))
+    turned = 1j * pairs[:, 1]
+    out = np.empty((2 * n,) + real.shape[1:2] + (n,), dtype=complex)
+    np.subtract(pairs[:, 0], turned, out=out[:n])
+    np.add(pairs[:, 0], turned, out=out[n:])
     out *= 0.5
     return out
 
