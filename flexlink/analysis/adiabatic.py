@@ -232,17 +232,26 @@ def _step_exponentials(basis, speed, bounds, ends, middle):
     up = half_turn / _per_row(half_turn)  # exp(z)
     down = (1.0 / half_turn) * _per_row(half_turn)  # exp(-z)
     bend = np.exp(residual) * _per_row(0.5 * np.exp(-residual))
-    at_ends = basis.coupling[:, bounds] + speed * basis.speed_coupling[:, bounds]
-    qm = basis.coupling[:, mid] + speed * basis.speed_coupling[:, mid]
+    points = np.concatenate([bounds, mid])
+    q = np.take(basis.coupling, points, axis=1)
+    q += speed * np.take(basis.speed_coupling, points, axis=1)
+    at_ends, qm = q[:, :len(bounds)], q[:, len(bounds):]
     # Q(sigma) = qm + slope sigma + curve sigma^2 on sigma in [-h/2, h/2], written per power
     # of hh: c1 = slope hh, c2 = curve hh^2 (the ends' Q times the phase's curvature, bend)
     c1 = (at_ends[:, 1:] - at_ends[:, :-1]) * bend
     c2 = (at_ends[:, 1:] + at_ends[:, :-1]) * bend - qm
-    j = _moments(z, up, down)  # int_{-1}^{1} u^p exp(z u) du, p = 0..3
+    size = np.abs(z)
+    # 1 / z = conj(z) / |z|^2 (a complex division costs several products), where |z| >=
+    # SERIES: the only entries divided by
+    inverse = np.where(size < SERIES, 1.0, size)
+    inverse *= inverse
+    np.divide(1.0, inverse, out=inverse)
+    inverse = z.conj() * inverse
+    j = _moments(z, size < SERIES, inverse, up, down)  # int_{-1}^{1} u^p exp(z u) du
     b0 = hh * (qm * j[0] + c1 * j[1] + c2 * j[2])
     b1 = 0.5 * hh * (qm * j[1] + c1 * j[2] + c2 * j[3])
     phi = hh * j[0]
-    columns, real = _second_order(qm, b0, b1, z, phi, down, hh)
+    columns, real = _second_order(qm, b0, b1, size < SLOW, hh * inverse, phi, down)
     columns += b0
     real += _real_form(columns)
     return exponentials(real.transpose(1, 0, 2))
@@ -254,7 +263,7 @@ def _per_row(values: np.ndarray) -> np.ndarray:
     return np.concatenate([values, values.conj()], axis=-1).T[:, :, None]
 
 
-def _second_order(q, b0, b1, z, phi, down, hh):
+def _second_order(q, b0, b1, slow, step, phi, down):
     """The second Magnus term of a step, as tracked columns and a real-form part whose sum
     (``_real_form(columns) + real``) is the term. Between slow entries (|z| < SLOW) the
     fourth-order [B1, B0]; every pair with a fast entry, where [B1, B0] misses the secular
@@ -268,11 +277,11 @@ def _second_order(q, b0, b1, z, phi, down, hh):
     [Fe, Pd] + [Pf, Ps] = [Fe - Ps, Pd] (bilinear and antisymmetric; Pd = Q phi + Ps). The
     commutators of conjugate-symmetric matrices are formed in the real form, where a product
     costs half the complex one; the Hadamard product with phi needs the columns. Arrays as
-    in ``_step_exponentials``."""
-    slow = np.abs(z) < SLOW
+    in ``_step_exponentials``; slow: |z| < SLOW; step: 1 / kappa = hh / z on the fast
+    entries."""
     qs = np.where(slow, q, 0.0)
     qd = q + qs
-    f = np.where(slow, 0.0, q * hh / np.where(slow, 1.0, z))
+    f = np.where(slow, 0.0, q * step)
     factors = np.empty((6,) + q.shape, dtype=complex)  # [B1s, (Fe - Ps) / 2, Qd; B0s, Pd, F]
     np.multiply(b1, slow, out=factors[0])
     np.multiply(f, down, out=factors[1])
@@ -294,27 +303,28 @@ def _second_order(q, b0, b1, z, phi, down, hh):
     return outer, brackets[0]
 
 
-def _moments(z: np.ndarray, up: np.ndarray, down: np.ndarray) -> np.ndarray:
-    """J_p(z) = int_{-1}^{1} u^p exp(z u) du for p = 0..3, elementwise, given up = exp(z) and
-    down = exp(-z): the recurrence J_p = (e^z - (-1)^p e^-z - p J_{p-1}) / z, and below
-    |z| = SERIES, where it would lose up to p! / |z|^p of the digits (at most 6 / SERIES^3 =
-    384 units of round-off), the power series J_p = sum over k + p even of
-    2 z^k / (k! (k + p + 1)), summed in w = z^2 (six terms: SERIES^12 / 12! ~ 1e-16)."""
-    small = np.abs(z) < SERIES
-    inverse = 1.0 / np.where(small, 1.0, z)
+def _moments(z, small, inverse, up, down):
+    """J_p(z) = int_{-1}^{1} u^p exp(z u) du for p = 0..3 (4, ...), elementwise, given
+    small = |z| < SERIES, inverse = 1 / z where not small, up = exp(z) and down = exp(-z):
+    the recurrence J_p = (e^z - (-1)^p e^-z - p J_{p-1}) / z, and below |z| = SERIES, where
+    it would lose up to p! / |z|^p of the digits (at most 6 / SERIES^3 = 384 units of
+    round-off), the power series J_p = sum over k + p even of 2 z^k / (k! (k + p + 1)),
+    summed in w = z^2 (six terms: SERIES^12 / 12! ~ 1e-16)."""
     out = np.empty((4,) + z.shape, dtype=complex)
     odd, even = up - down, up + down
-    out[0] = odd * inverse
-    out[1] = (even - out[0]) * inverse
-    out[2] = (odd - 2.0 * out[1]) * inverse
-    out[3] = (even - 3.0 * out[2]) * inverse
+    np.multiply(odd, inverse, out=out[0])
+    np.multiply(even - out[0], inverse, out=out[1])
+    np.multiply(odd - 2.0 * out[1], inverse, out=out[2])
+    np.multiply(even - 3.0 * out[2], inverse, out=out[3])
     zs = z[small]
     w = zs * zs
-    for p in range(4):
-        total = _SERIES[p, -1]
-        for c in _SERIES[p, -2::-1]:
-            total = total * w + c
-        out[p][small] = total * zs if p % 2 else total
+    series = np.empty((4, len(zs)), dtype=complex)
+    series[:] = _SERIES[:, -1:]
+    for c in _SERIES[:, -2::-1].T:
+        series *= w
+        series += c[:, None]
+    series[1::2] *= zs
+    out[:, small] = series
     return out
 
 
