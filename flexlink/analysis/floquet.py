@@ -70,28 +70,36 @@ def first_order(mass: np.ndarray, damping: np.ndarray, stiffness: np.ndarray) ->
     return a
 
 
-_TAYLOR = np.array([[1.0 / math.factorial(4 * b + i) for i in range(4)] for b in range(3)])
+# Paterson-Stockmeyer blocks of the degree-12 Taylor polynomial over the powers I, x, x^2,
+# x^3, x^4: block b sums x^i / (4 b + i)! for i < 4, the last block also x^4 / 12!
+_TAYLOR = np.array([[1.0 / math.factorial(4 * b + i) for i in range(4)] + [0.0]
+                    for b in range(3)])
+_TAYLOR[2, 4] = 1.0 / math.factorial(12)
 
 
 def exponentials(omega: np.ndarray) -> np.ndarray:
     """expm of each (n, n) matrix in omega (m, n, n): scaling and squaring with a degree-12
     Taylor polynomial, all steps at once, the polynomial in Paterson-Stockmeyer form (five
     products instead of eleven). Scaled to norm <= 1/2, the neglected Taylor terms are below
-    0.5^13 / 13! ~ 2e-14 relative. The powers I, x, x^2, x^3 are written into one array and
-    the three blocks sum over i < 4 of x^i / (4 b + i)! formed by one product with the
-    coefficients: the cost is the matrix products, not passes over temporaries."""
+    0.5^13 / 13! ~ 2e-14 relative. The powers I, x, x^2, x^3, x^4 are written into one array
+    and the three blocks formed by one product with the coefficients; the Horner steps
+    write into the powers no longer needed: the cost is the matrix products, not passes over
+    temporaries."""
     norm = np.abs(omega).sum(axis=-2).max() if omega.size else 0.0
     squarings = max(0, int(np.ceil(np.log2(norm / 0.5)))) if norm > 0.5 else 0
     m, n = omega.shape[0], omega.shape[-1]
-    powers = np.empty((4, m, n, n))
+    powers = np.empty((5, m, n, n))
     powers[0] = np.eye(n)
     np.multiply(omega, 2.0**-squarings, out=powers[1])
     np.matmul(powers[1], powers[1], out=powers[2])
     np.matmul(powers[2], powers[1], out=powers[3])
-    x4 = powers[2] @ powers[2]
+    np.matmul(powers[2], powers[2], out=powers[4])
     blocks = np.tensordot(_TAYLOR, powers, axes=1)  # (3, m, n, n)
-    blocks[2] += x4 / math.factorial(12)
-    result = blocks[0] + x4 @ (blocks[1] + x4 @ blocks[2])
+    inner, result = powers[1], powers[2]
+    np.matmul(powers[4], blocks[2], out=inner)
+    inner += blocks[1]
+    np.matmul(powers[4], inner, out=result)
+    result += blocks[0]
     for _ in range(squarings):
         result = result @ result
     return result
