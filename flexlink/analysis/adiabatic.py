@@ -56,7 +56,7 @@ DAMPING_PHASE = 2.0  # max Re(kappa) h / 2 in a step [-]: the factors exp(kappa 
 COUPLING_STEP = 0.25  # max h ||Q||_1 in a step [-]: the smooth part's Magnus error
 SLOW = 0.5  # |kappa| h / 2 below which an entry counts as slow in the second Magnus term
 SERIES = 0.25  # |z| below which the moments J_p(z) are summed as a power series
-STEP_CHUNK = 64  # steps formed at once: their arrays stay in a core's cache
+STEP_CHUNK = 32  # steps formed at once: their arrays stay in a core's cache
 
 
 # coefficients of w^m in J_p(z) / z^(p mod 2), w = z^2: k = 2 m + (p mod 2) in the series
@@ -221,7 +221,7 @@ def _step_exponentials(basis, speed, bounds, ends, middle):
     n = ends.shape[1]
     mid = (bounds[:-1] + bounds[1:]) // 2
     hh = np.repeat(0.5 * (basis.angles[bounds[1:]] - basis.angles[bounds[:-1]]), n)
-    hh = hh.reshape(1, -1, n)
+    hh = hh.reshape(1, -1, n).astype(complex)  # complex: no casting pass in the products
     total = ends[1:] - ends[:-1]  # (steps, n)
     residual = 0.5 * (ends[:-1] + ends[1:]) - middle
     # entry (r, j) of the tracked columns turns as exp(kappa_rj sigma), kappa_rj h / 2 = z_rj
@@ -316,7 +316,8 @@ def _moments(z, small, inverse, up, down):
     np.multiply(even - out[0], inverse, out=out[1])
     np.multiply(odd - 2.0 * out[1], inverse, out=out[2])
     np.multiply(even - 3.0 * out[2], inverse, out=out[3])
-    zs = z[small]
+    where = np.flatnonzero(small)  # flat indices: cheaper to gather and scatter than a mask
+    zs = z.take(where)
     w = zs * zs
     series = np.empty((4, len(zs)), dtype=complex)
     series[:] = _SERIES[:, -1:]
@@ -324,7 +325,8 @@ def _moments(z, small, inverse, up, down):
         series *= w
         series += c[:, None]
     series[1::2] *= zs
-    out[:, small] = series
+    for p in range(4):
+        np.put(out[p], where, series[p])
     return out
 
 
