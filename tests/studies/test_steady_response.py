@@ -31,6 +31,7 @@ from flexlink.studies.steady_response import (
     parse_point,
     periodic_solution,
     response_sweep,
+    UnstableError,
     steady_response,
 )
 from flexlink.units import RPM
@@ -158,6 +159,19 @@ def test_coupled_modes_equal_a_long_time_integration():
         "spn,sn->sp", _rows(model.curvature, p.angles, response.angles), q)
     error = np.abs(response.strain - strain).max() / np.abs(strain).max()
     assert error < 1e-6, error
+
+
+def test_a_speed_whose_free_motion_grows_has_no_steady_state():
+    # at 60 Hz the centrifugal softening -Omega^2 (1.4e5 (rad/s)^2) exceeds the first mode's
+    # stiffness at its weakest pose (0.7 (2 pi 50 Hz)^2 = 6.9e4): the free motion grows
+    # (|mu| ~ 31 per turn), harmonic balance would still return a periodic answer, and the
+    # study must refuse it; at 10 Hz it is stable. A sweep marks the speed, not refuses it.
+    model = synthetic()
+    with pytest.raises(UnstableError, match="no steady state"):
+        steady_response(model, 2 * np.pi * 60.0, samples=12)
+    sweep = response_sweep(model, 2 * np.pi * np.array([10.0, 60.0]), samples=12)
+    assert list(sweep.unstable) == [False, True]
+    assert sweep.largest_modulus[0] < 1.0 and np.isfinite(sweep.peak_strain[0]).all()
 
 
 def _hermite_curvature(u, link, position):
