@@ -5,17 +5,18 @@ In the crank angle theta = Omega t (d/dt = Omega d/dtheta, ' = d/dtheta) the sys
 
     Omega^2 q'' + Omega D(theta) q' + S(theta) q = g(theta),
 
-D [1/s], S [1/s^2] (n, n) and g (n,) [per s^2] trigonometric polynomials of degree P, given by
+D [1/s], S [1/s^2] (n, n) and g (n,) [q/s^2] trigonometric polynomials of degree P, given by
 their Fourier coefficients c_d, d = 0..P (c_-d = conj c_d: the functions are real). With
 q = sum_{|k| <= H} Q_k exp(i k theta) each harmonic balances:
 
     -(Omega k)^2 Q_k + sum_d [S_d + i Omega (k - d) D_d] Q_{k-d} = g_k,   |k| <= H.
 
 Why harmonic balance: the coefficients are exact trigonometric polynomials (sampled poses
-interpolated by their Fourier series), so the solution is smooth in theta and its harmonics
-fall geometrically: the error falls spectrally with H, and H is set by how fast the
-coefficients vary over the turn, not by the stiffest frequency of the system or by the
-speed (a time integration over the turn needs steps ~ omega_max / Omega).
+interpolated by their Fourier series), so the solution is analytic in theta and the error
+falls spectrally with H (faster than any power of 1/H, with plateaus where the crank harmonics
+cross a lightly damped frozen frequency); H is set by how fast the coefficients and the
+response vary over the turn, not by the stiffest frequency of the system over the speed, as
+the steps of a time integration over the turn are (~ omega_max / Omega).
 
 Solved by GMRES on the full Hill matrix, right preconditioned by the LU of the same matrix with
 the coefficients' harmonics cut to |d| <= BAND (banded, exact at constant coefficients). The
@@ -202,8 +203,11 @@ def _band_lu(stiffness, damping, speed, H, band):
 def _gmres(product, precondition, b, x0, rtol: float = 1e-12, iterations: int = ITERATIONS):
     """x with |b - A x| <= rtol |b| by GMRES right preconditioned (A P^-1 y = r, x = x0 +
     P^-1 y), and the relative residual reached. NumericalError if it stalls above 1e3 rtol."""
+    scale = np.linalg.norm(b)
+    if scale == 0.0:  # no forcing: the periodic solution is rest
+        return np.zeros_like(b), 0.0
     r = b - product(x0)
-    beta, scale = np.linalg.norm(r), np.linalg.norm(b)
+    beta = np.linalg.norm(r)
     if beta <= rtol * scale:
         return x0, beta / scale
     V = np.empty((iterations + 1, b.size), complex)

@@ -102,3 +102,9 @@ def test_coefficients_of_mismatched_shapes_are_refused():
     S, D, g = one_dof(1.0, 0.1, 1.0)
     with pytest.raises(ValueError, match="must match"):
         harmonic_balance(S, D[:1], g, 1.0)
+
+
+def test_without_forcing_the_periodic_solution_is_rest():
+    S, D, g = one_dof(1.0, 0.1, 0.0)
+    solution = harmonic_balance(S, D, g, 1.0)
+    assert not solution.coefficients.any() and solution.error == solution.residual == 0.0
