@@ -43,6 +43,7 @@ Magnus steps at 512 steps, 10 to 3000 rev/min.
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -54,6 +55,13 @@ from flexlink.errors import NumericalError
 DAMPING_PHASE = 2.0  # max Re(kappa) h / 2 in a step [-]: the factors exp(kappa s) below e^2
 COUPLING_STEP = 0.25  # max h ||Q||_1 in a step [-]: the smooth part's Magnus error
 SLOW = 0.5  # |kappa| h / 2 below which an entry counts as slow in the second Magnus term
+SERIES = 0.25  # |z| below which the moments J_p(z) are summed as a power series
+STEP_CHUNK = 64  # steps formed at once: their arrays stay in a core's cache
+
+
+# coefficients of w^m in J_p(z) / z^(p mod 2), w = z^2: k = 2 m + (p mod 2) in the series
+_SERIES = np.array([[2.0 / (math.factorial(2 * m + p % 2) * (2 * m + p % 2 + p + 1))
+                     for m in range(6)] for p in range(4)])
 
 
 @dataclass(frozen=True)
@@ -168,76 +176,78 @@ def adiabatic_monodromy(basis: AdiabaticBasis, speed: float, least: int = 16) ->
     """Floquet multipliers over one turn (period 2 pi / speed) at crank ``speed`` [rad/s] > 0,
     by at least ``least`` steps (``step_bounds``): the monodromy of the original state."""
     bounds = step_bounds(basis, speed, least)
-    product = ordered_product(_step_exponentials(basis, speed, bounds))
+    product = np.eye(basis.start.shape[1])
+    for first in range(0, len(bounds) - 1, STEP_CHUNK):
+        steps = _step_exponentials(basis, speed, bounds[first:first + STEP_CHUNK + 1])
+        product = ordered_product(steps) @ product
     return floquet(basis.end @ product @ np.linalg.inv(basis.start), 2.0 * np.pi / speed)
 
 
 def _step_exponentials(basis, speed, bounds):
     """(steps, 2 n, 2 n): each step's propagator in the real eigen-coordinates, the k-th from
     bounds[k] to bounds[k + 1] (module docstring)."""
-    a, b = bounds[:-1], bounds[1:]
-    mid = (a + b) // 2
-    h = basis.angles[b] - basis.angles[a]
+    mid = (bounds[:-1] + bounds[1:]) // 2
+    h = basis.angles[bounds[1:]] - basis.angles[bounds[:-1]]
 
     def columns(values):  # per-index values of the whole eigenbasis' columns
         return np.concatenate([values, values.conj()], axis=-1)
 
-    phase = basis.phase / speed
-    total = phase[b] - phase[a]  # (steps, n)
-    residual = 0.5 * (phase[a] + phase[b]) - phase[mid]
+    ends, middle = basis.phase[bounds] / speed, basis.phase[mid] / speed
+    total = ends[1:] - ends[:-1]  # (steps, n)
+    residual = 0.5 * (ends[:-1] + ends[1:]) - middle
     # entry (i, j) turns as exp(kappa_ij sigma), kappa_ij h / 2 = z_ij = (total_j - total_i) / 2:
     # its exponentials are products of one per column and one per row
-    z = 0.5 * (columns(total)[:, None, :] - total[:, :, None])  # (steps, n, size)
     half_turn = np.exp(0.5 * total)
+    z = 0.5 * (columns(total)[:, None, :] - total[:, :, None])  # (steps, n, size)
     up = columns(half_turn)[:, None, :] / half_turn[:, :, None]  # exp(z)
     down = columns(1.0 / half_turn)[:, None, :] * half_turn[:, :, None]  # exp(-z)
     bend = columns(np.exp(residual))[:, None, :] * np.exp(-residual)[:, :, None]
-
-    def q(k):
-        return basis.coupling[k] + speed * basis.speed_coupling[k]
-    qa, qm, qb = q(a) * bend, q(mid), q(b) * bend
+    at_ends = basis.coupling[bounds] + speed * basis.speed_coupling[bounds]
+    qm = basis.coupling[mid] + speed * basis.speed_coupling[mid]
+    qa, qb = at_ends[:-1] * bend, at_ends[1:] * bend
     hh = (0.5 * h)[:, None, None]
-    # Q(sigma) = qm + slope sigma + curve sigma^2 on sigma in [-h/2, h/2]
-    slope = (qb - qa) / (2.0 * hh)
-    curve = (qa + qb - 2.0 * qm) / (2.0 * hh * hh)
+    # Q(sigma) = qm + slope sigma + curve sigma^2 on sigma in [-h/2, h/2], written per power
+    # of hh: c1 = slope hh, c2 = curve hh^2
+    c1 = 0.5 * (qb - qa)
+    c2 = 0.5 * (qa + qb) - qm
     j = _moments(z, up, down)  # int_{-1}^{1} u^p exp(z u) du, p = 0..3
-    b0 = hh * (qm * j[0] + slope * hh * j[1] + curve * hh * hh * j[2])
-    b1 = 0.5 * hh * (qm * j[1] + slope * hh * j[2] + curve * hh * hh * j[3])
-    exponent = _real_form(b0) + _real_form(_second_order(qm, b0, b1, z, hh * j[0],
-                                                         down, hh))
+    b0 = hh * (qm * j[0] + c1 * j[1] + c2 * j[2])
+    b1 = 0.5 * hh * (qm * j[1] + c1 * j[2] + c2 * j[3])
+    rows, real = _second_order(qm, b0, b1, z, hh * j[0], down, hh)
+    exponent = _real_form(b0 + rows) + real
     steps = exponentials(exponent)
     # the diagonal factors E(b, m) on the left and E(m, a) on the right, as 2 x 2 rotations
-    steps = _scaled_rows(steps, np.exp(phase[b] - phase[mid]))
-    return _scaled_columns(steps, np.exp(phase[mid] - phase[a]))
+    steps = _scaled_rows(steps, np.exp(basis.phase[bounds[1:]] / speed - middle))
+    return _scaled_columns(steps, np.exp(middle - ends[:-1]))
 
 
 def _second_order(q, b0, b1, z, phi, down, hh):
-    """The second Magnus term of a step (tracked half's rows). Between slow entries
+    """The second Magnus term of a step, as tracked-half rows and a real-form part whose
+    sum (``_real_form(rows) + real``) is the term. Between slow entries
     (|z| < SLOW) the fourth-order [B1, B0]; every pair with a fast entry, where [B1, B0]
     misses the secular part, by the exact double integral of the mid-point Q: with
     G(a, b) = int int_{s2 < s1} exp(a s1 + b s2) = (phi(a + b) - exp(-b h/2) phi(a)) / b and
     G(a, b) - G(b, a) = 2 G(a, b) - phi(a) phi(b) = phi(a) phi(b) - 2 G(b, a), written so that
-    only a fast entry's kappa is divided by, the sum over the middle index is six products:
-    1/2 [phi o (Qd F - F Qd) - Pd Fe + Fe Pd + Pf Ps - Ps Pf], F = Q / kappa and Fe = F
+    only a fast entry's kappa is divided by, the sum over the middle index is three
+    commutators: 1/2 [phi o [Qd, F] + [Fe, Pd] + [Pf, Ps]], F = Q / kappa and Fe = F
     exp(-z) on the fast entries, P = Q phi, s and f the slow and fast parts, Qd = Qf + 2 Qs,
-    Pd = Pf + 2 Ps (phi = int exp(kappa s) ds over the step)."""
+    Pd = Pf + 2 Ps (phi = int exp(kappa s) ds over the step). The commutators of
+    conjugate-symmetric matrices are formed in the real form, where a product costs half the
+    complex one; the Hadamard product with phi needs the rows."""
     slow = np.abs(z) < SLOW
-    r0, r1 = (_real_form(np.where(slow, b, 0.0)) for b in (b0, b1))
-    qs, qf = np.where(slow, q, 0.0), np.where(slow, 0.0, q)
-    ps, pf = qs * phi, qf * phi
-    f = qf * (hh / np.where(slow, 1.0, z))
-    fe = f * down
-    qd, pd = qf + 2.0 * qs, pf + 2.0 * ps
-    fast = 0.5 * (phi * (qd @ _full(f) - f @ _full(qd)) - pd @ _full(fe) + fe @ _full(pd)
-                  + pf @ _full(ps) - ps @ _full(pf))
-    return _complex_form(r1 @ r0 - r0 @ r1) + fast
+    qs = np.where(slow, q, 0.0)
+    ps = _real_form(qs * phi)
+    f = np.where(slow, 0.0, q * hh / np.where(slow, 1.0, z))
+    pf = _real_form((q - qs) * phi)
+    outer = _complex_form(_commutator(_real_form(q + qs), _real_form(f)))
+    real = (_commutator(_real_form(np.where(slow, b1, 0.0)), _real_form(np.where(slow, b0, 0.0)))
+            + 0.5 * (_commutator(_real_form(f * down), pf + 2.0 * ps) + _commutator(pf, ps)))
+    return 0.5 * phi * outer, real
 
 
-def _full(rows: np.ndarray) -> np.ndarray:
-    """The whole (2 n, 2 n) complex matrix of conjugate-symmetric tracked-half rows."""
-    n = rows.shape[-2]
-    return np.concatenate([rows, np.concatenate([rows[..., n:].conj(), rows[..., :n].conj()],
-                                                axis=-1)], axis=-2)
+def _commutator(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """[a, b] = a b - b a of stacked matrices."""
+    return a @ b - b @ a
 
 
 def _complex_form(real: np.ndarray) -> np.ndarray:
@@ -254,9 +264,10 @@ def _complex_form(real: np.ndarray) -> np.ndarray:
 def _moments(z: np.ndarray, up: np.ndarray, down: np.ndarray) -> np.ndarray:
     """J_p(z) = int_{-1}^{1} u^p exp(z u) du for p = 0..3, elementwise, given up = exp(z) and
     down = exp(-z): the recurrence J_p = (e^z - (-1)^p e^-z - p J_{p-1}) / z, and below
-    |z| = 1/2, where it would lose up to p! / |z|^p of the digits, a power series (15 terms:
-    0.5^15 / 15! ~ 2e-17)."""
-    small = np.abs(z) < 0.5
+    |z| = SERIES, where it would lose up to p! / |z|^p of the digits (at most 6 / SERIES^3 =
+    384 units of round-off), the power series J_p = sum over k + p even of
+    2 z^k / (k! (k + p + 1)), summed in w = z^2 (six terms: SERIES^12 / 12! ~ 1e-16)."""
+    small = np.abs(z) < SERIES
     inverse = 1.0 / np.where(small, 1.0, z)
     out = np.empty((4,) + z.shape, dtype=complex)
     odd, even = up - down, up + down
@@ -265,12 +276,12 @@ def _moments(z: np.ndarray, up: np.ndarray, down: np.ndarray) -> np.ndarray:
     out[2] = (odd - 2.0 * out[1]) * inverse
     out[3] = (even - 3.0 * out[2]) * inverse
     zs = z[small]
-    powers = [np.ones_like(zs)]
-    for k in range(1, 16):
-        powers.append(powers[-1] * (zs / k))
+    w = zs * zs
     for p in range(4):
-        out[p][small] = sum(powers[k] * (2.0 / (k + p + 1)) for k in range(16)
-                            if (k + p) % 2 == 0)
+        total = _SERIES[p, -1]
+        for c in _SERIES[p, -2::-1]:
+            total = total * w + c
+        out[p][small] = total * zs if p % 2 else total
     return out
 
 
@@ -281,7 +292,13 @@ def _real_form(rows: np.ndarray) -> np.ndarray:
     real basis (Re V, Im V))."""
     n = rows.shape[1]
     p, r = rows[..., :n], rows[..., n:]
-    return np.block([[(p + r).real, (p - r).imag], [-(p + r).imag, (p - r).real]])
+    out = np.empty(rows.shape[:-2] + (2 * n, 2 * n))
+    np.add(p.real, r.real, out=out[..., :n, :n])
+    np.subtract(p.imag, r.imag, out=out[..., :n, n:])
+    np.add(p.imag, r.imag, out=out[..., n:, :n])
+    np.negative(out[..., n:, :n], out=out[..., n:, :n])
+    np.subtract(p.real, r.real, out=out[..., n:, n:])
+    return out
 
 
 def _scaled_rows(m: np.ndarray, e: np.ndarray) -> np.ndarray:

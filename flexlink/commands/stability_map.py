@@ -24,9 +24,10 @@ from flexlink.commands._options import (json_option, odd_count, out_option, pars
 @click.option("--basis-tolerance", default=1e-3, show_default=True,
               type=click.FloatRange(0.0, 1.0, min_open=True),
               help="Relative frequency excess the basis may have at any pose.")
-@click.option("--integrator", default="magnus", show_default=True,
-              type=click.Choice(["magnus", "adiabatic"]),
-              help="Monodromy steps: magnus, or adiabatic (faster; docs/critical-speeds.md).")
+@click.option("--integrator", default="adiabatic", show_default=True,
+              type=click.Choice(["adiabatic", "magnus"]),
+              help="Monodromy steps: adiabatic, or magnus (as accurate, many times slower "
+                   "below a few thousand rev/min; docs/critical-speeds.md).")
 @scheduler_option("the speeds in chunks")
 @json_option
 @out_option

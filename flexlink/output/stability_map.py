@@ -34,6 +34,7 @@ def stability_document(scene_name: str, result, model) -> dict:
         "command": "stability-map", "scene": scene_name, "caveat": basis_caveat(model),
         "damping_ratio": model.damping_ratio.tolist(), "damping_source": model.damping_source,
         "poses": len(model.angles), "integrator": result.integrator.value,
+        "magnus_fallback_rev_per_min": (result.speeds[result.magnus_fallback] / RPM).tolist(),
         "basis": None if basis is None else {
             "size": basis.size, "modes_checked": int(basis.exact.shape[1]),
             "tolerance": basis.tolerance, "largest_frequency_error": basis.error,
@@ -67,6 +68,11 @@ def stability_lines(document: dict) -> list[str]:
     out = [f"{document['scene']}: {len(document['basis_frequencies_Hz'])} basis vectors, "
            f"{len(document['speeds_rev_per_min'])} speeds, {document['integrator']} steps",
            damping_line(document["damping_ratio"], document["damping_source"])]
+    fallback = document["magnus_fallback_rev_per_min"]
+    if fallback:
+        count = f"{len(fallback)} speed" + ("s" if len(fallback) > 1 else "")
+        out.append(f"adiabatic steps refused at {count} ({fallback[0]:g} to {fallback[-1]:g} "
+                   "rev/min; the log says why): Magnus steps there")
     if basis is not None:
         out.append(f"basis check: lowest {basis['modes_checked']} frequencies within "
                    f"{100 * basis['largest_frequency_error']:.3g} % of the full model's at "

@@ -49,10 +49,11 @@ ADIABATIC_STEPS = 512  # adiabatic steps per turn at least (docs/critical-speeds
 
 
 class Integrator(enum.Enum):
-    """How a speed's monodromy is integrated: MAGNUS, the fourth-order Magnus steps of
-    ``analysis.floquet`` (h omega_max <= step_phase: the reference); ADIABATIC, the
-    interaction-picture steps of ``analysis.adiabatic`` (a step count independent of the
-    stiffest frequency; less accurate, see docs/critical-speeds.md)."""
+    """How a speed's monodromy is integrated: ADIABATIC (the default), the
+    interaction-picture steps of ``analysis.adiabatic``, whose count does not follow the
+    stiffest frequency; MAGNUS, the fourth-order Magnus steps of ``analysis.floquet`` (h
+    omega_max <= step_phase), as accurate and many times slower below a few thousand rev/min
+    (docs/critical-speeds.md, "Speed")."""
 
     MAGNUS = "magnus"
     ADIABATIC = "adiabatic"
@@ -134,11 +135,18 @@ class PeriodicModel:
         values, vectors = np.linalg.eigh(0.5 * (mean + mean.T))
         return (vectors * np.sqrt(values)) @ vectors.T
 
-    @functools.cached_property
+    @property
     def adiabatic(self) -> adiabatic.AdiabaticBasis:
         """A0, A0', A1, A2 of dx/dtheta = (A0 / Omega + A1 + Omega A2) x, x = (q, q'),
         decomposed over ADIABATIC_GRID crank angles (``analysis.adiabatic``): built once, used
-        at every speed."""
+        at every speed; its refusal (NumericalError) is kept and raised again, not rebuilt."""
+        built = self._adiabatic_or_refusal
+        if isinstance(built, NumericalError):
+            raise built
+        return built
+
+    @functools.cached_property
+    def _adiabatic_or_refusal(self) -> adiabatic.AdiabaticBasis | NumericalError:
         samples = self._first_order_samples
         n = samples.shape[-1]
         theta = 2.0 * np.pi * np.arange(ADIABATIC_GRID + 1) / ADIABATIC_GRID
@@ -149,7 +157,10 @@ class PeriodicModel:
             out[:, n:, n:] = -fourier_series(samples[:, 0], theta, order)
         a1[:, n:, n:] = -fourier_series(samples[:, 1], theta)
         a2[:, n:, :n] = -fourier_series(samples[:, 3], theta)
-        return adiabatic.adiabatic_basis(self.angles[0] + theta, a0, a0_prime, a1, a2)
+        try:
+            return adiabatic.adiabatic_basis(self.angles[0] + theta, a0, a0_prime, a1, a2)
+        except NumericalError as refusal:
+            return refusal
 
     def system(self, speed: float, *, energy_coordinates: bool = False):
         """times (m,) [s] -> A(t) (m, 2n, 2n) at crank speed ``speed`` [rad/s], t = 0 at the
@@ -273,19 +284,26 @@ STEP_PHASE = 2.0  # h omega_max bound [rad]: ln|mu| within 1.3e-4 per turn of h 
 
 def speed_multipliers(model: PeriodicModel, speed: float, steps: int = 200,
                       step_phase: float = STEP_PHASE,
-                      integrator: Integrator = Integrator.MAGNUS) -> FloquetResult:
-    """Floquet multipliers over one revolution at crank ``speed`` [rad/s] (> 0), by at least
+                      integrator: Integrator = Integrator.ADIABATIC,
+                      adiabatic_steps: int = ADIABATIC_STEPS) -> FloquetResult:
+    """Floquet multipliers over one revolution at crank ``speed`` [rad/s] (> 0). With
+    ``Integrator.ADIABATIC``, by ``adiabatic_steps`` adiabatic steps at least (more where the
+    couplings or the damping need them), and by the Magnus steps where the adiabatic basis
+    refuses or its grid cannot give them (logged). With ``Integrator.MAGNUS``, by at least
     ``steps`` Magnus steps, and more where needed to keep h max|eig A| <= ``step_phase``: at
     low speed one revolution spans many periods of the highest basis frequency, and the
-    Magnus step's error grows with h omega_max (docs/critical-speeds.md, convergence). With
-    ``Integrator.ADIABATIC``, by ADIABATIC_STEPS adiabatic steps at least (more where the
-    damping needs them), and by the Magnus steps where the adiabatic basis' grid cannot give
-    them (logged)."""
+    Magnus step's error grows with h omega_max (docs/critical-speeds.md, convergence)."""
+    return _multipliers(model, speed, steps, step_phase, integrator, adiabatic_steps)[0]
+
+
+def _multipliers(model, speed, steps, step_phase, integrator, adiabatic_steps):
+    """``speed_multipliers`` and the integrator that gave them."""
     if integrator is Integrator.ADIABATIC:
         try:
-            return adiabatic.adiabatic_monodromy(model.adiabatic, speed, ADIABATIC_STEPS)
+            return (adiabatic.adiabatic_monodromy(model.adiabatic, speed, adiabatic_steps),
+                    Integrator.ADIABATIC)
         except NumericalError as error:
-            log.warning("adiabatic integrator refused at %.6g rad/s (%s): Magnus steps",
+            log.warning("adiabatic steps refused at %.6g rad/s (%s): Magnus steps there",
                         speed, error)
     period = 2.0 * np.pi / speed
     system = model.system(speed, energy_coordinates=True)
@@ -294,7 +312,7 @@ def speed_multipliers(model: PeriodicModel, speed: float, steps: int = 200,
     n = len(model.frequencies)
     scale = np.eye(2 * n)
     scale[:n, :n] = model.energy_scale
-    return floquet(np.linalg.solve(scale, scaled.monodromy @ scale), period)
+    return floquet(np.linalg.solve(scale, scaled.monodromy @ scale), period), Integrator.MAGNUS
 
 
 @dataclasses.dataclass(frozen=True)
@@ -314,51 +332,63 @@ class InstabilityRange:
 class StabilityMap:
     """Per speed [rad/s]: the largest multiplier modulus [-], growth rate [1/s] and stiffness
     floor [(rad/s)^2] (``PeriodicModel.stiffness_floor``: negative where the frozen frame is
-    quasi-statically divergent at some crank angle); integrator: how each speed's monodromy
-    was integrated."""
+    quasi-statically divergent at some crank angle); integrator: how the monodromies were
+    integrated, and ``magnus_fallback`` (bool per speed): where the adiabatic steps were
+    refused and the Magnus steps taken instead."""
 
     speeds: np.ndarray
     largest_modulus: np.ndarray
     growth_rate: np.ndarray
     ranges: tuple[InstabilityRange, ...]
     stiffness_floor: np.ndarray
-    integrator: Integrator = Integrator.MAGNUS
+    integrator: Integrator = Integrator.ADIABATIC
+    magnus_fallback: np.ndarray | None = None
+
+    def __post_init__(self):
+        if self.magnus_fallback is None:
+            object.__setattr__(self, "magnus_fallback", np.zeros(len(self.speeds), dtype=bool))
 
 
 def stability_map(model: PeriodicModel, speeds: np.ndarray, steps: int = 200,
                   harmonics: int = 6, show_progress: bool = False,
                   step_phase: float = STEP_PHASE,
-                  integrator: Integrator = Integrator.MAGNUS) -> StabilityMap:
+                  integrator: Integrator = Integrator.ADIABATIC,
+                  adiabatic_steps: int = ADIABATIC_STEPS) -> StabilityMap:
     """The largest Floquet multiplier over ``speeds`` [rad/s]. At zero speed the equations do
     not vary: nothing is parametrically excited, the modulus is 1 and the rate 0 by definition
     (the damped modes decay). The speeds go out in chunks through ``parallel.run_tasks``: in
     this process, or on the dask cluster of ``parallel.use_scheduler`` (each speed is
     computed alone, so the result is the same wherever it runs); ``show_progress``: a bar;
-    ``integrator``: as ``speed_multipliers``."""
+    ``integrator``, ``adiabatic_steps``: as ``speed_multipliers``."""
     speeds = np.asarray(speeds, dtype=float)
     # on a cluster a few chunks per worker; here one speed a chunk, for the bar
     count = 4 * workers(n_jobs=1) if on_cluster() else len(speeds)
     chunks = np.array_split(np.arange(len(speeds)), max(1, min(len(speeds), count)))
-    parts = run_tasks(_speed_chunk, [(model, speeds[c], steps, step_phase, integrator)
-                                     for c in chunks],
+    parts = run_tasks(_speed_chunk, [(model, speeds[c], steps, step_phase, integrator,
+                                      adiabatic_steps) for c in chunks],
                       n_jobs=1, show_progress=show_progress, label="speed chunks")
     modulus = np.concatenate([p[0] for p in parts])
     rate = np.concatenate([p[1] for p in parts])
+    fallback = np.concatenate([p[2] for p in parts])
     floor = np.array([model.stiffness_floor(w) for w in speeds])
     return StabilityMap(speeds, modulus, rate,
                         _ranges(model, speeds, modulus, rate, floor, harmonics), floor,
-                        integrator)
+                        integrator, fallback)
 
 
 def _speed_chunk(model: PeriodicModel, speeds: np.ndarray, steps: int, step_phase: float,
-                 integrator: Integrator = Integrator.MAGNUS):
-    """(largest modulus, growth rate) at each of ``speeds`` [rad/s]."""
+                 integrator: Integrator, adiabatic_steps: int):
+    """(largest modulus, growth rate, Magnus steps taken for refused adiabatic ones) at each
+    of ``speeds`` [rad/s]."""
     modulus, rate = np.ones(len(speeds)), np.zeros(len(speeds))
+    fallback = np.zeros(len(speeds), dtype=bool)
     for i, speed in enumerate(speeds):
         if speed > 0.0:
-            result = speed_multipliers(model, speed, steps, step_phase, integrator)
+            result, used = _multipliers(model, speed, steps, step_phase, integrator,
+                                        adiabatic_steps)
             modulus[i], rate[i] = result.largest_modulus, result.growth_rate
-    return modulus, rate
+            fallback[i] = used is not integrator
+    return modulus, rate, fallback
 
 
 def _ranges(model, speeds, modulus, rate, floor, harmonics):

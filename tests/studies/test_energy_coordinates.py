@@ -7,7 +7,7 @@ from conftest import CASES_DIR
 
 from flexlink.analysis.floquet import monodromy
 from flexlink.scene import load_scene
-from flexlink.studies.stability_map import periodic_model, speed_multipliers
+from flexlink.studies.stability_map import Integrator, periodic_model, speed_multipliers
 from flexlink.units import RPM
 
 
@@ -33,7 +33,7 @@ def test_multipliers_are_those_of_the_plain_coordinates(model, rpm):
     # the same Magnus steps on S A S^-1 and on A: Phi differs by the similarity only, so the
     # monodromy (turned back) agrees to round-off amplified by the steps: 1e-9 of its size
     speed = rpm * RPM
-    scaled = speed_multipliers(model, speed)
+    scaled = speed_multipliers(model, speed, integrator=Integrator.MAGNUS)
     plain_system = model.system(speed)
     size = np.abs(np.linalg.eigvals(plain_system((model.angles - model.angles[0]) / speed)))
     steps = max(200, int(np.ceil(2 * np.pi / speed * size.max() / 2.0)))

@@ -3,8 +3,11 @@ import numpy as np
 import pytest
 from conftest import CASES_DIR
 
+from flexlink.output.stability_map import stability_document, stability_lines
 from flexlink.scene import load_scene
+from flexlink.studies.stability_convergence import map_convergence
 from flexlink.studies.stability_map import (
+    ADIABATIC_STEPS,
     Integrator,
     periodic_model,
     speed_multipliers,
@@ -27,8 +30,8 @@ def test_growth_per_turn_agrees_with_fine_magnus_steps(model, rpm):
     # 5.5e-5 between 10 and 3000 rev/min (docs/critical-speeds.md, "Speed"; 2e-6 and 3.9e-5
     # here); the high speeds keep the reference cheap
     speed = rpm * RPM
-    reference = speed_multipliers(model, speed, step_phase=1.0)
-    fast = speed_multipliers(model, speed, integrator=Integrator.ADIABATIC)
+    reference = speed_multipliers(model, speed, step_phase=1.0, integrator=Integrator.MAGNUS)
+    fast = speed_multipliers(model, speed)
     assert fast.growth_per_period == pytest.approx(reference.growth_per_period, abs=1e-4)
 
 
@@ -37,8 +40,9 @@ def test_map_finds_the_same_unstable_speeds(model):
     # rev/min (0.59 and 1.20): the same speeds are unstable with either integrator, and the
     # moduli agree to 1e-3 (ln |mu| within 1e-4, as above)
     speeds = np.array([2500.0, 2900.0, 3000.0]) * RPM
-    magnus = stability_map(model, speeds)
-    fast = stability_map(model, speeds, integrator=Integrator.ADIABATIC)
+    magnus = stability_map(model, speeds, integrator=Integrator.MAGNUS)
+    fast = stability_map(model, speeds)
+    assert fast.integrator is Integrator.ADIABATIC and not fast.magnus_fallback.any()
     assert np.array_equal(magnus.largest_modulus > 1.0, fast.largest_modulus > 1.0)
     assert fast.largest_modulus == pytest.approx(magnus.largest_modulus, rel=1e-3)
     # and the map did take the adiabatic steps: its moduli are those of speed_multipliers
@@ -47,3 +51,38 @@ def test_map_finds_the_same_unstable_speeds(model):
              for w in speeds]
     assert np.array_equal(fast.largest_modulus, alone)
     assert not np.array_equal(fast.largest_modulus, magnus.largest_modulus)
+
+
+def test_the_map_converges_in_the_adiabatic_steps(model):
+    # the convergence study of the default steps: 512 (the default) and 1024 equal steps a
+    # turn on the 2048-angle basis, against Magnus steps at h omega_max = 1. Measured: 8.4e-6
+    # then 5.3e-7 at 300 rev/min, 2.1e-5 then 2.0e-6 at 1000 (a fourth-order step gives 16
+    # times per doubling; 4 leaves room for the reference's own error, 6e-7 at 1000 rev/min);
+    # a second-order step (the commutator dropped) would fall 4 times at best
+    speeds = np.array([300.0, 1000.0]) * RPM
+    reference = np.array([speed_multipliers(model, w, step_phase=1.0,
+                                            integrator=Integrator.MAGNUS).growth_per_period
+                          for w in speeds])
+    coarse, fine = map_convergence(load_scene(CASES_DIR / "case1.toml"), speeds, n_modes=6,
+                                   steps=(ADIABATIC_STEPS, 2 * ADIABATIC_STEPS))
+    assert (coarse.integrator, coarse.steps, fine.steps) == (Integrator.ADIABATIC, 512, 1024)
+    error = [np.abs(s.growth_per_turn - reference) for s in (coarse, fine)]
+    assert np.all(error[0] < 1e-4), error
+    assert np.all(error[1] < error[0] / 4.0), error
+
+
+def test_an_untracked_basis_takes_the_magnus_steps_and_says_where():
+    # Table II case 2's mode 2 veers faster than the 2048 angles resolve: the adiabatic basis
+    # is refused, and the map takes the Magnus steps at every moving speed, bit for bit those
+    # of the Magnus map, and lists the speeds in the document and the text
+    model = periodic_model(load_scene(CASES_DIR / "case2.toml"), n_modes=6)
+    speeds = np.array([0.0, 3000.0]) * RPM
+    result = stability_map(model, speeds)
+    assert result.magnus_fallback.tolist() == [False, True]
+    magnus = stability_map(model, speeds, integrator=Integrator.MAGNUS)
+    assert np.array_equal(result.largest_modulus, magnus.largest_modulus)
+    assert not magnus.magnus_fallback.any()
+    document = stability_document("case 2", result, model)
+    assert document["magnus_fallback_rev_per_min"] == pytest.approx([3000.0])
+    assert ("adiabatic steps refused at 1 speed (3000 to 3000 rev/min; the log says why): "
+            "Magnus steps there") in stability_lines(document)

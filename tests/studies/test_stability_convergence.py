@@ -5,6 +5,7 @@ from conftest import CASES_DIR
 
 from flexlink.scene import load_scene
 from flexlink.studies.stability_convergence import map_convergence
+from flexlink.studies.stability_map import Integrator
 
 SPEEDS = np.array([1500.0, 2200.0, 3000.0]) * np.pi / 30.0  # rad/s
 SMALL = dict(n_modes=2, poses=(13,), elements_per_link=2)
@@ -17,7 +18,8 @@ def scene():
 
 @pytest.fixture(scope="module")
 def by_step(scene):
-    return map_convergence(scene, SPEEDS, step_phases=(4.0, 2.0, 1.0), **SMALL)
+    return map_convergence(scene, SPEEDS, integrator=Integrator.MAGNUS, steps=(4.0, 2.0, 1.0),
+                           **SMALL)
 
 
 def test_growth_converges_at_fourth_order_in_the_step(by_step):
@@ -33,7 +35,8 @@ def test_growth_converges_at_fourth_order_in_the_step(by_step):
 def test_checked_basis_agrees_with_a_wider_one(scene, by_step):
     checked = by_step[1]
     assert checked.basis_error <= 1e-3
-    [wider] = map_convergence(scene, SPEEDS, basis_sizes=(checked.basis_size + 2,), **SMALL)
+    [wider] = map_convergence(scene, SPEEDS, basis_sizes=(checked.basis_size + 2,),
+                              integrator=Integrator.MAGNUS, **SMALL)
     # two more directions move the growth per turn by 0.0165 at most (measured); the ranges
     # stay put
     assert np.abs(wider.growth_per_turn - checked.growth_per_turn).max() < 0.03
@@ -42,6 +45,7 @@ def test_checked_basis_agrees_with_a_wider_one(scene, by_step):
 
 def test_a_basis_that_fails_the_check_moves_the_ranges(scene, by_step):
     # four directions (the check's error near 300 %) put 2200 rev/min in an unstable range
-    [narrow] = map_convergence(scene, SPEEDS, basis_sizes=(4,), **SMALL)
+    [narrow] = map_convergence(scene, SPEEDS, basis_sizes=(4,), integrator=Integrator.MAGNUS,
+                               **SMALL)
     assert narrow.basis_error > 1.0
     assert narrow.growth_per_turn[1] > 0.0 > by_step[1].growth_per_turn[1]
