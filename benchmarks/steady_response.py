@@ -50,7 +50,9 @@ def main() -> None:
     repeats = parser.parse_args().repeats
     t0 = time.process_time()
     model = forced_model(load_scene(ROOT / "cases/case3.toml"), n_modes=6)
-    print(f"case 3, 6 modes: model {time.process_time() - t0:.2f} s CPU (once per scene)")
+    _ = model.periodic.adiabatic  # the verdict's adiabatic basis: built once per model, like it
+    print(f"case 3, 6 modes: model and adiabatic basis {time.process_time() - t0:.2f} s CPU "
+          "(once per scene)")
     worst = 0.0
     for rpm in SPEEDS:
         speed = rpm * RPM
