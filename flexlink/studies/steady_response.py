@@ -9,7 +9,13 @@ crank speed) and the scene's [[loads]] (independent of speed),
     M(theta) x'' + (C + Omega G1) x' + (K + K_ext + Omega^2 K2) x = Omega^2 f2(theta) + f_ext(theta),
 
 both projected like the matrices at each of the model's poses and interpolated in theta by
-their Fourier series. The steady state is found by shooting (``analysis.periodic_response``).
+their Fourier series. The steady state is found by harmonic balance
+(``analysis.harmonic_balance``): the interpolated coefficients are exact trigonometric
+polynomials of the crank angle, so the periodic solution's harmonics fall spectrally and their
+count does not grow with the stiffest basis frequency (a time integration over the turn needs
+steps ~ omega_max / Omega). Whether the steady state exists (every Floquet multiplier inside
+the unit circle) is the stability map's verdict at the same speed
+(``stability_map.speed_multipliers``).
 
 Outputs at named points (a link and a distance from its start joint; by default each link's
 midspan): the bending deflection v(s) - chord (the local transverse displacement less the line
@@ -25,7 +31,8 @@ import math
 
 import numpy as np
 
-from flexlink.analysis.periodic_response import UnstableError, periodic_solution
+from flexlink.analysis.harmonic_balance import (HarmonicSolution, fourier_coefficients,
+                                               harmonic_balance)
 from flexlink.errors import InputError, NumericalError
 from flexlink.fe.assembly import reduced_columns, rigid_elimination
 from flexlink.fe.beams import shear_parameter
@@ -36,10 +43,15 @@ from flexlink.fe.timoshenko import shape_functions
 from flexlink.kinematics.dynamics import rigid_motion
 from flexlink.scene import Scene
 from flexlink.studies.operating_point import external_loads, link_motion, reduced_pair, reducer
-from flexlink.studies.stability_map import PeriodicModel, fourier_series, periodic_model
+from flexlink.studies.stability_map import (PeriodicModel, fourier_series, periodic_model,
+                                           speed_multipliers)
 
 SAMPLES = 180  # crank angles per revolution of the output (2 deg)
-STEPS = 200  # Magnus steps per revolution at least (more where h omega_max > 1)
+TOLERANCE = 1e-7  # harmonic balance's error estimate, relative to the largest |q| over the turn
+
+
+class UnstableError(NumericalError):
+    """The free motion grows (a Floquet multiplier |mu| >= 1): no steady state exists."""
 
 
 @dataclasses.dataclass(frozen=True)
@@ -84,26 +96,19 @@ class ForcedModel:
         periodic model interpolates its matrices."""
         return fourier_series(samples, np.asarray(theta) - self.periodic.angles[0])
 
-    def system(self, speed: float):
-        """times (m,) [s] -> A (m, 2n, 2n) of x' = A x + b: the stability map's equations
-        (``PeriodicModel.system``), t = 0 at the first pose."""
-        return self.periodic.system(speed)
-
-    def forcing(self, speed: float):
-        """times (m,) [s] -> b (m, 2n) of x' = A x + b at crank ``speed`` [rad/s]: M^-1 f
-        interpolated from the poses, as the periodic model interpolates M^-1 K."""
-        n = len(self.periodic.frequencies)
-        mass = self.periodic.mass
-        inertia = np.linalg.solve(mass, self.inertia_forcing[..., None])[..., 0]
-        external = np.linalg.solve(mass, self.external_forcing[..., None])[..., 0]
-        per_pose = speed**2 * inertia + external
-
-        def b(t):
-            theta = self.periodic.angles[0] + speed * np.asarray(t)
-            out = np.zeros((len(theta), 2 * n))
-            out[:, n:] = self.at(per_pose, theta)
-            return out
-        return b
+    def harmonic_equations(self, speed: float):
+        """Fourier coefficients (``analysis.harmonic_balance``) of S = M^-1 (K + Omega^2 K2)
+        [1/s^2], D = M^-1 (C + Omega G1) [1/s] (both (P + 1, n, n)) and g = M^-1 (Omega^2 f2
+        + f_ext) ((P + 1, n)) at crank ``speed`` Omega [rad/s], theta from the first pose:
+        the stability map's equations (``PeriodicModel.system``) read at its poses."""
+        periodic = self.periodic
+        n = len(periodic.frequencies)
+        a = periodic.system(speed)((periodic.angles - periodic.angles[0]) / speed)
+        mass = periodic.mass
+        loads = speed**2 * self.inertia_forcing + self.external_forcing
+        g = np.linalg.solve(mass, loads[..., None])[..., 0]
+        return (fourier_coefficients(-a[:, n:, :n]), fourier_coefficients(-a[:, n:, n:]),
+                fourier_coefficients(g))
 
 
 def midspans(scene: Scene) -> tuple[StrainPoint, ...]:
@@ -225,35 +230,32 @@ class SteadyResponse:
         return np.abs(self.deflection).max(axis=0)
 
 
-def magnus_steps(model: ForcedModel, speed: float, steps: int = STEPS) -> int:
-    """At least ``steps`` per revolution, and enough to keep h omega_max <= 1/4 (the step that
-    brings the periodic solution within 1e-7 of a tight time integration on Table II case 1,
-    where h omega_max <= 1/2 leaves 1e-6 and 1, the stability map.s rule, 2e-5)."""
-    periodic = model.periodic
-    period = 2.0 * np.pi / speed
-    a = model.system(speed)((periodic.angles - periodic.angles[0]) / speed)
-    return max(steps, int(np.ceil(4.0 * period * np.abs(np.linalg.eigvals(a)).max())))
+def periodic_solution(model: ForcedModel, speed: float,
+                      tolerance: float = TOLERANCE) -> HarmonicSolution:
+    """The periodic modal coordinates q(theta - first pose) at crank ``speed`` [rad/s] by
+    harmonic balance to ``tolerance`` (its error estimate), whether stable or not."""
+    return harmonic_balance(*model.harmonic_equations(speed), speed, tolerance)
 
 
 def steady_response(model: ForcedModel, speed: float, samples: int = SAMPLES,
-                    steps: int = STEPS) -> SteadyResponse:
+                    tolerance: float = TOLERANCE) -> SteadyResponse:
     """The steady response at crank ``speed`` [rad/s] > 0 over one revolution at ``samples``
-    crank angles. UnstableError where a Floquet multiplier has |mu| >= 1."""
+    crank angles. UnstableError where a Floquet multiplier has |mu| >= 1 (the stability
+    map's multipliers at this speed, by its own step rule)."""
     if not (math.isfinite(speed) and speed > 0.0):
         raise InputError(f"crank speed {speed} rad/s", field="--speed",
                          expected="a positive finite speed")
-    n = len(model.periodic.frequencies)
-    # integrated for (R q, q') (``PeriodicModel.energy_scale``; the forcing has no R q part):
-    # fewer squarings in each step's exponential, the same solution
-    solution = periodic_solution(model.periodic.system(speed, energy_coordinates=True),
-                                 model.forcing(speed), 2.0 * np.pi / speed,
-                                 magnus_steps(model, speed, steps), samples)
-    angles = model.periodic.angles[0] + speed * solution.times
-    q = np.linalg.solve(model.periodic.energy_scale, solution.states[:, :n].T).T
+    stability = speed_multipliers(model.periodic, speed)
+    if stability.largest_modulus >= 1.0:
+        raise UnstableError(f"largest Floquet multiplier |mu| = {stability.largest_modulus:.6g}"
+                            " >= 1: the free motion grows, no steady state exists")
+    turn = 2.0 * np.pi * np.arange(samples) / samples
+    q = periodic_solution(model, speed, tolerance).at(turn)
+    angles = model.periodic.angles[0] + turn
     deflection = np.einsum("spn,sn->sp", model.at(model.deflection, angles), q)
     strain = -model.half_depth * np.einsum("spn,sn->sp", model.at(model.curvature, angles), q)
     return SteadyResponse(speed=float(speed), angles=angles, deflection=deflection,
-                          strain=strain, largest_modulus=solution.stability.largest_modulus)
+                          strain=strain, largest_modulus=stability.largest_modulus)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -273,7 +275,7 @@ class ResponseSweep:
 
 
 def response_sweep(model: ForcedModel, speeds, samples: int = SAMPLES,
-                   steps: int = STEPS, progress=None) -> ResponseSweep:
+                   tolerance: float = TOLERANCE, progress=None) -> ResponseSweep:
     """Peak strain and deflection over ``speeds`` [rad/s] (speed 0: no inertia loads, the
     static answer to the scene's [[loads]]); unstable speeds are NaN, not refused."""
     speeds = np.asarray(speeds, dtype=float)
@@ -285,7 +287,7 @@ def response_sweep(model: ForcedModel, speeds, samples: int = SAMPLES,
             strain[i], deflection[i] = _static_peaks(model, samples)
             continue
         try:
-            r = steady_response(model, speeds[i], samples, steps)
+            r = steady_response(model, speeds[i], samples, tolerance)
         except UnstableError:
             continue
         strain[i], deflection[i], modulus[i] = r.peak_strain, r.peak_deflection, \

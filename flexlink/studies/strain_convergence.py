@@ -16,9 +16,9 @@ from collections.abc import Iterable
 
 import numpy as np
 
-from flexlink.analysis.periodic_response import UnstableError
 from flexlink.scene import Scene
-from flexlink.studies.steady_response import StrainPoint, forced_model, steady_response
+from flexlink.studies.steady_response import (StrainPoint, UnstableError, forced_model,
+                                              steady_response)
 
 
 @dataclasses.dataclass(frozen=True)

@@ -35,7 +35,7 @@ def test_one_speed_writes_strain_over_the_turn(tmp_path):
                                        "--at", "coupler:60 mm", "--json", "--out",
                                        str(tmp_path)])
     assert result.exit_code == 0, result.output
-    document = json.loads(result.output)
+    document = json.loads(result.stdout)
     [point] = document["points"]
     assert point["link"] == "coupler" and point["position_m"] == pytest.approx(0.06)
     assert point["peak_strain"] == pytest.approx(max(abs(x) for x in point["strain"]))

@@ -23,15 +23,15 @@ from flexlink.kinematics.dynamics import rigid_motion
 from flexlink.scene import load_scene
 from flexlink.studies.operating_point import link_motion
 from flexlink.studies.stability_map import PeriodicModel
-from flexlink.analysis.periodic_response import periodic_solution
 from flexlink.studies.steady_response import (
     ForcedModel,
     StrainPoint,
     forced_model,
-    magnus_steps,
     midspans,
     parse_point,
+    periodic_solution,
     response_sweep,
+    UnstableError,
     steady_response,
 )
 from flexlink.units import RPM
@@ -66,7 +66,7 @@ def _rows(rows, angles, theta):
                     reason="10 s: run with HYPOTHESIS_PROFILE=thorough")
 def test_periodic_solution_is_the_time_integration_over_a_turn(case1):
     # The same reduced equations, written out here from the model's samples, by DOP853
-    # (rtol 1e-10) over one turn from the shooting state: it must close on itself (periodic)
+    # (rtol 1e-10) over one turn from the harmonic-balance state: it must close on itself
     # and pass through every sampled state. In CI the linkage's periodic solution is checked
     # against a run from rest to steady state on a 2-vector basis
     # (test_linkage_steady_state.py); this checked 7-vector basis runs with the thorough
@@ -74,14 +74,14 @@ def test_periodic_solution_is_the_time_integration_over_a_turn(case1):
     model = forced_model(case1, n_modes=1, poses=19, damping_ratio=0.5, elements_per_link=2)
     p, speed = model.periodic, 1200 * RPM
     response = steady_response(model, speed, samples=24)
-    x0 = periodic_solution(model.system(speed), model.forcing(speed), 2 * np.pi / speed,
-                           magnus_steps(model, speed), 24).states
+    solution = periodic_solution(model, speed)
+    x0 = np.concatenate([solution.at([0.0])[0], speed * solution.at([0.0], derivative=1)[0]])
     n = len(p.frequencies)
     rhs = written_out_equations(model, speed)
     period = 2 * np.pi / speed
-    run = solve_ivp(rhs, (0, period), x0[0], method="DOP853", rtol=1e-10, atol=1e-20,
+    run = solve_ivp(rhs, (0, period), x0, method="DOP853", rtol=1e-10, atol=1e-20,
                     dense_output=True)
-    closing = np.abs(run.sol(period) - x0[0]).max() / np.abs(x0).max()
+    closing = np.abs(run.sol(period) - x0).max() / np.abs(run.sol(run.t)).max()
     q = run.sol((response.angles - p.angles[0]) / speed)[:n].T
     strain = -model.half_depth * np.einsum(
         "spn,sn->sp", _rows(model.curvature, p.angles, response.angles), q)
@@ -159,6 +159,19 @@ def test_coupled_modes_equal_a_long_time_integration():
         "spn,sn->sp", _rows(model.curvature, p.angles, response.angles), q)
     error = np.abs(response.strain - strain).max() / np.abs(strain).max()
     assert error < 1e-6, error
+
+
+def test_a_speed_whose_free_motion_grows_has_no_steady_state():
+    # at 60 Hz the centrifugal softening -Omega^2 (1.4e5 (rad/s)^2) exceeds the first mode's
+    # stiffness at its weakest pose (0.7 (2 pi 50 Hz)^2 = 6.9e4): the free motion grows
+    # (|mu| ~ 31 per turn), harmonic balance would still return a periodic answer, and the
+    # study must refuse it; at 10 Hz it is stable. A sweep marks the speed, not refuses it.
+    model = synthetic()
+    with pytest.raises(UnstableError, match="no steady state"):
+        steady_response(model, 2 * np.pi * 60.0, samples=12)
+    sweep = response_sweep(model, 2 * np.pi * np.array([10.0, 60.0]), samples=12)
+    assert list(sweep.unstable) == [False, True]
+    assert sweep.largest_modulus[0] < 1.0 and np.isfinite(sweep.peak_strain[0]).all()
 
 
 def _hermite_curvature(u, link, position):

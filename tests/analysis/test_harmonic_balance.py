@@ -1,0 +1,110 @@
+"""The periodic solution by harmonic balance, against closed forms, a long time integration
+and a solve with many more harmonics.
+
+One DOF, m q'' + c q' + k q = F cos(W t): the steady amplitude is
+F / k / sqrt((1 - r^2)^2 + (2 zeta r)^2), r = W / w0, with phase lag atan2(2 zeta r, 1 - r^2)
+(any vibrations text, e.g. Thomson, Theory of Vibration, section 3.1).
+
+In time, with theta = Omega t, the equations solved are
+    q'' + D(Omega t) q' + S(Omega t) q = g(Omega t)   (' = d/dt),
+written out here for the integrations; the module takes them in theta.
+"""
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+
+from flexlink.analysis.harmonic_balance import fourier_coefficients, harmonic_balance
+from flexlink.errors import NumericalError
+
+
+def one_dof(w0, zeta, force, harmonics=1):
+    """Coefficients (S, D, g) of q'' + 2 zeta w0 q' + w0^2 q = force cos(theta)."""
+    S = np.zeros((harmonics + 1, 1, 1), complex)
+    D = np.zeros_like(S)
+    g = np.zeros((harmonics + 1, 1), complex)
+    S[0], D[0], g[1] = w0**2, 2 * zeta * w0, force / 2
+    return S, D, g
+
+
+@pytest.mark.parametrize("r", [0.3, 0.9, 1.0, 1.1, 2.5])
+@pytest.mark.parametrize("zeta", [0.01, 0.1])
+def test_one_dof_amplitude_and_phase_are_the_closed_form(r, zeta):
+    w0, force = 2 * np.pi * 5.0, 3.0
+    w = r * w0
+    solution = harmonic_balance(*one_dof(w0, zeta, force), w)
+    theta = np.linspace(0, 2 * np.pi, 64, endpoint=False)
+    amplitude = force / w0**2 / np.hypot(1 - r**2, 2 * zeta * r)
+    lag = np.arctan2(2 * zeta * r, 1 - r**2)
+    # constant coefficients: one harmonic, solved exactly up to GMRES' residual (1e-12) and
+    # round-off of a 1 x 1 system
+    assert np.abs(solution.at(theta)[:, 0] - amplitude * np.cos(theta - lag)).max() \
+        <= 1e-10 * amplitude
+    assert np.allclose(w * solution.at(theta, derivative=1)[:, 0],
+                       -amplitude * w * np.sin(theta - lag), rtol=0, atol=1e-10 * amplitude * w)
+
+
+def test_quasi_static_limit_is_force_over_stiffness():
+    # r -> 0: the amplitude tends to F / k, its excess 1 / sqrt((1 - r^2)^2 + (2 zeta r)^2) - 1
+    # ~ (1 - 2 zeta^2) r^2 quarters when r halves (to 1 %: the r^4 terms)
+    w0, zeta = 2 * np.pi * 50.0, 0.05
+    theta = np.linspace(0, 2 * np.pi, 400, endpoint=False)
+    excess = [np.abs(harmonic_balance(*one_dof(w0, zeta, 1.0), r * w0).at(theta)).max()
+              * w0**2 - 1.0 for r in (0.02, 0.01)]
+    assert excess[0] == pytest.approx(4 * excess[1], rel=0.01)
+    assert excess[0] == pytest.approx((1 - 2 * zeta**2) * 0.02**2, rel=0.01)
+
+
+def mathieu(delta, epsilon, c, wobble):
+    """A forced damped Mathieu equation with a varying damping, coefficients in theta and
+    the functions of theta they stand for: S = delta (1 + epsilon cos theta), D = 2 c (1 +
+    wobble sin theta), g = sin theta + 0.3 cos 3 theta."""
+    def S(t): return delta * (1 + epsilon * np.cos(t))
+    def D(t): return 2 * c * (1 + wobble * np.sin(t))
+    def g(t): return np.sin(t) + 0.3 * np.cos(3 * t)
+    theta = 2 * np.pi * np.arange(7) / 7  # degree 3: 7 samples give every coefficient
+    return ((fourier_coefficients(S(theta)[:, None, None]),
+             fourier_coefficients(D(theta)[:, None, None]), fourier_coefficients(g(theta)[:, None])),
+            (S, D, g))
+
+
+@pytest.mark.parametrize("speed", [1.0, 2.7])
+def test_forced_damped_mathieu_equals_a_long_time_integration(speed):
+    # outside the tongues (delta / speed^2 away from k^2 / 4) with damping: a DOP853 run from
+    # rest over 60 periods has forgotten its start to exp(-c 60 T) < 1e-12; the two then agree
+    # to the integrator's error. The varying damping and the speed are there so that a wrong
+    # Omega (k - d) factor of the damping term cannot pass.
+    delta, c = 0.6 * speed**2, 0.08 * speed
+    coefficients, (S, D, g) = mathieu(delta, 0.5, c, 0.5)
+    solution = harmonic_balance(*coefficients, speed, tolerance=1e-12)
+    period, turns = 2 * np.pi / speed, 60
+    t = np.linspace(0, period, 30, endpoint=False)
+
+    def rhs(time, x):
+        theta = speed * time
+        return [x[1], g(theta) - D(theta) * x[1] - S(theta) * x[0]]
+    run = solve_ivp(rhs, (0, turns * period), [0.0, 0.0], method="DOP853", rtol=1e-12,
+                    atol=1e-14, t_eval=(turns - 1) * period + t)
+    q, dq = solution.at(speed * t)[:, 0], speed * solution.at(speed * t, 1)[:, 0]
+    scale = np.abs(run.y[0]).max()
+    assert np.abs(q - run.y[0]).max() <= 1e-8 * scale
+    assert np.abs(dq - run.y[1]).max() <= 1e-8 * speed * scale
+
+
+def test_a_tolerance_out_of_reach_within_the_cap_is_refused():
+    # a stiff, strongly modulated equation (frozen frequency 100 (1 +- 0.9)^1/2 times the
+    # speed): its harmonics are not settled within 20
+    coefficients, _ = mathieu(1e4, 0.9, 0.02, 0.0)
+    with pytest.raises(NumericalError, match="estimated error .* at 20 harmonics"):
+        harmonic_balance(*coefficients, 1.0, tolerance=1e-8, max_harmonics=20)
+
+
+def test_coefficients_of_mismatched_shapes_are_refused():
+    S, D, g = one_dof(1.0, 0.1, 1.0)
+    with pytest.raises(ValueError, match="must match"):
+        harmonic_balance(S, D[:1], g, 1.0)
+
+
+def test_without_forcing_the_periodic_solution_is_rest():
+    S, D, g = one_dof(1.0, 0.1, 0.0)
+    solution = harmonic_balance(S, D, g, 1.0)
+    assert not solution.coefficients.any() and solution.error == solution.residual == 0.0
