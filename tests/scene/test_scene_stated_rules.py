@@ -69,3 +69,27 @@ def test_a_four_bar_takes_its_own_link_tables_but_not_their_ends_or_mesh(tmp_pat
     error = _refusal(tmp_path, base + "[links.coupler]\nelements = 4\n")
     assert error.field == "links.coupler.elements"
     assert "elements_per_link" in str(error)
+
+
+def test_an_unknown_body_in_a_transmission_pair_names_the_pair(tmp_path):
+    """The refusal of a [linkage] transmission pair naming no body says which pair (its
+    index in the list) and which name, as every unknown-name refusal does."""
+    text = (SCENES_DIR / "wiper.toml").read_text()
+    pairs = 'transmission = [["link1", "rocker1"], ["link2", "rocker2"]]'
+    assert pairs in text
+    error = _refusal(tmp_path, text.replace(pairs, pairs.replace('"rocker2"', '"rocker9"')))
+    assert error.field == "linkage.transmission[1]"
+    assert error.source == str(tmp_path / "scene.toml")
+    assert "unknown body 'rocker9'" in str(error)
+
+
+@pytest.mark.parametrize("scene", [CASES_DIR / "case1.toml", SCENES_DIR / "wiper.toml"])
+def test_every_kind_keeps_its_reference_frequencies(tmp_path, scene):
+    """[reference] is part of the schema for every linkage kind: a general scene's published
+    frequencies reach the scene (and so the reports' comparison) as a four-bar's do."""
+    path = tmp_path / "referenced.toml"
+    path.write_text(f'base = "{scene.as_posix()}"\n'
+                    '[reference]\nsource = "a hammer test"\nEx_Hz = [12.5, 40.0]\n')
+    reference = load_scene(path).reference
+    assert reference.source == "a hammer test"
+    assert reference.columns["Ex"] == (12.5, 40.0)  # exact: both are binary fractions
