@@ -93,3 +93,50 @@ def test_every_kind_keeps_its_reference_frequencies(tmp_path, scene):
     reference = load_scene(path).reference
     assert reference.source == "a hammer test"
     assert reference.columns["Ex"] == (12.5, 40.0)  # exact: both are binary fractions
+
+
+@pytest.mark.parametrize(("drive", "expected"), [
+    ('link = "crank"\njoint = "a"', "'O1'"),  # the crank's ground end
+    ('link = "link1"\njoint = "a"', "a link with a ground end"),  # a coupler has none
+])
+def test_a_drive_off_the_ground_says_where_it_may_sit(tmp_path, drive, expected):
+    """The drive holds a link's rotation at one of its ground joints: elsewhere the refusal
+    names the joint and the link and offers that link's ground ends, or says none exist."""
+    text = (SCENES_DIR / "wiper.toml").read_text()
+    written = 'link = "crank"\njoint = "O1"'
+    assert written in text
+    error = _refusal(tmp_path, text.replace(written, drive))
+    assert error.field == "drive.joint"
+    assert error.source == str(tmp_path / "scene.toml")
+    assert "'a' is not a ground joint of link" in str(error)
+    assert error.expected == expected
+
+
+NOTED = 'value = "20 mm", note = "assumed: a strip"'
+
+
+@pytest.mark.parametrize(("noted", "field", "message", "expected"), [
+    (NOTED + ', why = "x"', "section.width",
+     "a noted value holds only ['note', 'range', 'reason', 'value'], not ['why']", None),
+    (NOTED + ', range = ["12 mm"], reason = "x"', "section.width.range", "got ['12 mm']",
+     "[low, high], each written like the value"),
+    (NOTED + ', range = ["12 mm", "30 mm"]', "section.width.reason", "a range needs its reason",
+     "a text saying why the range is plausible"),
+    (NOTED + ', reason = "x"', "section.width.reason", "a reason without a range",
+     "range = [low, high] with it"),
+    ('value = "20 mm", note = 3', "section.width.note", "got 3", "a text"),
+    ('value = "20 mm", note = "measured", range = ["12 mm", "30 mm"], reason = "x"',
+     "section.width.range", "a range belongs to an assumed value", 'a note starting "assumed"'),
+])
+def test_a_malformed_noted_value_names_its_file_and_part(tmp_path, noted, field, message,
+                                                         expected):
+    """A noted value is { value, note[, range, reason] }: each way of breaking that form is
+    refused naming the file, the part of the value at fault, and what would be accepted."""
+    path = tmp_path / "scene.toml"
+    path.write_text(f'base = "{(CASES_DIR / "case1.toml").as_posix()}"\n'
+                    f'[section]\nwidth = {{ {noted} }}\n')
+    with pytest.raises(InputError) as refusal:
+        read_scene_source(path)
+    error = refusal.value
+    assert (error.source, error.field, error.expected) == (str(path), field, expected)
+    assert str(error).startswith(f"{path}: {field}: {message}")
