@@ -140,3 +140,14 @@ def test_a_malformed_noted_value_names_its_file_and_part(tmp_path, noted, field,
     error = refusal.value
     assert (error.source, error.field, error.expected) == (str(path), field, expected)
     assert str(error).startswith(f"{path}: {field}: {message}")
+
+
+def test_a_noted_value_without_a_note_is_its_value(tmp_path):
+    """The editor schema requires only `value` in a noted value (docs/scene.schema.json): the
+    note may be left out, and the value then reads as if written plainly, with no assumption."""
+    path = tmp_path / "scene.toml"
+    path.write_text(f'base = "{(CASES_DIR / "case1.toml").as_posix()}"\n'
+                    '[section]\nwidth = { value = "21 mm" }\n')
+    src = read_scene_source(path)
+    assert src.data["section"]["width"] == "21 mm"
+    assert "section.width" not in {a.field for a in src.assumptions}
