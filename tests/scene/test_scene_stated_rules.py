@@ -151,3 +151,27 @@ def test_a_noted_value_without_a_note_is_its_value(tmp_path):
     src = read_scene_source(path)
     assert src.data["section"]["width"] == "21 mm"
     assert "section.width" not in {a.field for a in src.assumptions}
+
+
+@pytest.mark.parametrize(("content", "message"), [
+    (None, "file not found"),
+    ("folder", "is a folder, not a scene file"),
+    (b"\xff\xfe not text", "not UTF-8 text (byte 0, line 1): is this a scene file?"),
+    ("[linkage\nR2 = 0.3\n", "not valid TOML: "),
+])
+def test_a_file_that_is_no_scene_says_why(tmp_path, content, message):
+    """Before any key is read, the refusal says what is wrong with the file itself: missing,
+    a folder, not UTF-8, or not TOML (then with the TOML parser's own words and place)."""
+    path = tmp_path / "scene.toml"
+    if content == "folder":
+        path.mkdir()
+    elif isinstance(content, bytes):
+        path.write_bytes(content)
+    elif content is not None:
+        path.write_text(content)
+    with pytest.raises(InputError) as refusal:
+        read_scene_source(path)
+    assert refusal.value.source == str(path)
+    assert str(refusal.value).startswith(f"{path}: {message}")
+    if message == "not valid TOML: ":
+        assert "(at line 1, column 9)" in str(refusal.value)  # tomllib's place of the error
