@@ -175,3 +175,29 @@ def test_a_file_that_is_no_scene_says_why(tmp_path, content, message):
     assert str(refusal.value).startswith(f"{path}: {message}")
     if message == "not valid TOML: ":
         assert "(at line 1, column 9)" in str(refusal.value)  # tomllib's place of the error
+
+
+def test_an_implausible_value_is_refused_in_one_sentence_with_the_way_out(tmp_path):
+    """A unit slip is refused with the range, what it covers, the likely meant value, the
+    count of further findings and how to accept the value after all. Case 1's ratios make
+    the coupler 240 m and the rocker 200 m as well (out of range), the crank 80 m (in)."""
+    path = tmp_path / "scene.toml"
+    path.write_text(f'base = "{(CASES_DIR / "case1.toml").as_posix()}"\n'
+                    '[linkage]\nground = "300 m"\n')
+    with pytest.raises(InputError) as refusal:
+        load_scene(path)
+    assert str(refusal.value) == (
+        f"{path}: linkage.ground: 300 m is outside the plausible range [0.0001, 100] m (a link "
+        "of a machine, 0.1 mm to 100 m); did you mean 300 mm? (and 2 more) (expected a value "
+        'in the range, or [checks] plausibility = "warn")')
+
+
+def test_a_scene_without_a_material_is_refused_naming_the_table(tmp_path):
+    """No [material] and no link's own: the refusal names the file, the table and its forms."""
+    text = (SCENES_DIR / "wiper.toml").read_text()
+    table = text[text.index("[material]"):text.index("[links.crank]")]
+    assert table.count("\n") == 4  # [material], E, density, blank line
+    error = _refusal(tmp_path, text.replace(table, ""))
+    assert (error.source, error.field) == (str(tmp_path / "scene.toml"), "material")
+    assert str(error).startswith(f"{tmp_path / 'scene.toml'}: material: no material given")
+    assert error.expected == "a [material] table: composite, isotropic = 'name', or E and density"
