@@ -201,3 +201,55 @@ def test_a_scene_without_a_material_is_refused_naming_the_table(tmp_path):
     assert (error.source, error.field) == (str(tmp_path / "scene.toml"), "material")
     assert str(error).startswith(f"{tmp_path / 'scene.toml'}: material: no material given")
     assert error.expected == "a [material] table: composite, isotropic = 'name', or E and density"
+
+
+@pytest.mark.parametrize(("scene", "eta", "low", "high"), [
+    (CASES_DIR / "case1.toml", 0.01, 0.002, 0.02),  # a woven composite
+    (SCENES_DIR / "wiper.toml", 1e-3, 1e-4, 1e-2),  # E and density: taken as a metal
+])
+def test_an_unstated_loss_factor_is_the_documented_default_and_an_assumption(scene, eta, low,
+                                                                             high):
+    """docs/damping.md, "Defaults and sources": a [material.composite] defaults to eta = 0.01
+    (range 2e-3 to 2e-2), a material given by E and density to 1e-3 (1e-4 to 1e-2); every
+    link takes it, and the scene lists it as an assumption with that range."""
+    loaded = load_scene(scene)
+    assert set(loaded.loss_factors.values()) == {eta}
+    noted = [a for a in loaded.assumptions if a.field == "material.loss_factor"]
+    assert len(noted) == 1 and noted[0].value == f"{eta:g}"
+    assert f"material loss factor {eta:g}, plausible {low:g} to {high:g}" in noted[0].note
+
+
+CRANK_SECTION = ('section = { width = { value = "15 mm", note = "assumed: 15 mm in-plane depth '
+                 'of the flat links; thickness follows from the link mass" }, bending = '
+                 '"edgewise", mass = "0.0785 kg" }')
+
+
+@pytest.mark.parametrize(("section", "field", "message", "expected"), [
+    ('section = { width = "15 mm", bending = "edgewise" }', "links.crank.section.width",
+     "a flat bar needs thickness, plies with ply_thickness, or mass", None),
+    ('section = { width = "15 mm", thickness = "2 mm" }', "links.crank.section.bending",
+     "missing", "bending = 'flatwise' (thickness in the plane of motion) or 'edgewise' (width "
+     "in the plane) for a flat bar"),
+    ("", "links.crank.section", "no section given", "width with thickness (or plies and "
+     "ply_thickness, or mass), area with second_moment, or a tube"),
+])
+def test_an_incomplete_section_says_which_key_is_missing(tmp_path, section, field, message,
+                                                         expected):
+    """The section forms of the scene reference: a flat bar needs its thickness (or plies, or
+    the link's mass) and its bending; a link with no section keys at all is told the forms."""
+    text = (SCENES_DIR / "wiper.toml").read_text()
+    assert CRANK_SECTION in text
+    error = _refusal(tmp_path, text.replace(CRANK_SECTION, section))
+    assert (error.source, error.field, error.expected) == (str(tmp_path / "scene.toml"), field,
+                                                           expected)
+    assert str(error).startswith(f"{tmp_path / 'scene.toml'}: {field}: {message}")
+
+
+def test_a_section_given_by_area_and_second_moment_is_named_by_its_area(tmp_path):
+    """Every section is labelled with its link, material and size for the messages that
+    concern it; the A-and-I form by its area in m^2 (20 mm^2 = 2e-05 m^2)."""
+    path = tmp_path / "scene.toml"
+    text = (SCENES_DIR / "wiper.toml").read_text()
+    path.write_text(text.replace(CRANK_SECTION, 'section = { area = "20 mm^2", '
+                                                'second_moment = "100 mm^4" }'))
+    assert load_scene(path).sections["crank"].name == "crank: material, A 2e-05 m^2"
