@@ -253,3 +253,23 @@ def test_a_section_given_by_area_and_second_moment_is_named_by_its_area(tmp_path
     path.write_text(text.replace(CRANK_SECTION, 'section = { area = "20 mm^2", '
                                                 'second_moment = "100 mm^4" }'))
     assert load_scene(path).sections["crank"].name == "crank: material, A 2e-05 m^2"
+
+
+def test_a_base_loop_is_refused_naming_the_file(tmp_path):
+    """A scene that is its own base (or any loop) would merge forever: refused past the
+    nesting limit, naming the file and its `base` key."""
+    path = tmp_path / "scene.toml"
+    path.write_text('base = "scene.toml"\nname = "loop"\n')
+    with pytest.raises(InputError) as refusal:
+        read_scene_source(path)
+    assert (refusal.value.source, refusal.value.field) == (str(path), "base")
+    assert str(refusal.value) == f"{path}: base: base files nest too deeply (a loop?)"
+
+
+def test_a_welded_joint_of_a_four_bar_is_refused(tmp_path):
+    """Welding joins links into one body: a general scene's option only (a four-bar's joints
+    are its four pins)."""
+    base = f'base = "{(CASES_DIR / "case1.toml").as_posix()}"\n'
+    error = _refusal(tmp_path, base + "[joints.A]\nwelded = true\n")
+    assert (error.source, error.field) == (str(tmp_path / "scene.toml"), "joints.A.welded")
+    assert str(error).endswith(": welded joints are for general scenes")
