@@ -95,6 +95,15 @@ def test_every_kind_keeps_its_reference_frequencies(tmp_path, scene):
     assert reference.columns["Ex"] == (12.5, 40.0)  # exact: both are binary fractions
 
 
+def test_a_drive_on_an_unknown_link_names_the_link_meant(tmp_path):
+    """As every unknown name: the file, the key and the nearest name the scene has."""
+    text = (SCENES_DIR / "wiper.toml").read_text()
+    written = 'link = "crank"\njoint = "O1"'
+    error = _refusal(tmp_path, text.replace(written, written.replace('"crank"', '"crnk"')))
+    assert str(error) == (f"{tmp_path / 'scene.toml'}: drive.link: unknown link 'crnk'; "
+                          "did you mean crank?")
+
+
 @pytest.mark.parametrize(("drive", "expected"), [
     ('link = "crank"\njoint = "a"', "'O1'"),  # the crank's ground end
     ('link = "link1"\njoint = "a"', "a link with a ground end"),  # a coupler has none
