@@ -1,12 +1,17 @@
 """Claims of the scene stage that the mutation runs found unguarded (docs/testing.md, fourth
 round): the messages' stated contents and the scene's conventions."""
 
+import math
+import types
+
 import numpy as np
 import pytest
 from conftest import CASES_DIR, SCENES_DIR
 
 from flexlink.errors import InputError
+from flexlink.fe.model import Section
 from flexlink.scene import load_scene
+from flexlink.scene.plausibility import exact_timoshenko_drop, pose_warnings, timoshenko_drop
 from flexlink.scene.source import read_scene_source
 
 
@@ -282,3 +287,28 @@ def test_a_welded_joint_of_a_four_bar_is_refused(tmp_path):
     error = _refusal(tmp_path, base + "[joints.A]\nwelded = true\n")
     assert (error.source, error.field) == (str(tmp_path / "scene.toml"), "joints.A.welded")
     assert str(error).endswith(": welded joints are for general scenes")
+
+
+@pytest.mark.parametrize("slenderness", [20.0, 50.0, 100.0])
+def test_the_estimated_timoshenko_drop_is_exact_to_first_order(slenderness):
+    """The estimate that picks the links to warn about, 1 - (1 + u)^-1/2 with
+    u = (pi h / (sqrt(12) L))^2 (1 + E / (k G)), k = 5/6, is u/2 - 3u^2/8 + ...: its ratio to
+    the leading term u/2 is within 3u/4 of 1, and it meets the exact drop of Timoshenko
+    theory (fe.beams, checked against the elements in tests/fe) to second order."""
+    steel = Section.rectangle(E=210e9, G=210e9 / 2.6, density=7850.0, width=0.01,
+                              thickness=0.002, bending="edgewise")
+    length = slenderness * steel.depth
+    u = (math.pi * steel.depth / math.sqrt(12) / length) ** 2 * (1 + 2.6 / (5 / 6))
+    estimate = timoshenko_drop(steel, length)
+    assert abs(estimate / (u / 2) - 1) <= 0.75 * u
+    assert abs(estimate - exact_timoshenko_drop(steel, length)) <= 0.5 * estimate**2
+
+
+def test_a_pose_near_a_dead_centre_is_warned_of_in_one_sentence():
+    """Within 10 deg of 0 or 180 deg a transmission angle gets the warning with its angle,
+    its distance from the dead centre and why it matters; one 12 deg away gets none."""
+    pose = types.SimpleNamespace(transmission={"coupler/rocker": math.radians(174.5),
+                                               "link2/rocker2": math.radians(12.0)})
+    assert pose_warnings(None, pose) == [
+        "transmission angle coupler/rocker 174.500 deg is 5.5 deg from a dead centre (0 or "
+        "180 deg): the pose and the joint loads are very sensitive there"]
