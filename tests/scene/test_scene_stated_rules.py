@@ -312,3 +312,15 @@ def test_a_pose_near_a_dead_centre_is_warned_of_in_one_sentence():
     assert pose_warnings(None, pose) == [
         "transmission angle coupler/rocker 174.500 deg is 5.5 deg from a dead centre (0 or "
         "180 deg): the pose and the joint loads are very sensitive there"]
+
+
+def test_an_assumed_value_keeps_all_it_was_written_with(tmp_path):
+    """An assumed noted value becomes an assumption holding the key, the value, the note,
+    the file, and the range with its reason exactly as written (the sensitivity study
+    samples the range and quotes the reason)."""
+    path = tmp_path / "scene.toml"
+    path.write_text(f'base = "{(CASES_DIR / "case1.toml").as_posix()}"\n[section]\n'
+                    f'width = {{ {NOTED}, range = ["12 mm", "30 mm"], reason = "strips" }}\n')
+    [width] = [a for a in read_scene_source(path).assumptions if a.field == "section.width"]
+    assert (width.value, width.note, width.source) == ("20 mm", "assumed: a strip", str(path))
+    assert (width.range, width.reason) == (("12 mm", "30 mm"), "strips")
