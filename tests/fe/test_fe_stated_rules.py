@@ -132,3 +132,28 @@ def test_one_subdivision_samples_the_nodes_only():
     np.testing.assert_allclose(sampled.rotation, nodal[:, 2], rtol=1e-14, atol=1e-15)
     with pytest.raises(ValueError, match="subdivisions must be >= 1"):
         sample_shapes(model, shapes, subdivisions=0)
+
+
+def test_a_spring_is_made_rigid_from_a_million_times_the_stiffest_element_of_its_kind():
+    """fe/rigid.py: a spring at least 1e6 times the stiffest element of its kind becomes an
+    exact constraint; translational: the larger of EA/h and 12 EI/h^3 over all elements,
+    rotational: 4 EI/h. Two links of other sections and meshes; the maxima are b's, EA/h =
+    3.4e8 N/m (its 12 EI/h^3 is 8.6e6 N/m) and 4 EI/h = 1.8e3 N m/rad."""
+    from flexlink.fe.rigid import rigid_threshold
+
+    a = Section.rectangle(E=70e9, G=26e9, density=2700.0, width=0.02, thickness=0.002)
+    b = Section.rectangle(E=210e9, G=81e9, density=7850.0, width=0.01, thickness=0.004,
+                          bending="flatwise")
+    joints = (JointSpec("S", True, 1e5, 10.0), JointSpec("M", False, 1e5, 10.0),
+              JointSpec("E", True, 1e5, 10.0))
+    links = (LinkSpec("a", "S", "M", a, 2), LinkSpec("b", "M", "E", b, 8))
+    model = build_model(Topology(links=links, joints=joints),
+                        {"S": (0.0, 0.0), "M": (0.7, 0.0), "E": (0.7, 0.2)})
+    h = {"a": 0.35, "b": 0.025}  # element lengths [m]
+    trans = max(max(s.E * s.area / h[n], 12 * s.E * s.second_moment / h[n] ** 3)
+                for n, s in (("a", a), ("b", b)))
+    rot = max(4 * s.E * s.second_moment / h[n] for n, s in (("a", a), ("b", b)))
+    rotational = model.springs.dof_a % 3 == 2
+    assert rotational.any() and not rotational.all()
+    expected = 1e6 * np.where(rotational, rot, trans)
+    np.testing.assert_allclose(rigid_threshold(model), expected, rtol=1e-13)  # round-off
