@@ -137,6 +137,10 @@ def test_desktop_page_animates_and_reacts_without_errors_or_network(browser, rep
 
     page.click("#player-case1 button.play")  # pause: the picture holds still
     assert page.inner_text("#player-case1 button.play") == "Play"
+    # held at the largest displacement, where another mode or no amplitude must show (paused
+    # near a zero crossing every mode would look like the undeformed pose)
+    page.evaluate("(() => { const p = window.flexlinkReport.players.case1;"
+                  " p.phase = Math.PI / 2; p.draw(); })()")
     page.wait_for_timeout(100)
     held = drawn(visit, page, plot)
     count = visit.frames("case1")
