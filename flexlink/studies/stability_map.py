@@ -27,6 +27,7 @@ import numpy as np
 
 from flexlink.analysis import adiabatic
 from flexlink.analysis.floquet import FloquetResult, floquet, monodromy
+from flexlink.analysis.harmonic_balance import fourier_coefficients
 from flexlink.analysis.modal import pose_modes
 from flexlink.analysis.pose_basis import DEFAULT_TOLERANCE, PoseBasis, pose_basis
 from flexlink.analysis.solve import MECHANISM
@@ -192,8 +193,7 @@ def fourier_series(samples: np.ndarray, theta: np.ndarray, derivative: int = 0) 
     from angle 0, at angles theta (m,) [rad]: N odd, so every harmonic has its pair and the
     interpolant is real; evaluated as a real cosine-sine sum. ``derivative``: 0 for the
     interpolant, 1 for its exact derivative in theta [per rad]."""
-    N = samples.shape[0]
-    c = np.fft.rfft(samples, axis=0) / N
+    c = fourier_coefficients(samples)
     k = np.arange(c.shape[0])
     angle = np.outer(theta, k)
     flat = c.reshape(c.shape[0], -1)
@@ -341,12 +341,8 @@ class StabilityMap:
     growth_rate: np.ndarray
     ranges: tuple[InstabilityRange, ...]
     stiffness_floor: np.ndarray
-    integrator: Integrator = Integrator.ADIABATIC
-    magnus_fallback: np.ndarray | None = None
-
-    def __post_init__(self):
-        if self.magnus_fallback is None:
-            object.__setattr__(self, "magnus_fallback", np.zeros(len(self.speeds), dtype=bool))
+    integrator: Integrator
+    magnus_fallback: np.ndarray
 
 
 def stability_map(model: PeriodicModel, speeds: np.ndarray, steps: int = 200,
