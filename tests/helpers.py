@@ -59,18 +59,19 @@ def written_out_equations(model, speed):
     n, N = len(p.frequencies), len(p.angles)
     damping = np.diag(2 * p.damping_ratio * 2 * np.pi * p.frequencies)
     k = np.fft.fftfreq(N, 1.0 / N)
-    coefficients = [np.fft.fft(np.linalg.solve(p.mass, a), axis=0) / N for a in (
-        np.broadcast_to(damping, p.mass.shape), p.coriolis, p.stiffness, p.speed_stiffness,
-        model.inertia_forcing[..., None], model.external_forcing[..., None])]
-    # one Fourier sum for all six series a call (the integrator calls this thousands of times)
-    shapes = [a.shape[1:] for a in coefficients]
-    stacked = np.concatenate([a.reshape(N, -1) for a in coefficients], axis=1)
-    cuts = np.cumsum([int(np.prod(shape)) for shape in shapes])[:-1]
+    c, g, k0, k2 = (np.linalg.solve(p.mass, a) for a in (
+        np.broadcast_to(damping, p.mass.shape), p.coriolis, p.stiffness, p.speed_stiffness))
+    f2, fe = (np.linalg.solve(p.mass, f[..., None])[..., 0]
+              for f in (model.inertia_forcing, model.external_forcing))
+    # at one speed the equations are linear in the samples: q'' = forcing - [K | D] (q, q'),
+    # and the Fourier series of that sum is the sum of the series, so one series of n (2n + 1)
+    # entries is summed a call (the integrator calls this tens of thousands of times)
+    lhs = np.concatenate([k0 + speed**2 * k2, c + speed * g], axis=2)
+    forcing = speed**2 * f2 + fe
+    stacked = np.fft.fft(np.concatenate([lhs.reshape(N, -1), forcing], axis=1), axis=0) / N
+    cut = 2 * n * n
 
     def rhs(t, x):
         flat = (np.exp(1j * k * speed * t) @ stacked).real
-        c, g, k0, k2, f2, fe = (part.reshape(shape) for part, shape in
-                                zip(np.split(flat, cuts), shapes))
-        return np.concatenate([x[n:], speed**2 * f2[:, 0] + fe[:, 0] - (c + speed * g) @ x[n:]
-                               - (k0 + speed**2 * k2) @ x[:n]])
+        return np.concatenate([x[n:], flat[cut:] - flat[:cut].reshape(n, 2 * n) @ x])
     return rhs
