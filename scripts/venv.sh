@@ -6,17 +6,17 @@ bash scripts/system-deps.sh
 PY=${PYTHON:-python3}
 if [ ! -x .venv/bin/python ]; then
     # a venv made without pip, given the current pip by the interpreter's own pip: 5 s less
-    # than ensurepip, whose bundled pip the upgrade below would replace at once; ensurepip
-    # where the interpreter has no pip (or one older than 22.3, without --python)
+    # than ensurepip and an upgrade of its bundled pip; those where the interpreter has no
+    # pip (or one older than 22.3, without --python)
     if ! { "$PY" -m venv --without-pip .venv &&
            "$PY" -m pip --python .venv/bin/python install --quiet --upgrade pip; } 2>/dev/null; then
         rm -rf .venv
         "$PY" -m venv .venv
+        .venv/bin/python -m pip install --quiet --upgrade pip
     fi
 fi
 stamp=.venv/.flexlink-installed
 if [ ! -f "$stamp" ] || [ pyproject.toml -nt "$stamp" ]; then
-    .venv/bin/python -m pip install --quiet --upgrade pip
     .venv/bin/python -m pip install --quiet -e ".[draw,test,dask]"
     touch "$stamp"
 fi
