@@ -8,12 +8,11 @@ import os
 from pathlib import Path
 
 import numpy as np
-import pytest
 
 from flexlink.parallel import run_tasks, use_scheduler
 from flexlink.studies.uncertainty import monte_carlo, scene_inputs
 
-pytest.importorskip("distributed")
+# distributed: imported by the dask_cluster fixture (which skips without it), not at collection
 
 CASE = str(Path(__file__).resolve().parents[2] / "cases" / "case2.toml")
 

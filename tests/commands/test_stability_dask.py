@@ -4,9 +4,7 @@ from test_dask_cli: one BLAS thread in both runs, as every dask worker has)."""
 
 import time
 
-import pytest
-
-pytest.importorskip("distributed")
+# distributed: imported by the dask_cluster fixture (which skips without it), not at collection
 
 from conftest import ROOT
 from test_dask_cli import cluster, cluster_tasks, serial_and_distributed, untimed  # noqa: F401
