@@ -186,5 +186,5 @@ def test_steps_are_dyadic_cells_covering_the_turn(least):
     bounds = step_bounds(basis, 1.0, least=least)
     widths = np.diff(bounds)
     assert bounds[0] == 0 and bounds[-1] == 256 and np.all(widths > 0)
-    assert np.all(widths & (widths - 1) == 0) and np.all(bounds[:-1] % widths == 0)
+    assert np.all((widths & (widths - 1)) == 0) and np.all(bounds[:-1] % widths == 0)
     assert len(widths) >= least and widths.max() <= 256 // least
