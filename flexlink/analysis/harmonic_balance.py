@@ -36,6 +36,7 @@ summed) is below the tolerance: a NumericalError if it is not by ``max_harmonics
 from __future__ import annotations
 
 import dataclasses
+import logging
 
 import numpy as np
 from scipy.fft import irfft, next_fast_len, rfft
@@ -43,9 +44,12 @@ from scipy.linalg import lapack
 
 from flexlink.errors import NumericalError
 
+log = logging.getLogger(__name__)
+
 BAND = 4  # coefficient harmonics in the preconditioner: 4-8 GMRES steps on case 3 (3: 11-19)
 MAX_HARMONICS = 400  # the largest H tried by default
 ITERATIONS = 100  # GMRES iterations at most per H (case 1 at 300 rev/min needs over 40)
+PRECISIONS = (np.complex64, np.complex128)  # of the preconditioner's LU, in the order tried
 
 
 @dataclasses.dataclass(frozen=True)
@@ -130,20 +134,31 @@ def _tail(Q: np.ndarray, P: int) -> float:
 
 def _solve(stiffness, damping, forcing, speed, H, guess):
     """Q (H + 1, n), k = 0..H, and the relative residual, by preconditioned GMRES over the
-    real vector space of the real functions' harmonics k >= 0 (Q_0 real)."""
+    real vector space of the real functions' harmonics k >= 0 (Q_0 real). The preconditioner
+    in single precision first (half the LU's work and memory; GMRES, in double, corrects
+    it: its residual is the true one), in double if that stalls."""
     P, n = stiffness.shape[0] - 1, stiffness.shape[-1]
     weights = np.full((H + 1, n, 2), 2.0)  # |Q_-k| = |Q_k|: k > 0 counts twice
     weights[0] = 1.0
     product = _hill_product(stiffness, damping, speed, H)
-    precondition = _band_preconditioner(stiffness, damping, speed, H, min(BAND, P))
     rhs = np.zeros((H + 1, n), complex)
     m = min(P, H)
     rhs[:m + 1] = forcing[:m + 1]
     rhs[0] = rhs[0].real
     b = rhs.view(float).ravel()
-    x0 = precondition(b) if guess is None else guess.view(float).ravel()
-    x, residual = _gmres(product, precondition, b, x0, weights.ravel())
-    return x.view(complex).reshape(H + 1, n), residual
+    for precision in PRECISIONS:
+        precondition = _band_preconditioner(stiffness, damping, speed, H, min(BAND, P),
+                                            precision)
+        x0 = precondition(b) if guess is None else guess.view(float).ravel()
+        try:
+            x, residual = _gmres(product, precondition, b, x0, weights.ravel())
+        except NumericalError as error:
+            if precision is PRECISIONS[-1]:
+                raise
+            log.info("%s with the %s preconditioner at %d harmonics: again in %s", error,
+                      np.dtype(precision).name, H, np.dtype(PRECISIONS[-1]).name)
+            continue
+        return x.view(complex).reshape(H + 1, n), residual
 
 
 def _hill_product(stiffness, damping, speed, H):
@@ -172,53 +187,62 @@ def _synthesis(coefficients, M):
     return irfft(coefficients, n=M, axis=0) * M
 
 
-def _band_preconditioner(stiffness, damping, speed, H, band):
+def _band_preconditioner(stiffness, damping, speed, H, band, precision):
     """The preconditioner: a function of the real view of harmonics k = 0..H giving the
     solution of the Hill matrix with coefficient harmonics |d| <= band over the harmonics
     -band..H (the conjugates of the right-hand side's below 0), kept for k = 0..H with Q_0
-    made real. The rows below k = 0 stand for the conjugates of those above it, cut at
-    -band: on case 3 no more GMRES steps than the whole band matrix over -H..H."""
+    made real; factored and solved in ``precision`` (a complex dtype). The rows below k = 0
+    stand for the conjugates of those above it, cut at -band: on case 3 no more GMRES steps
+    than the whole band matrix over -H..H."""
     n = stiffness.shape[-1]
     low = min(band, H)
-    lu, pivots, kl = _band_lu(stiffness, damping, speed, np.arange(-low, H + 1), band)
+    gbtrf, gbtrs = lapack.get_lapack_funcs(("gbtrf", "gbtrs"), dtype=precision)
+    ab, kl = _band_matrix(stiffness, damping, speed, np.arange(-low, H + 1), band, precision)
+    lu, pivots, info = gbtrf(ab, kl, kl, overwrite_ab=True)
+    if info != 0:
+        raise NumericalError("harmonic balance: the banded preconditioner is singular "
+                             f"({gbtrf.typecode}gbtrf info {info})")
 
     def precondition(x):
         r = x.view(complex).reshape(H + 1, n)
-        rhs = np.concatenate([np.conj(r[low:0:-1]), r]).ravel()
-        y, _ = lapack.zgbtrs(lu, kl, kl, rhs, pivots, overwrite_b=True)
-        Q = y.reshape(-1, n)[low:]
+        rhs = np.concatenate([np.conj(r[low:0:-1]), r]).astype(precision).ravel()
+        y, _ = gbtrs(lu, kl, kl, rhs, pivots, overwrite_b=True)
+        Q = y.reshape(-1, n)[low:].astype(complex)
         Q[0] = Q[0].real
         return Q.view(float).ravel()
     return precondition
 
 
-def _band_lu(stiffness, damping, speed, harmonics, band):
-    """LU (LAPACK zgbtrf) of the Hill matrix over ``harmonics`` (consecutive) with the
-    coefficients' harmonics cut to |d| <= band. Returns (lu, pivots, kl)."""
+def _band_matrix(stiffness, damping, speed, harmonics, band, precision):
+    """The Hill matrix over ``harmonics`` (consecutive) with the coefficients' harmonics cut
+    to |d| <= band, in LAPACK's band storage for gbtrf ((3 kl + 1, n len(harmonics)), the
+    first kl rows free for the LU's fill) in ``precision``, and kl = ku. Summed in double,
+    rounded once: -(Omega k)^2 + S_0 cancels near a frozen frequency."""
     n = stiffness.shape[-1]
     K, kl = len(harmonics), n * (band + 1) - 1
     d = np.arange(-band, band + 1)
     S = np.where((d >= 0)[:, None, None], stiffness[np.abs(d)], np.conj(stiffness[np.abs(d)]))
     D = np.where((d >= 0)[:, None, None], damping[np.abs(d)], np.conj(damping[np.abs(d)]))
-    # column block b (harmonic k_b) holds the blocks A[b + d, b] = S_d + i Omega k_b D_d,
-    # less (Omega k_b)^2 on d = 0, stacked over d: (K, 2 band + 1, n, n)
-    blocks = S[None] + (1j * speed * harmonics)[:, None, None, None] * D[None]
-    blocks[:, band] -= ((speed * harmonics) ** 2)[:, None, None] * np.eye(n)
-    for shift in range(1, band + 1):  # rows beyond the first and last harmonics
-        blocks[:shift, band - shift] = 0.0
-        blocks[K - shift:, band + shift] = 0.0
-    blocks = blocks.reshape(K, (2 * band + 1) * n, n)
-    # LAPACK band storage: A[r, c] at ab[2 kl + r - c, c]; column j of block b starts at
-    # row r = (b - band) n, so each j is one strided slice
-    ab = np.zeros((3 * kl + 1, K * n), complex, order="F")
+    # column j of block column b (harmonic k_b) holds A[b + d, b][:, j] = (S_d + i Omega k_b
+    # D_d)[:, j], less (Omega k_b)^2 at row j of d = 0, stacked over d: rows t = (d + band) n
+    # + i from r = (b - band) n, at ab[2 kl + r - c, c] (c = b n + j): one strided slice per j
+    S = S.reshape(-1, n).T.copy()  # (n, (2 band + 1) n): column j of the stacked blocks
+    D = D.reshape(-1, n).T.copy()
+    rate = 1j * speed * harmonics
+    dynamic = (speed * harmonics) ** 2
+    ab = np.zeros((3 * kl + 1, K * n), precision, order="F")
     for j in range(n):
+        column = np.multiply.outer(D[j], rate)
+        column += S[j][:, None]
+        column[band * n + j] -= dynamic
         top = 2 * kl - band * n - j
-        ab[top:top + blocks.shape[1], j::n] = blocks[:, :, j].T
-    lu, pivots, info = lapack.zgbtrf(ab, kl, kl, overwrite_ab=True)
-    if info != 0:
-        raise NumericalError("harmonic balance: the banded preconditioner is singular "
-                             f"(zgbtrf info {info})")
-    return lu, pivots, kl
+        ab[top:top + column.shape[0], j::n] = column
+    for shift in range(1, band + 1):  # the blocks of rows beyond the first and last harmonics
+        for j in range(n):
+            top = 2 * kl - band * n - j
+            ab[top + (band - shift) * n:top + (band - shift + 1) * n, j:shift * n:n] = 0.0
+            ab[top + (band + shift) * n:top + (band + shift + 1) * n, (K - shift) * n + j::n] = 0.0
+    return ab, kl
 
 
 def _gmres(product, precondition, b, x0, weights, rtol: float = 1e-12,
