@@ -40,7 +40,7 @@ import logging
 
 import numpy as np
 from scipy.fft import irfft, next_fast_len, rfft
-from scipy.linalg import lapack
+from scipy.linalg import lapack, solve_triangular
 
 from flexlink.errors import NumericalError
 
@@ -261,24 +261,34 @@ def _gmres(product, precondition, b, x0, weights, rtol: float = 1e-12,
         return x0, beta / scale
     V = np.empty((iterations + 1, b.size))
     Z = np.empty((iterations, b.size))
-    h = np.zeros((iterations + 1, iterations))
+    R = np.zeros((iterations + 1, iterations))  # the Hessenberg matrix, Givens-rotated
+    turns = np.zeros((iterations, 2))  # (cos, sin) of each rotation
+    g = np.zeros(iterations + 1)  # beta e1 rotated alike: |g[m + 1]| / scale is the residual
+    g[0] = beta
     V[0] = r / beta
-    e1 = np.zeros(iterations + 1)
-    e1[0] = beta
     for m in range(iterations):
         Z[m] = precondition(V[m])
         w = product(Z[m])
         for _ in range(2):  # classical Gram-Schmidt twice: orthogonal to round-off
             c = V[:m + 1] @ (weights * w)
-            h[:m + 1, m] += c
+            R[:m + 1, m] += c
             w = w - c @ V[:m + 1]
-        h[m + 1, m] = norm(w)
-        y, *_ = np.linalg.lstsq(h[:m + 2, :m + 1], e1[:m + 2], rcond=None)
-        residual = np.linalg.norm(h[:m + 2, :m + 1] @ y - e1[:m + 2]) / scale
-        if residual <= rtol or h[m + 1, m] == 0.0:
+        below = norm(w)
+        for i, (cos, sin) in enumerate(turns[:m]):
+            R[i, m], R[i + 1, m] = cos * R[i, m] + sin * R[i + 1, m], \
+                cos * R[i + 1, m] - sin * R[i, m]
+        rho = np.hypot(R[m, m], below)
+        if rho == 0.0:  # A P^-1 V[m] lies in the span of V[:m]: singular, no progress
+            m -= 1
             break
-        V[m + 1] = w / h[m + 1, m]
+        turns[m] = R[m, m] / rho, below / rho
+        R[m, m] = rho
+        g[m], g[m + 1] = turns[m, 0] * g[m], -turns[m, 1] * g[m]
+        if abs(g[m + 1]) <= rtol * scale or below == 0.0:
+            break
+        V[m + 1] = w / below
+    residual = abs(g[m + 1]) / scale
     if residual > 1e3 * rtol:
         raise NumericalError(f"harmonic balance: GMRES stalled at relative residual "
                              f"{residual:.2g} after {m + 1} iterations")
-    return x0 + y @ Z[:m + 1], residual
+    return x0 + solve_triangular(R[:m + 1, :m + 1], g[:m + 1]) @ Z[:m + 1], residual
