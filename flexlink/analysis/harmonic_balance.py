@@ -216,8 +216,8 @@ def _band_preconditioner(stiffness, damping, speed, H, band, precision):
 def _band_matrix(stiffness, damping, speed, harmonics, band, precision):
     """The Hill matrix over ``harmonics`` (consecutive) with the coefficients' harmonics cut
     to |d| <= band, in LAPACK's band storage for gbtrf ((3 kl + 1, n len(harmonics)), the
-    first kl rows free for the LU's fill) in ``precision``, and kl = ku. Summed in double,
-    rounded once: -(Omega k)^2 + S_0 cancels near a frozen frequency."""
+    first kl rows free for the LU's fill) in ``precision``, and kl = ku. The diagonal is
+    summed in double and rounded once: -(Omega k)^2 + S_0 cancels near a frozen frequency."""
     n = stiffness.shape[-1]
     K, kl = len(harmonics), n * (band + 1) - 1
     d = np.arange(-band, band + 1)
@@ -225,18 +225,23 @@ def _band_matrix(stiffness, damping, speed, harmonics, band, precision):
     D = np.where((d >= 0)[:, None, None], damping[np.abs(d)], np.conj(damping[np.abs(d)]))
     # column j of block column b (harmonic k_b) holds A[b + d, b][:, j] = (S_d + i Omega k_b
     # D_d)[:, j], less (Omega k_b)^2 at row j of d = 0, stacked over d: rows t = (d + band) n
-    # + i from r = (b - band) n, at ab[2 kl + r - c, c] (c = b n + j): one strided slice per j
+    # + i from r = (b - band) n, at ab[2 kl + r - c, c] (c = b n + j): one strided slice per
+    # j; the n - 1 rows of the kl + ku + 1 beyond the blocks are zero, the first kl rows free
     S = S.reshape(-1, n).T.copy()  # (n, (2 band + 1) n): column j of the stacked blocks
     D = D.reshape(-1, n).T.copy()
     rate = 1j * speed * harmonics
-    dynamic = (speed * harmonics) ** 2
-    ab = np.zeros((3 * kl + 1, K * n), precision, order="F")
+    diagonal = S[:, band * n:(band + 1) * n].diagonal()[:, None] \
+        + D[:, band * n:(band + 1) * n].diagonal()[:, None] * rate - (speed * harmonics) ** 2
+    S, D, rate = S.astype(precision), D.astype(precision), rate.astype(precision)
+    ab = np.empty((3 * kl + 1, K * n), precision, order="F")
     for j in range(n):
+        top = 2 * kl - band * n - j
         column = np.multiply.outer(D[j], rate)
         column += S[j][:, None]
-        column[band * n + j] -= dynamic
-        top = 2 * kl - band * n - j
+        column[band * n + j] = diagonal[j]  # summed in double, rounded once
+        ab[kl:top, j::n] = 0.0
         ab[top:top + column.shape[0], j::n] = column
+        ab[top + column.shape[0]:, j::n] = 0.0
     for shift in range(1, band + 1):  # the blocks of rows beyond the first and last harmonics
         for j in range(n):
             top = 2 * kl - band * n - j
