@@ -147,16 +147,16 @@ def _solve(stiffness, damping, forcing, speed, H, guess):
     rhs[0] = rhs[0].real
     b = rhs.view(float).ravel()
     for precision in PRECISIONS:
-        precondition = _band_preconditioner(stiffness, damping, speed, H, min(BAND, P),
-                                            precision)
-        x0 = precondition(b) if guess is None else guess.view(float).ravel()
         try:
+            precondition = _band_preconditioner(stiffness, damping, speed, H, min(BAND, P),
+                                                precision)
+            x0 = precondition(b) if guess is None else guess.view(float).ravel()
             x, residual = _gmres(product, precondition, b, x0, weights.ravel())
         except NumericalError as error:
             if precision is PRECISIONS[-1]:
                 raise
             log.info("%s with the %s preconditioner at %d harmonics: again in %s", error,
-                      np.dtype(precision).name, H, np.dtype(PRECISIONS[-1]).name)
+                     np.dtype(precision).name, H, np.dtype(PRECISIONS[-1]).name)
             continue
         return x.view(complex).reshape(H + 1, n), residual
 
@@ -197,7 +197,8 @@ def _band_preconditioner(stiffness, damping, speed, H, band, precision):
     n = stiffness.shape[-1]
     low = min(band, H)
     gbtrf, gbtrs = lapack.get_lapack_funcs(("gbtrf", "gbtrs"), dtype=precision)
-    ab, kl = _band_matrix(stiffness, damping, speed, np.arange(-low, H + 1), band, precision)
+    ab, kl, unit = _band_matrix(stiffness, damping, speed, np.arange(-low, H + 1), band,
+                                precision)
     lu, pivots, info = gbtrf(ab, kl, kl, overwrite_ab=True)
     if info != 0:
         raise NumericalError("harmonic balance: the banded preconditioner is singular "
@@ -205,19 +206,27 @@ def _band_preconditioner(stiffness, damping, speed, H, band, precision):
 
     def precondition(x):
         r = x.view(complex).reshape(H + 1, n)
-        rhs = np.concatenate([np.conj(r[low:0:-1]), r]).astype(precision).ravel()
+        scale = _power_of_two(np.abs(x).max())  # r / scale in range, exactly
+        rhs = (np.concatenate([np.conj(r[low:0:-1]), r]) / scale).astype(precision).ravel()
         y, _ = gbtrs(lu, kl, kl, rhs, pivots, overwrite_b=True)
-        Q = y.reshape(-1, n)[low:].astype(complex)
+        Q = y.reshape(-1, n)[low:].astype(complex) * (scale / unit)
         Q[0] = Q[0].real
         return Q.view(float).ravel()
     return precondition
 
 
+def _power_of_two(size: float) -> float:
+    """The power of two nearest above ``size`` > 0 (1 at 0): a scale that divides exactly."""
+    return float(np.ldexp(1.0, int(np.frexp(size)[1])))
+
+
 def _band_matrix(stiffness, damping, speed, harmonics, band, precision):
     """The Hill matrix over ``harmonics`` (consecutive) with the coefficients' harmonics cut
     to |d| <= band, in LAPACK's band storage for gbtrf ((3 kl + 1, n len(harmonics)), the
-    first kl rows free for the LU's fill) in ``precision``, and kl = ku. The diagonal is
-    summed in double and rounded once: -(Omega k)^2 + S_0 cancels near a frozen frequency."""
+    first kl rows free for the LU's fill) in ``precision``, kl = ku, and the power of two
+    ``unit`` it is divided by (its largest entry between 1/2 and 1: in single precision's
+    range whatever the units). The diagonal is summed in double and rounded once: -(Omega
+    k)^2 + S_0 cancels near a frozen frequency."""
     n = stiffness.shape[-1]
     K, kl = len(harmonics), n * (band + 1) - 1
     d = np.arange(-band, band + 1)
@@ -232,7 +241,11 @@ def _band_matrix(stiffness, damping, speed, harmonics, band, precision):
     rate = 1j * speed * harmonics
     diagonal = S[:, band * n:(band + 1) * n].diagonal()[:, None] \
         + D[:, band * n:(band + 1) * n].diagonal()[:, None] * rate - (speed * harmonics) ** 2
-    S, D, rate = S.astype(precision), D.astype(precision), rate.astype(precision)
+    unit = _power_of_two(max(np.abs(diagonal).max(), np.abs(S).max()
+                             + np.abs(D).max() * np.abs(rate).max()))
+    diagonal = diagonal / unit
+    S, D, rate = (S / unit).astype(precision), (D / unit).astype(precision), \
+        rate.astype(precision)
     ab = np.empty((3 * kl + 1, K * n), precision, order="F")
     for j in range(n):
         top = 2 * kl - band * n - j
@@ -247,7 +260,7 @@ def _band_matrix(stiffness, damping, speed, harmonics, band, precision):
             top = 2 * kl - band * n - j
             ab[top + (band - shift) * n:top + (band - shift + 1) * n, j:shift * n:n] = 0.0
             ab[top + (band + shift) * n:top + (band + shift + 1) * n, (K - shift) * n + j::n] = 0.0
-    return ab, kl
+    return ab, kl, unit
 
 
 def _gmres(product, precondition, b, x0, weights, rtol: float = 1e-12,
@@ -283,7 +296,7 @@ def _gmres(product, precondition, b, x0, weights, rtol: float = 1e-12,
             R[i, m], R[i + 1, m] = cos * R[i, m] + sin * R[i + 1, m], \
                 cos * R[i + 1, m] - sin * R[i, m]
         rho = np.hypot(R[m, m], below)
-        if rho == 0.0:  # A P^-1 V[m] lies in the span of V[:m]: singular, no progress
+        if not rho > 0.0:  # 0: A P^-1 V[m] in the span of V[:m], singular; NaN: overflow
             m -= 1
             break
         turns[m] = R[m, m] / rho, below / rho
@@ -293,7 +306,7 @@ def _gmres(product, precondition, b, x0, weights, rtol: float = 1e-12,
             break
         V[m + 1] = w / below
     residual = abs(g[m + 1]) / scale
-    if residual > 1e3 * rtol:
+    if not residual <= 1e3 * rtol:  # NaN too (a preconditioner out of its precision's range)
         raise NumericalError(f"harmonic balance: GMRES stalled at relative residual "
                              f"{residual:.2g} after {m + 1} iterations")
     return x0 + solve_triangular(R[:m + 1, :m + 1], g[:m + 1]) @ Z[:m + 1], residual
