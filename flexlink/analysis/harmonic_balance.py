@@ -168,7 +168,7 @@ def _hill_product(stiffness, damping, speed, H):
     back (exact: the product's harmonics up to H alias nowhere)."""
     P, n = stiffness.shape[0] - 1, stiffness.shape[-1]
     M = next_fast_len(2 * H + P + 1, real=True)
-    coefficients = np.concatenate([_synthesis(stiffness, M), _synthesis(damping, M)], axis=2)
+    coefficients = _synthesis(np.concatenate([stiffness, damping], axis=2), M)  # (M, n, 2n)
     k = np.arange(H + 1)
     rate = (1j * speed * k)[:, None]
     dynamic = ((speed * k) ** 2)[:, None]
