@@ -26,8 +26,11 @@ on a grid of more than 2H + P angles, multiplied pointwise by the real S(theta) 
 and analysed back (exact: the product's harmonics up to H alias nowhere). It is right
 preconditioned by the banded LU of the Hill matrix with the coefficients' harmonics cut to
 |d| <= BAND (exact at constant coefficients), over the harmonics -BAND..H only: the rows below
-0 stand in for the conjugate half. That LU is the cost: (H + BAND) n (BAND + 1)^2 n^2 complex
-operations, about half of the whole -H..H band's.
+0 stand in for the conjugate half. That LU is the cost, about 2 (H + BAND) n ((BAND + 1) n)^2
+complex operations (half the whole -H..H band's), and its solves read it whole at every GMRES
+step; so it is done in single precision (half the time and memory), scaled into that range,
+and in double only if GMRES stalls with it. GMRES, in double, corrects the preconditioner's
+round-off: its residual is that of the double-precision product, whatever the preconditioner.
 
 H doubles from 2P until the estimate of the truncation error (``_tail``: the last harmonics
 summed) is below the tolerance: a NumericalError if it is not by ``max_harmonics``.
@@ -46,7 +49,7 @@ from flexlink.errors import NumericalError
 
 log = logging.getLogger(__name__)
 
-BAND = 4  # coefficient harmonics in the preconditioner: 4-8 GMRES steps on case 3 (3: 11-19)
+BAND = 4  # coefficient harmonics in the preconditioner: 5-8 GMRES steps on case 3 (3: 11-19)
 MAX_HARMONICS = 400  # the largest H tried by default
 ITERATIONS = 100  # GMRES iterations at most per H (case 1 at 300 rev/min needs over 40)
 PRECISIONS = (np.complex64, np.complex128)  # of the preconditioner's LU, in the order tried
