@@ -280,8 +280,9 @@ def _gmres(product, precondition, b, x0, weights, rtol: float = 1e-12,
     beta = norm(r)
     if beta <= rtol * scale:
         return x0, beta / scale
-    V = np.empty((iterations + 1, b.size))
-    Z = np.empty((iterations, b.size))
+    # the Krylov vectors and their preconditioned images, grown as needed (a few steps are
+    # usual: ITERATIONS rows up front cost the heap its reuse of the LU's memory)
+    V, Z = np.empty((2, min(16, iterations + 1), b.size))
     R = np.zeros((iterations + 1, iterations))  # the Hessenberg matrix, Givens-rotated
     turns = np.zeros((iterations, 2))  # (cos, sin) of each rotation
     g = np.zeros(iterations + 1)  # beta e1 rotated alike: |g[m + 1]| / scale is the residual
@@ -307,6 +308,8 @@ def _gmres(product, precondition, b, x0, weights, rtol: float = 1e-12,
         g[m], g[m + 1] = turns[m, 0] * g[m], -turns[m, 1] * g[m]
         if abs(g[m + 1]) <= rtol * scale or below == 0.0:
             break
+        if m + 1 == len(V):
+            V, Z = (np.concatenate([X, np.empty_like(X)]) for X in (V, Z))
         V[m + 1] = w / below
     residual = abs(g[m + 1]) / scale
     if not residual <= 1e3 * rtol:  # NaN too (a preconditioner out of its precision's range)
