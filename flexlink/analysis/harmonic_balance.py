@@ -139,7 +139,7 @@ def _solve(stiffness, damping, forcing, speed, H, guess):
     """Q (H + 1, n), k = 0..H, and the relative residual, by preconditioned GMRES over the
     real vector space of the real functions' harmonics k >= 0 (Q_0 real). The preconditioner
     in single precision first (half the LU's work and memory; GMRES, in double, corrects
-    it: its residual is the true one), in double if that stalls."""
+    it: its residual is the true one), in double if its LU is singular or GMRES stalls."""
     P, n = stiffness.shape[0] - 1, stiffness.shape[-1]
     weights = np.full((H + 1, n, 2), 2.0)  # |Q_-k| = |Q_k|: k > 0 counts twice
     weights[0] = 1.0
