@@ -5,8 +5,7 @@
 
 CPU time of this process with BLAS on one thread, per speed, the model (built once per scene)
 apart, split into the solution (harmonic balance, ``steady_response.periodic_solution``) and
-the verdict (the stability map's multipliers, ``stability_map.speed_multipliers``, by the
-verdict's coarse steps: what ``steady_response`` takes away from the unit circle). The
+the verdict (the stability map's multipliers, ``stability_map.speed_multipliers``). The
 figure judged is the slower speed's best of the repeats of the whole ``steady_response``.
 """
 
@@ -24,7 +23,6 @@ from pathlib import Path  # noqa: E402
 from flexlink.scene import load_scene  # noqa: E402
 from flexlink.studies.stability_map import speed_multipliers  # noqa: E402
 from flexlink.studies.steady_response import (  # noqa: E402
-    VERDICT_STEPS,
     forced_model,
     periodic_solution,
     steady_response,
@@ -59,8 +57,7 @@ def main() -> None:
     for rpm in SPEEDS:
         speed = rpm * RPM
         solve, solution = _best(repeats, lambda w=speed: periodic_solution(model, w))
-        verdict, _ = _best(repeats, lambda w=speed: speed_multipliers(model.periodic, w,
-                                                                     adiabatic_steps=VERDICT_STEPS))
+        verdict, _ = _best(repeats, lambda w=speed: speed_multipliers(model.periodic, w))
         whole, result = _best(repeats, lambda w=speed: steady_response(model, w))
         worst = max(worst, whole)
         print(f"{rpm:g} rev/min: {whole * 1e3:.1f} ms (best of {repeats}): solution "

@@ -46,7 +46,8 @@ from flexlink.studies.periodic_damping import basis_damping, checked_ratio
 
 log = logging.getLogger(__name__)
 ADIABATIC_GRID = 2048  # crank angles of the adiabatic basis per turn: 1024 steps at most
-ADIABATIC_STEPS = 128  # equal adiabatic steps a turn at least, then halved where Q needs
+ADIABATIC_STEPS = 64  # equal adiabatic steps a turn at least, then halved where Q needs:
+# ln |mu| per turn within the map's 1e-3 (docs/critical-speeds.md, "Convergence")
 FLOOR_POINTS = 4  # crank angles per sampled pose where the stiffness floor is sought
 
 
