@@ -32,9 +32,11 @@ Q (P0 + P1 + Omega P2, the phase's curvature folded in) a parabola through a, m 
 turning factor exp(kappa s), kappa the step's mean rate, integrated in closed form (a Filon
 rule: exact however fast the factor turns). [B1, B0] stands for the second Magnus term only
 between slow entries; a pair with an entry that turns within the step takes the exact
-double integral of the mid-point Q instead (``_second_order``). The steps are bounded by the damping (Re(kappa)
-h / 2 <= DAMPING_PHASE keeps the factors below e^2) and by the couplings' size (h ||Q|| <=
-COUPLING_STEP), not by the stiffest frequency. The conjugate halves are folded into real
+double integral of the mid-point Q instead (``_second_order``). The steps are cells of the
+grid's dyadic hierarchy: equal ones, as many as the damping needs (Re(kappa) h / 2 <=
+DAMPING_PHASE keeps the factors below e^2), each halved where the couplings are large (h ||Q||
+> COUPLING_STEP) or Q departs from its parabola (RESOLUTION: a veering's narrow peak), not
+set by the stiffest frequency (``step_bounds``). The conjugate halves are folded into real
 2 x 2 blocks, so a step costs real products of the state's size: a conjugate-symmetric
 matrix is carried by its tracked columns (its rows over the tracked half and the
 conjugates, its columns over the tracked half) for the elementwise work, and its real form
@@ -44,8 +46,9 @@ two sums of those columns (``_real_form``). A step costs 13 products of the stat
 exponential and 1 for the ordered product.
 
 Accuracy (docs/critical-speeds.md, "Speed"): fourth order where the couplings are smooth
-(the Mathieu equation); on Table II case 1's basis ln |mu| per turn within 5.5e-5 of fine
-Magnus steps at 512 steps, 10 to 3000 rev/min.
+(the Mathieu equation); on Table II case 1's basis ln |mu| per turn within 5.8e-4 of fine
+Magnus steps from 64 steps refined (about 135), 1.5e-4 from 128 (about 250), 10 to 3000
+rev/min.
 """
 from __future__ import annotations
 
@@ -59,7 +62,10 @@ from flexlink.analysis.floquet import FloquetResult, exponentials, floquet, orde
 from flexlink.errors import NumericalError
 
 DAMPING_PHASE = 2.0  # max Re(kappa) h / 2 in a step [-]: the factors exp(kappa s) below e^2
-COUPLING_STEP = 0.25  # max h ||Q||_1 in a step [-]: the smooth part's Magnus error
+COUPLING_STEP = 2.0  # max h ||Q||_1 over a step's grid points [-]: below pi, the Magnus series converges
+RESOLUTION = 1e-3  # max h ||Q - its parabola|| at a step's quarter points [-]: a step that
+# does not resolve Q (a veering's narrow peak of -V^-1 V') is halved
+RESOLUTION_STEPS = 128  # the least count RESOLUTION is for: at k times as many, RESOLUTION / k^4
 SLOW = 0.5  # |kappa| h / 2 below which an entry counts as slow in the second Magnus term
 SERIES = 0.25  # |z| below which the moments J_p(z) are summed as a power series
 STEP_CHUNK = 32  # steps formed at once: on case 1 as fast as 64 and 14 % faster than 16
@@ -74,14 +80,16 @@ _SERIES = np.array([[2.0 / (math.factorial(2 * m + p % 2) * (2 * m + p % 2 + p +
 class AdiabaticBasis:
     """The speed-independent part of the integrator, on a grid of crank angles.
 
-    angles (m + 1,) [rad]: the grid over one turn (both ends; m even); eigenvalues (m + 1, n)
+    angles (m + 1,) [rad]: the grid over one turn (both ends; m / 2 a power of two); eigenvalues (m + 1, n)
     [1/s]: the half of A0's with positive imaginary part, tracked; phase (m + 1, n) [rad/s x
     rad]: Phi = int lambda dtheta from angles[0]; coupling, speed_coupling (2 n, m + 1, n):
     the tracked columns of P0 + P1 and of P2 (rows over the tracked half then its
     conjugates; the grid's axis between the rows and the columns, as the steps' arrays have
     it); start, end (2 n, 2 n): the real eigenbasis (Re v_1, Im v_1, Re v_2, ...) at the two
-    ends; coupling_norm, speed_norm (m + 1,): the largest row sums of |P0 + P1| and |P2|
-    [1/rad, 1/rad per rad/s]."""
+    ends; peak, defect (2, 2^(L + 1)) over the grid's dyadic cells (``_dyadic_bounds``),
+    of P0 + P1 (row 0) and of P2 (row 1, per rad/s): h times the largest row sum of |Q| over a
+    cell's grid points, and h times that of Q's departure from its parabola at the cell's
+    quarter points [-]."""
 
     angles: np.ndarray
     eigenvalues: np.ndarray
@@ -90,8 +98,8 @@ class AdiabaticBasis:
     speed_coupling: np.ndarray
     start: np.ndarray
     end: np.ndarray
-    coupling_norm: np.ndarray
-    speed_norm: np.ndarray
+    peak: np.ndarray
+    defect: np.ndarray
 
 
 def adiabatic_basis(angles, a0, a0_prime, a1, a2) -> AdiabaticBasis:
@@ -102,9 +110,10 @@ def adiabatic_basis(angles, a0, a0_prime, a1, a2) -> AdiabaticBasis:
     tracking loses a mode between grid points (a veering faster than the grid)."""
     angles = np.asarray(angles, dtype=float)
     m, size = len(angles) - 1, a0.shape[-1]
-    if m < 2 or m % 2 or a0.shape != (m + 1, size, size) or size % 2:
-        raise NumericalError(f"need an even number of grid steps and (m + 1, N, N) matrices "
-                             f"of even N, got {len(angles)} angles and {a0.shape}")
+    if m < 2 or (m // 2) & (m // 2 - 1) or m % 2 or a0.shape != (m + 1, size, size) \
+            or size % 2:
+        raise NumericalError(f"need 2^k grid steps (k >= 1) and (m + 1, N, N) matrices of "
+                             f"even N, got {len(angles)} angles and {a0.shape}")
     n = size // 2
     values, vectors = np.linalg.eig(a0)
     upper = values.imag > 0.0
@@ -153,13 +162,51 @@ def adiabatic_basis(angles, a0, a0_prime, a1, a2) -> AdiabaticBasis:
     h = angles[1] - angles[0]
     increments = 0.5 * h * (lam[:-1] + lam[1:]) + h * h / 12.0 * (slope[:-1] - slope[1:])
     phase = np.concatenate([np.zeros((1, n)), np.cumsum(increments, axis=0)])
-    return AdiabaticBasis(angles=angles, eigenvalues=lam, phase=phase,
-                          coupling=_tracked_columns(rows[0]).transpose(1, 0, 2).copy(),
-                          speed_coupling=_tracked_columns(rows[1]).transpose(1, 0, 2).copy(),
+    coupling, speed_coupling = (_tracked_columns(r).transpose(1, 0, 2).copy() for r in rows)
+    bounds = [_dyadic_bounds(c, angles) for c in (coupling, speed_coupling)]
+    return AdiabaticBasis(angles=angles, eigenvalues=lam, phase=phase, coupling=coupling,
+                          speed_coupling=speed_coupling,
                           start=_real_basis(half[0]) * np.repeat(scale, 2),
                           end=_real_basis(half[-1]) * np.repeat(scale, 2),
-                          coupling_norm=np.abs(rows[0]).sum(axis=2).max(axis=1),
-                          speed_norm=np.abs(rows[1]).sum(axis=2).max(axis=1))
+                          peak=np.stack([b[0] for b in bounds]),
+                          defect=np.stack([b[1] for b in bounds]))
+
+
+def _row_norms(columns: np.ndarray) -> np.ndarray:
+    """The largest row sum of |M| (...) of conjugate-symmetric matrices M given by their
+    tracked columns (2 n, ..., n): row i of M is row i of the columns and the conjugates of
+    row n + i's."""
+    n = columns.shape[-1]
+    sums = np.abs(columns).sum(axis=-1)
+    return (sums[:n] + sums[n:]).max(axis=0)
+
+
+def _dyadic_bounds(columns: np.ndarray, angles: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(peak, defect) of Q given by its tracked columns (2 n, m + 1, n) on the grid ``angles``,
+    per dyadic cell of the grid in heap order (cell i = 2^l + k is the k-th of the 2^l equal
+    cells of level l, its halves are cells 2 i and 2 i + 1; levels down to cells of 2 grid
+    intervals, entry 0 unused): h max ||Q|| over the cell's grid points and h (||Q - p|| at
+    its first quarter point + the same at its third), p the parabola through the cell's ends
+    and mid point (zero for the finest cells, which have no quarter points)."""
+    m = len(angles) - 1
+    finest = m // 2
+    peak, defect = np.zeros(2 * finest), np.zeros(2 * finest)
+    norms = _row_norms(columns)
+    count = 1
+    while count <= finest:
+        length = m // count
+        starts = np.arange(count) * length
+        h = angles[starts + length] - angles[starts]
+        peak[count:2 * count] = h * np.maximum(np.maximum.reduceat(norms[:-1], starts),
+                                               norms[starts + length])
+        if length >= 4:
+            points = np.take(columns, starts[:, None] + np.arange(5) * (length // 4), axis=1)
+            a, first, b, third, c = np.moveaxis(points, 2, 0)
+            slope, curve = 0.25 * (c - a), 0.125 * (a + c - 2.0 * b)
+            departure = np.abs(first - (b - slope + curve)) + np.abs(third - (b + slope + curve))
+            defect[count:2 * count] = h * _row_norms(departure)
+        count *= 2
+    return peak, defect
 
 
 def _tracked_columns(rows: np.ndarray) -> np.ndarray:
@@ -175,20 +222,33 @@ def _real_basis(vectors: np.ndarray) -> np.ndarray:
 
 
 def step_bounds(basis: AdiabaticBasis, speed: float, least: int = 16) -> np.ndarray:
-    """Grid indices of the step ends at crank ``speed`` [rad/s]: equal steps (to the grid's
-    even indices), at least ``least`` and as many as keep the mean h ||Q|| <= COUPLING_STEP
-    and the damping factors below DAMPING_PHASE (equal steps measured better than steps
-    crowded where ||Q|| peaks). NumericalError when the grid is too coarse for them."""
-    m = len(basis.angles) - 1
+    """Grid indices of the step ends at crank ``speed`` [rad/s]: dyadic cells of the grid,
+    first equal, at least ``least`` and as many as keep the damping factors below
+    DAMPING_PHASE (rounded up to a power of two), then each halved, down to two grid
+    intervals, while h ||Q|| exceeds COUPLING_STEP or Q's departure from its parabola
+    RESOLUTION (both bounded by the triangle inequality over Q's two parts: a few steps more
+    where a veering makes Q peak, rather than finer steps everywhere). NumericalError when the
+    grid is too coarse for the equal steps."""
+    finest = basis.peak.shape[1] // 2
     spread = basis.eigenvalues.real.max() - basis.eigenvalues.real.min()
-    norm = basis.coupling_norm + speed * basis.speed_norm
     turn = basis.angles[-1] - basis.angles[0]
-    count = max(least, int(np.ceil(turn * max(norm.mean() / COUPLING_STEP,
-                                               spread / (2.0 * DAMPING_PHASE * speed)))))
-    if count > m // 2:
+    count = max(least, int(np.ceil(turn * spread / (2.0 * DAMPING_PHASE * speed))), 1)
+    count = 1 << (count - 1).bit_length()
+    if count > finest:
         raise NumericalError(f"{count} steps per turn are needed at {speed:.6g} rad/s, the "
-                             f"grid of {m} intervals gives at most {m // 2}: use a finer grid")
-    return np.unique(2 * np.round(np.arange(count + 1) * (m / 2) / count).astype(int))
+                             f"grid of {2 * finest} intervals gives at most {finest}: use a "
+                             "finer grid")
+    peak, defect = basis.peak[0] + speed * basis.peak[1], basis.defect[0] + speed * basis.defect[1]
+    resolution = RESOLUTION * (RESOLUTION_STEPS / least) ** 4
+    cells = np.arange(count, 2 * count)
+    while True:
+        split = ((peak[cells] > COUPLING_STEP) | (defect[cells] > resolution)) & (cells < finest)
+        if not split.any():
+            break
+        cells = np.concatenate([cells[~split], 2 * cells[split], 2 * cells[split] + 1])
+    level = np.frexp(cells)[1] - 1
+    starts = (cells - (1 << level)) * (2 * finest >> level)
+    return np.append(np.sort(starts), 2 * finest)
 
 
 def adiabatic_monodromy(basis: AdiabaticBasis, speed: float, least: int = 16) -> FloquetResult:

