@@ -1,10 +1,12 @@
 """The command line: JSON document, files written, errors without tracebacks."""
 
 import json
+import os
 import subprocess
 import sys
 from pathlib import Path
 
+import pytest
 from click.testing import CliRunner
 
 from flexlink.cli import main
@@ -84,3 +86,18 @@ def test_version_comes_from_the_package_metadata():
 
     result = CliRunner().invoke(main, ["--version"])
     assert result.exit_code == 0 and result.output == f"flexlink, version {version('flexlink')}\n"
+
+
+@pytest.mark.parametrize("given, expected", [(None, "1"), ("3", "3")])
+def test_the_command_line_takes_one_blas_thread_unless_told(given, expected):
+    # the CLI sets the BLAS thread count before numpy is first imported (numpy reads it only
+    # then), and leaves a count the user's environment gives alone
+    env = {k: v for k, v in os.environ.items()
+           if k not in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")}
+    if given is not None:
+        env["OPENBLAS_NUM_THREADS"] = given
+    probe = ("import os, sys; import flexlink.cli; "
+             "print(os.environ['OPENBLAS_NUM_THREADS'], 'numpy' in sys.modules)")
+    run = subprocess.run([sys.executable, "-c", probe], env=env, capture_output=True, text=True,
+                         cwd=ROOT, check=True)
+    assert run.stdout.split() == [expected, "False"]
