@@ -62,10 +62,11 @@ from flexlink.analysis.floquet import FloquetResult, exponentials, floquet, orde
 from flexlink.errors import NumericalError
 
 DAMPING_PHASE = 2.0  # max Re(kappa) h / 2 in a step [-]: the factors exp(kappa s) below e^2
-COUPLING_STEP = 2.0  # max h ||Q||_1 over a step's grid points [-]: below pi, the Magnus series converges
+COUPLING_STEP = 2.0  # max h ||Q||_1 over a step's grid points [-]: below pi, where the Magnus
+# series converges
 RESOLUTION = 1e-3  # max h ||Q - its parabola|| at a step's quarter points [-]: a step that
 # does not resolve Q (a veering's narrow peak of -V^-1 V') is halved
-RESOLUTION_STEPS = 128  # the least count RESOLUTION is for: at k times as many, RESOLUTION / k^4
+RESOLUTION_STEPS = 128  # the least count RESOLUTION holds at: at k times as many, RESOLUTION / k^4
 SLOW = 0.5  # |kappa| h / 2 below which an entry counts as slow in the second Magnus term
 SERIES = 0.25  # |z| below which the moments J_p(z) are summed as a power series
 STEP_CHUNK = 32  # steps formed at once: on case 1 as fast as 64 and 14 % faster than 16
@@ -80,9 +81,9 @@ _SERIES = np.array([[2.0 / (math.factorial(2 * m + p % 2) * (2 * m + p % 2 + p +
 class AdiabaticBasis:
     """The speed-independent part of the integrator, on a grid of crank angles.
 
-    angles (m + 1,) [rad]: the grid over one turn (both ends; m / 2 a power of two); eigenvalues (m + 1, n)
-    [1/s]: the half of A0's with positive imaginary part, tracked; phase (m + 1, n) [rad/s x
-    rad]: Phi = int lambda dtheta from angles[0]; coupling, speed_coupling (2 n, m + 1, n):
+    angles (m + 1,) [rad]: the grid over one turn (both ends; m / 2 a power of two);
+    eigenvalues (m + 1, n) [1/s]: the half of A0's with positive imaginary part, tracked;
+    phase (m + 1, n) [rad/s x rad]: Phi = int lambda dtheta from angles[0]; coupling, speed_coupling (2 n, m + 1, n):
     the tracked columns of P0 + P1 and of P2 (rows over the tracked half then its
     conjugates; the grid's axis between the rows and the columns, as the steps' arrays have
     it); start, end (2 n, 2 n): the real eigenbasis (Re v_1, Im v_1, Re v_2, ...) at the two
