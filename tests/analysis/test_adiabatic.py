@@ -11,6 +11,7 @@ from scipy.optimize import brentq
 from flexlink.analysis import adiabatic
 from flexlink.analysis.adiabatic import adiabatic_basis, adiabatic_monodromy, step_bounds
 from flexlink.analysis.floquet import monodromy
+from flexlink.errors import NumericalError
 
 GRID = 256
 
@@ -188,3 +189,11 @@ def test_steps_are_dyadic_cells_covering_the_turn(least):
     assert bounds[0] == 0 and bounds[-1] == 256 and np.all(widths > 0)
     assert np.all((widths & (widths - 1)) == 0) and np.all(bounds[:-1] % widths == 0)
     assert len(widths) >= least and widths.max() <= 256 // least
+
+
+def test_an_overdamped_direction_is_refused_naming_its_angle():
+    # q'' + 2 c q' + delta q = 0 with c^2 > delta: the eigenvalues are real, the frozen modes
+    # do not oscillate, and the integrator's phases and tracking do not apply
+    with pytest.raises(NumericalError, match="real eigenvalue at crank angle 0 rad: the "
+                       "adiabatic integrator needs every direction underdamped"):
+        mathieu_basis(0.04, 0.0, c=0.5)
