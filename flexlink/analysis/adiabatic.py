@@ -229,7 +229,7 @@ def step_bounds(basis: AdiabaticBasis, speed: float, least: int = 16) -> np.ndar
     intervals, while h ||Q|| exceeds COUPLING_STEP or Q's departure from its parabola
     RESOLUTION (both bounded by the triangle inequality over Q's two parts: a few steps more
     where a veering makes Q peak, rather than finer steps everywhere). NumericalError when the
-    grid is too coarse for the equal steps."""
+    grid is too coarse for the equal steps, or its finest cells for COUPLING_STEP."""
     finest = basis.peak.shape[1] // 2
     spread = basis.eigenvalues.real.max() - basis.eigenvalues.real.min()
     turn = basis.angles[-1] - basis.angles[0]
@@ -247,6 +247,10 @@ def step_bounds(basis: AdiabaticBasis, speed: float, least: int = 16) -> np.ndar
         if not split.any():
             break
         cells = np.concatenate([cells[~split], 2 * cells[split], 2 * cells[split] + 1])
+    if (peak[cells] > COUPLING_STEP).any():
+        raise NumericalError(f"the couplings need steps shorter than the grid's at {speed:.6g} "
+                             f"rad/s (h ||Q|| up to {peak[cells].max():.3g} on the finest "
+                             f"cells, above {COUPLING_STEP:g}): use a finer grid")
     level = np.frexp(cells)[1] - 1
     starts = (cells - (1 << level)) * (2 * finest >> level)
     return np.append(np.sort(starts), 2 * finest)

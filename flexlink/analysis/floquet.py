@@ -178,7 +178,11 @@ def ordered_product(factors: np.ndarray) -> np.ndarray:
 
 
 def floquet(phi: np.ndarray, period: float) -> FloquetResult:
-    """The multipliers of a monodromy matrix, largest modulus first."""
+    """The multipliers of a monodromy matrix, largest modulus first. NumericalError where
+    the matrix is not finite (a growth over the period beyond the floating-point range)."""
+    if not np.all(np.isfinite(phi)):
+        raise NumericalError("the monodromy matrix overflowed over one period: a growth "
+                             "beyond the floating-point range")
     mu = np.linalg.eigvals(phi)
     order = np.argsort(-np.abs(mu), kind="stable")
     return FloquetResult(monodromy=phi, multipliers=mu[order], period=float(period))

@@ -45,6 +45,7 @@ from flexlink.scene import Scene
 from flexlink.studies.operating_point import external_loads, link_motion, reduced_pair, reducer
 from flexlink.studies.stability_map import (PeriodicModel, fourier_series, periodic_model,
                                            speed_multipliers)
+from flexlink.units import RPM
 
 SAMPLES = 180  # crank angles per revolution of the output (2 deg)
 TOLERANCE = 1e-7  # harmonic balance's error estimate, relative to the largest |q| over the turn
@@ -243,7 +244,7 @@ def steady_response(model: ForcedModel, speed: float, samples: int = SAMPLES,
     crank angles. UnstableError where a Floquet multiplier has |mu| >= 1 (the stability
     map's multipliers at this speed, by its own step rule)."""
     if not (math.isfinite(speed) and speed > 0.0):
-        raise InputError(f"crank speed {speed} rad/s", field="--speed",
+        raise InputError(f"crank speed {speed / RPM:.6g} rev/min", field="--speed",
                          expected="a positive finite speed")
     stability = speed_multipliers(model.periodic, speed)
     if stability.largest_modulus >= 1.0:

@@ -197,3 +197,19 @@ def test_an_overdamped_direction_is_refused_naming_its_angle():
     with pytest.raises(NumericalError, match="real eigenvalue at crank angle 0 rad: the "
                        "adiabatic integrator needs every direction underdamped"):
         mathieu_basis(0.04, 0.0, c=0.5)
+
+
+def test_couplings_the_finest_cells_cannot_resolve_are_refused():
+    # A2 (the part growing with the speed) couples the two Mathieu states: at 1e6 rad/s its
+    # h ||Q|| on the finest cells (2 pi / 128) is far above COUPLING_STEP, where the Magnus
+    # series diverges, so the step rule refuses rather than return an overflowed monodromy
+    # (the map then takes the Magnus steps there)
+    theta = _turn()
+    a = np.zeros((GRID + 1, 2, 2))
+    a[:, 0, 1], a[:, 1, 0] = 1.0, -4.0
+    speed_part = np.zeros_like(a)
+    speed_part[:, 1, 0] = 0.1 * np.cos(theta)
+    basis = adiabatic_basis(theta, a, np.zeros_like(a), np.zeros_like(a), speed_part)
+    adiabatic_monodromy(basis, 1.0, least=16)  # a moderate speed is taken
+    with pytest.raises(NumericalError, match="couplings need steps shorter than the grid's"):
+        adiabatic_monodromy(basis, 1e6, least=16)

@@ -9,7 +9,9 @@ from scipy.integrate import solve_ivp
 from scipy.linalg import eigh_tridiagonal
 from scipy.optimize import brentq
 
-from flexlink.analysis.floquet import first_order, monodromy, ordered_product, propagators
+from flexlink.analysis.floquet import (first_order, floquet, monodromy, ordered_product,
+                                       propagators)
+from flexlink.errors import NumericalError
 
 PERIOD = 2.0 * np.pi
 STEPS = 200
@@ -157,3 +159,10 @@ def test_interval_propagators_multiply_to_the_monodromy(intervals, steps):
     first = monodromy(system, PERIOD / intervals, steps).monodromy
     assert np.allclose(parts[0], first, rtol=0, atol=1e-12)
     assert not np.allclose(ordered_product(parts[::-1]), whole, rtol=0, atol=1e-6)
+
+
+def test_an_overflowed_monodromy_is_refused_not_returned():
+    # growth beyond the floating-point range over one period: no multipliers can be read from
+    # an inf or NaN matrix, and none are returned as numbers
+    with pytest.raises(NumericalError, match="overflowed over one period"):
+        floquet(np.array([[np.inf, 0.0], [0.0, 1.0]]), 1.0)

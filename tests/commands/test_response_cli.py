@@ -16,6 +16,7 @@ CASE1 = str(CASES_DIR / "case1.toml")
     (["--speeds", "600:600 rev/min"], "--speeds"),  # zero width
     (["--speed", "600 rev/min", "--speeds", "0:600 rev/min"], "not both"),
     (["--speed", "600 m"], "--speed"),
+    (["--speed", "-5 rev/min"], "crank speed -5 rev/min"),  # in the unit the user gave
     (["--speed", "600 rev/min", "--damping-ratio", "-0.1"], "--damping-ratio"),
     (["--speed", "600 rev/min", "--damping-ratio", "1.5"], "--damping-ratio"),
     (["--speed", "600 rev/min", "--at", "coupler:900 mm"], "outside link 'coupler'"),
