@@ -86,8 +86,8 @@ class AdiabaticBasis:
     phase (m + 1, n) [rad/s x rad]: Phi = int lambda dtheta from angles[0]; coupling, speed_coupling (2 n, m + 1, n):
     the tracked columns of P0 + P1 and of P2 (rows over the tracked half then its
     conjugates; the grid's axis between the rows and the columns, as the steps' arrays have
-    it); start, end (2 n, 2 n): the real eigenbasis (Re v_1, Im v_1, Re v_2, ...) at the two
-    ends; peak, defect (2, 2^(L + 1)) over the grid's dyadic cells (``_dyadic_bounds``),
+    it); end (2 n, 2 n): the real eigenbasis (Re v_1, Im v_1, Re v_2, ...) at the turn's
+    end, start_inverse: the inverse of that at its start; peak, defect (2, 2^(L + 1)) over the grid's dyadic cells (``_dyadic_bounds``),
     of P0 + P1 (row 0) and of P2 (row 1, per rad/s): h times the largest row sum of |Q| over a
     cell's grid points, and h times that of Q's departure from its parabola at the cell's
     quarter points [-]."""
@@ -97,7 +97,7 @@ class AdiabaticBasis:
     phase: np.ndarray
     coupling: np.ndarray
     speed_coupling: np.ndarray
-    start: np.ndarray
+    start_inverse: np.ndarray
     end: np.ndarray
     peak: np.ndarray
     defect: np.ndarray
@@ -105,8 +105,8 @@ class AdiabaticBasis:
 
 def adiabatic_basis(angles, a0, a0_prime, a1, a2) -> AdiabaticBasis:
     """Decompose and track A0 over ``angles`` (m + 1,) [rad], equally spaced over one turn
-    (both ends, m even). a0, a0_prime (dA0/dtheta), a1, a2: (m + 1, N, N) at the angles (units
-    of the module docstring: A0 [1/s], A1 [1/rad], A2 [1/rad per rad/s]).
+    (both ends, m / 2 a power of two). a0, a0_prime (dA0/dtheta), a1, a2: (m + 1, N, N) at
+    the angles (units of the module docstring: A0 [1/s], A1 [1/rad], A2 [1/rad per rad/s]).
     NumericalError where an eigenvalue is real (an overdamped or static direction) or the
     tracking loses a mode between grid points (a veering faster than the grid)."""
     angles = np.asarray(angles, dtype=float)
@@ -167,7 +167,7 @@ def adiabatic_basis(angles, a0, a0_prime, a1, a2) -> AdiabaticBasis:
     bounds = [_dyadic_bounds(c, angles) for c in (coupling, speed_coupling)]
     return AdiabaticBasis(angles=angles, eigenvalues=lam, phase=phase, coupling=coupling,
                           speed_coupling=speed_coupling,
-                          start=_real_basis(half[0]) * np.repeat(scale, 2),
+                          start_inverse=np.linalg.inv(_real_basis(half[0]) * np.repeat(scale, 2)),
                           end=_real_basis(half[-1]) * np.repeat(scale, 2),
                           peak=np.stack([b[0] for b in bounds]),
                           defect=np.stack([b[1] for b in bounds]))
@@ -233,7 +233,7 @@ def step_bounds(basis: AdiabaticBasis, speed: float, least: int = 16) -> np.ndar
     finest = basis.peak.shape[1] // 2
     spread = basis.eigenvalues.real.max() - basis.eigenvalues.real.min()
     turn = basis.angles[-1] - basis.angles[0]
-    count = max(least, int(np.ceil(turn * spread / (2.0 * DAMPING_PHASE * speed))), 1)
+    count = max(least, int(np.ceil(turn * spread / (2.0 * DAMPING_PHASE * speed))))
     count = 1 << (count - 1).bit_length()
     if count > finest:
         raise NumericalError(f"{count} steps per turn are needed at {speed:.6g} rad/s, the "
@@ -267,16 +267,15 @@ def adiabatic_monodromy(basis: AdiabaticBasis, speed: float, least: int = 16) ->
     ends = basis.phase[bounds] / speed  # Phi / Omega at the step ends and mid points [-]
     middle = basis.phase[(bounds[:-1] + bounds[1:]) // 2] / speed
     before = np.concatenate([ends[:1], middle[:-1]])  # m_(k-1), b_0 for the first step
-    turns = np.exp((middle - ends[:-1]) + (ends[:-1] - before))
-    product = np.eye(basis.start.shape[1])
+    turns = np.exp(middle - before)
+    product = np.eye(basis.end.shape[1])
     for first in range(0, len(bounds) - 1, STEP_CHUNK):
         last = min(first + STEP_CHUNK, len(bounds) - 1)
         steps = _step_exponentials(basis, speed, bounds[first:last + 1], ends[first:last + 1],
                                    middle[first:last])
         product = ordered_product(_scaled_columns(steps, turns[first:last])) @ product
-    product = _scaled_columns(np.eye(len(product))[None], np.exp(ends[-1:] - middle[-1:]))[0] \
-        @ product
-    return floquet(basis.end @ product @ np.linalg.inv(basis.start), 2.0 * np.pi / speed)
+    end = _scaled_columns(basis.end.copy(), np.exp(ends[-1] - middle[-1]))
+    return floquet(end @ product @ basis.start_inverse, 2.0 * np.pi / speed)
 
 
 def _step_exponentials(basis, speed, bounds, ends, middle):
@@ -300,8 +299,9 @@ def _step_exponentials(basis, speed, bounds, ends, middle):
     # are products of one per column and one per row
     half_turn = np.exp(0.5 * total)
     z = 0.5 * (total - _per_row(total))  # (2 n, steps, n)
-    up = half_turn / _per_row(half_turn)  # exp(z)
-    down = (1.0 / half_turn) * _per_row(half_turn)  # exp(-z)
+    per_row = _per_row(half_turn)
+    up = half_turn / per_row  # exp(z)
+    down = (1.0 / half_turn) * per_row  # exp(-z)
     bend = np.exp(residual) * _per_row(0.5 * np.exp(-residual))
     points = np.concatenate([bounds, mid])
     q = np.take(basis.coupling, points, axis=1)

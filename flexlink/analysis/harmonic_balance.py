@@ -79,15 +79,6 @@ class HarmonicSolution:
         return (np.exp(1j * np.outer(np.asarray(theta, dtype=float), k)) @ scaled).real
 
 
-def fourier_coefficients(samples: np.ndarray) -> np.ndarray:
-    """c_d, d = 0..P ((P + 1, ...) complex) of the trigonometric polynomial through samples
-    (N, ...) at N = 2P + 1 equal steps from angle 0."""
-    N = samples.shape[0]
-    if N % 2 == 0:
-        raise ValueError(f"an odd count of samples is needed, got {N}")
-    return np.fft.rfft(samples, axis=0) / N
-
-
 def harmonic_balance(stiffness: np.ndarray, damping: np.ndarray, forcing: np.ndarray,
                      speed: float, tolerance: float = 1e-7,
                      max_harmonics: int = MAX_HARMONICS) -> HarmonicSolution:

@@ -27,7 +27,7 @@ import numpy as np
 
 from flexlink.analysis import adiabatic
 from flexlink.analysis.floquet import FloquetResult, floquet, monodromy
-from flexlink.analysis.harmonic_balance import fourier_coefficients
+from flexlink.analysis.fourier import fourier_coefficients
 from flexlink.analysis.modal import pose_modes
 from flexlink.analysis.pose_basis import DEFAULT_TOLERANCE, PoseBasis, pose_basis
 from flexlink.analysis.solve import MECHANISM
@@ -151,7 +151,7 @@ class PeriodicModel:
         at every speed; its refusal (NumericalError) is kept and raised again, not rebuilt."""
         built = self._adiabatic_or_refusal
         if isinstance(built, NumericalError):
-            raise built
+            raise built.with_traceback(None)  # a kept refusal, not a growing traceback
         return built
 
     @functools.cached_property

@@ -27,12 +27,13 @@ rotation: dv/dx for Euler-Bernoulli), both from the element's own shape function
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 
 import numpy as np
 
-from flexlink.analysis.harmonic_balance import (HarmonicSolution, fourier_coefficients,
-                                               harmonic_balance)
+from flexlink.analysis.fourier import fourier_coefficients
+from flexlink.analysis.harmonic_balance import HarmonicSolution, harmonic_balance
 from flexlink.errors import InputError, NumericalError
 from flexlink.fe.assembly import reduced_columns, rigid_elimination
 from flexlink.fe.beams import shear_parameter
@@ -98,18 +99,23 @@ class ForcedModel:
         return fourier_series(samples, np.asarray(theta) - self.periodic.angles[0])
 
     def harmonic_equations(self, speed: float):
-        """Fourier coefficients (``analysis.harmonic_balance``) of S = M^-1 (K + Omega^2 K2)
-        [1/s^2], D = M^-1 (C + Omega G1) [1/s] (both (P + 1, n, n)) and g = M^-1 (Omega^2 f2
-        + f_ext) ((P + 1, n)) at crank ``speed`` Omega [rad/s], theta from the first pose:
-        the stability map's equations (``PeriodicModel.system``) read at its poses."""
-        periodic = self.periodic
-        n = len(periodic.frequencies)
-        a = periodic.system(speed)((periodic.angles - periodic.angles[0]) / speed)
-        mass = periodic.mass
-        loads = speed**2 * self.inertia_forcing + self.external_forcing
-        g = np.linalg.solve(mass, loads[..., None])[..., 0]
-        return (fourier_coefficients(-a[:, n:, :n]), fourier_coefficients(-a[:, n:, n:]),
-                fourier_coefficients(g))
+        """Fourier coefficients (``analysis.fourier``) of S = M^-1 (K + Omega^2 K2) [1/s^2],
+        D = M^-1 (C + Omega G1) [1/s] (both (P + 1, n, n)) and g = M^-1 (Omega^2 f2 + f_ext)
+        ((P + 1, n)) at crank ``speed`` Omega [rad/s], theta from the first pose: the
+        stability map's equations (``PeriodicModel.system``), whose parts' coefficients
+        (``_coefficients``) combine linearly at every speed."""
+        blocks, loads = self._coefficients
+        return (blocks[:, 2] + speed**2 * blocks[:, 3], blocks[:, 0] + speed * blocks[:, 1],
+                speed**2 * loads[:, 0] + loads[:, 1])
+
+    @functools.cached_property
+    def _coefficients(self) -> tuple[np.ndarray, np.ndarray]:
+        """The Fourier coefficients of M^-1 C, M^-1 G1, M^-1 K, M^-1 K2 ((P + 1, 4, n, n), the
+        map's first-order samples) and of M^-1 f2, M^-1 f_ext ((P + 1, 2, n)), once per model."""
+        forcing = np.stack([self.inertia_forcing, self.external_forcing], axis=1)
+        loads = np.linalg.solve(self.periodic.mass[:, None], forcing[..., None])[..., 0]
+        return (fourier_coefficients(self.periodic._first_order_samples),
+                fourier_coefficients(loads))
 
 
 def midspans(scene: Scene) -> tuple[StrainPoint, ...]:

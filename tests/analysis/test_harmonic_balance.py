@@ -15,10 +15,10 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
+from flexlink.analysis.fourier import fourier_coefficients
 from flexlink.analysis.harmonic_balance import (
     _band_preconditioner,
     _hill_product,
-    fourier_coefficients,
     harmonic_balance,
 )
 from flexlink.errors import NumericalError
