@@ -249,6 +249,10 @@ class Linkage:
             cross1 = d[0] * d1[1] - d[1] * d1[0]
             cross2 = d[0] * d2[1] - d[1] * d2[0]
             angles.append(math.atan2(d[1], d[0]))
+            if b.name == self.driver:  # its angle is q itself: dq/dq = 1, d2q/dq2 = 0 exactly
+                K.append(1.0)
+                L.append(0.0)
+                continue
             K.append(cross1 / dd)
             L.append(cross2 / dd - 2 * (d @ d1) * cross1 / dd**2)
         points = {k: (float(v[0]), float(v[1])) for k, v in pts.items()}

@@ -120,3 +120,21 @@ def test_two_loop_velocity_coefficients_match_finite_differences():
         dA = np.remainder(plus.angles - minus.angles + math.pi, 2 * math.pi) - math.pi
         np.testing.assert_allclose(state.K, dA / (2 * h), atol=1e-8)
         np.testing.assert_allclose(state.L, (plus.K - minus.K) / (2 * h), atol=1e-7)
+
+
+@pytest.mark.parametrize("scene_file", ["cases/case2.toml", "scenes/wiper.toml"])
+def test_the_driver_turns_at_exactly_the_crank_rate(scene_file):
+    # the driver's angle is the input angle q itself, so its coefficients are K = 1 and L = 0
+    # by construction, not by solving the loop: equality is exact (a driver alpha of 1e-13
+    # at constant speed would add a spurious circulatory term on one CPU and not another);
+    # the other bodies' coefficients are solved, and their K vary over the cycle
+    from pathlib import Path
+
+    from flexlink.scene import load_scene
+
+    scene = load_scene(Path(__file__).resolve().parents[2] / scene_file)
+    cycle = scene.linkage.cycle(crank_angles(72), scene.guess)
+    driver = [b.name for b in scene.linkage.bodies].index(scene.linkage.driver)
+    assert np.all(cycle.K[:, driver] == 1.0) and np.all(cycle.L[:, driver] == 0.0)
+    others = np.delete(cycle.K, driver, axis=1)
+    assert np.all(np.ptp(others, axis=0) > 1e-3)

@@ -109,8 +109,10 @@ def test_four_bar_at_speed_is_paired_and_reports_its_preload():
     assert np.all(op.mac > 0.9) and list(op.static_index) == [0, 1, 2, 3]
     largest = max((abs(N).max(), name) for name, N in op.axial_forces.items())
     assert (abs(op.largest_axial.value), op.largest_axial.link) == largest
-    # with the crank at constant speed the coupler and rocker still accelerate angularly
-    assert op.link_alpha[0] == 0.0 and np.all(op.link_alpha[1:] != 0.0)
+    # with the crank at constant speed the coupler and rocker still accelerate angularly;
+    # exact zero for the crank: the kinematics sets the driver's d2(angle)/dq2 to 0 by
+    # construction (its angle is q itself), so no round-off enters it on any CPU
+    assert op.link_alpha[0] == 0.0 and np.all(np.abs(op.link_alpha[1:]) > 1.0)
 
 
 def test_an_external_load_joins_the_preload(tmp_path):
