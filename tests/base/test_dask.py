@@ -1,5 +1,7 @@
-"""Monte Carlo on a dask.distributed LocalCluster of worker processes gives exactly the serial
-result (samples are drawn in the parent; results come back in task order).
+"""Monte Carlo on a dask.distributed LocalCluster of worker processes gives the serial result
+(samples are drawn in the parent; results come back in task order), to round-off: a worker
+process solves the same eigenproblems, but its BLAS may sum in another order (another thread
+count or memory alignment), so the frequencies agree to `contents.RTOL`, not bit for bit.
 
 ``use_scheduler("local")`` is given the tests' shared cluster (conftest) in place of a new one:
 the stand-in records what was asked for and whether the block closed it."""
@@ -7,10 +9,11 @@ the stand-in records what was asked for and whether the block closed it."""
 import os
 from pathlib import Path
 
-import numpy as np
 
 from flexlink.parallel import run_tasks, use_scheduler
 from flexlink.studies.uncertainty import monte_carlo, scene_inputs
+
+from contents import mismatches
 
 # distributed: imported by the dask_cluster fixture (which skips without it), not at collection
 
@@ -65,6 +68,6 @@ def test_local_cluster_same_as_serial(dask_cluster, monkeypatch):
     asked = {k: stand_in.asked.get(k) for k in ("n_workers", "threads_per_worker", "processes")}
     assert asked == dict(n_workers=os.cpu_count(), threads_per_worker=1, processes=True)
     assert stand_in.closed
-    assert np.array_equal(serial.samples, distributed_run.samples, equal_nan=True)
+    assert not mismatches(serial.samples, distributed_run.samples)
     assert [v for _, v in ran] == [0, 1, 2, 3]  # task order
     assert all(address in cluster for address, _ in ran)  # on the cluster's workers

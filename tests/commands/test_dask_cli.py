@@ -1,10 +1,13 @@
 """`--scheduler` of `modes --sensitivity` and `cycle`: on a LocalCluster of worker processes the
-JSON documents are the serial run's, bit for bit, and the work did run on the cluster.
+JSON documents are the serial run's, and the work did run on the cluster.
 
-Both runs are subprocesses with one BLAS thread, as every dask worker has (its nanny sets
-OPENBLAS_NUM_THREADS=1): with two BLAS threads a dense eigen solve of the parent differs from a
-worker's in the last bit (measured: 25.296377744065346 against ...36 Hz for case 2's first
-mode), whoever schedules it."""
+The same documents to round-off (`contents.mismatches`: text and integers exactly, numbers to
+`contents.RTOL` of their array's scale), not bit for bit: a dense eigen solve in another
+process may sum in another order (with two BLAS threads the parent's first frequency of case 2
+was measured 25.296377744065346 against ...36 Hz in a worker), and a CPU or BLAS of another
+kind moves the last bits of every number. Both runs are subprocesses with one BLAS thread, as
+every dask worker has (its nanny sets OPENBLAS_NUM_THREADS=1), so they share the machine's two
+cores evenly."""
 
 import json
 import os
@@ -18,6 +21,7 @@ import pytest
 # distributed: imported by the dask_cluster fixture (which skips without it), not at collection
 
 from conftest import ROOT
+from contents import mismatches
 ONE_BLAS_THREAD = {name: "1" for name in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS",
                                           "MKL_NUM_THREADS")}
 
@@ -57,8 +61,7 @@ def serial_and_distributed(run: tuple, address: str, tmp_path: Path,
                            serial_options=()) -> tuple[dict, dict]:
     """The --json documents of ``run`` on this machine and on the cluster at ``address``, each
     into a folder of its own under ``tmp_path``. The two processes run side by side: the
-    serial one sends no task to the cluster, and their results are bitwise the same whatever
-    else runs (one BLAS thread each)."""
+    serial one sends no task to the cluster."""
     folders = tmp_path / "serial", tmp_path / "distributed"
     serial = flexlink_started(*run, *serial_options, "--out", folders[0])
     distributed = flexlink_started(*run, "--scheduler", address, "--out", folders[1])
@@ -85,7 +88,7 @@ def test_modes_sensitivity_on_cluster_same_as_serial(cluster, tmp_path):
     run = ("modes", ROOT / "cases" / "case2.toml", "-n", "2", "--sensitivity", "--samples", "10")
     since = time.time()
     serial, distributed = serial_and_distributed(run, address, tmp_path, ("-j", "1"))
-    assert untimed(distributed) == untimed(serial)
+    assert not mismatches(untimed(distributed), untimed(serial))
     sensitivity = serial["cases"][0]["sensitivity"]
     # the nominal model, both ends of every ranged input, then the Monte Carlo samples
     assert cluster_tasks(client, since) == 1 + 2 * len(sensitivity["inputs"]) + 10
@@ -97,6 +100,6 @@ def test_cycle_on_cluster_same_as_serial(cluster, tmp_path, order):
     run = ("cycle", ROOT / "cases" / "case1.toml", "--poses", "36", order)
     since = time.time()
     serial, distributed = serial_and_distributed(run, address, tmp_path)
-    assert untimed(distributed) == untimed(serial)
+    assert not mismatches(untimed(distributed), untimed(serial))
     # tracked: 4 chunks of poses per worker; sorted: the Craig-Bampton map as one task
     assert cluster_tasks(client, since) == (8 if order == "--track" else 1)
