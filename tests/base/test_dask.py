@@ -11,7 +11,7 @@ from pathlib import Path
 
 
 from flexlink.parallel import run_tasks, use_scheduler
-from flexlink.studies.uncertainty import monte_carlo, scene_inputs
+from flexlink.studies.calibration.uncertainty import monte_carlo, scene_inputs
 
 from contents import mismatches
 
