@@ -26,7 +26,7 @@ def test_paired_merges_parts_in_frequency_order():
     parts = (PartModes(Part.IN_PLANE, None, np.array([10.0, 30.0]), np.zeros((3, 2))),
              PartModes(Part.OUT_OF_PLANE, None, np.array([5.0, 20.0, 40.0]), np.zeros((3, 3))))
     freqs, pairs = paired(parts, 4)
-    np.testing.assert_array_equal(freqs, [5.0, 10.0, 20.0, 30.0])
+    np.testing.assert_array_equal(freqs, [5.0, 10.0, 20.0, 30.0])  # merged, not computed
     assert pairs == ((1, 0), (0, 0), (1, 1), (0, 1))
     # more asked than the parts hold: NaN for the missing ones, one pair per mode found
     freqs, pairs = paired(parts, 7)

@@ -99,7 +99,7 @@ def test_refined_eigenvalues_refuse_lost_vectors_and_sort(caplog):
 
     # lambda_ref = 1e4: modes below 1e-6 lambda_ref = 1e-2 are mechanisms
     vals, order = sv.refined_eigenvalues(None, shapes, energy, 1e4, 1e6, 1e-6)
-    np.testing.assert_array_equal(vals[order], [1e-3, 1.0, 4.0])
+    np.testing.assert_array_equal(vals[order], [1e-3, 1.0, 4.0])  # the quotients, sorted
     # eps lambda_max / lambda_1 over the elastic modes (1.0, not the mechanism's 1e-3)
     eps = np.finfo(float).eps
     with caplog.at_level(logging.WARNING, logger="flexlink.analysis.solve"):

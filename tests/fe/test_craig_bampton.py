@@ -182,7 +182,9 @@ def test_chunks_change_nothing(monkeypatch):
     whole = modal_sweep(topology, poses, 6, reduction="craig-bampton").frequencies
     monkeypatch.setattr(sweep, "CHUNK", 5)
     chunked = modal_sweep(topology, poses, 6, reduction="craig-bampton").frequencies
-    np.testing.assert_array_equal(chunked, whole)
+    # the same eigenproblems in other stacks: equal to round-off (a stack's copy may sit at
+    # another alignment, which a BLAS kernel may sum in another order)
+    np.testing.assert_allclose(chunked, whole, rtol=1e-13, atol=0)
 
 
 def test_mass_factor_whitens_the_plans_mass_matrices():

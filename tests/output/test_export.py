@@ -78,6 +78,7 @@ def test_vtu_round_trip_matches_the_solver(case3, modes, tmp_path):
     assert np.all(back.points[:, 2] == 0)
     np.testing.assert_allclose(back.points[:len(s.points), :2], s.points, rtol=0, atol=1e-15)
     on_node = np.flatnonzero(s.point_node >= 0)
+    # on a node the sample is the node itself, and the file keeps float64 exactly
     np.testing.assert_array_equal(back.points[on_node, :2], model.nodes[s.point_node[on_node]])
     assert len(on_node) == len(model.nodes)
 
@@ -98,12 +99,13 @@ def test_vtu_round_trip_matches_the_solver(case3, modes, tmp_path):
                                rtol=1e-15)
     for k in range(3):
         name = f"mode{k + 1}"
-        assert back.field_data[f"{name}_frequency_Hz"][0] == solved.frequencies[elastic[k]]
+        assert back.field_data[f"{name}_frequency_Hz"][0] == solved.frequencies[elastic[k]]  # kept
         disp, rot = back.point_data[f"{name}_displacement"], back.point_data[f"{name}_rotation"]
         assert disp.shape == (len(back.points), 3) and np.all(disp[:, 2] == 0)
         # (rotated to the link frame and back: a few ulps of round-off)
         np.testing.assert_allclose(disp[on_node, :2], shapes[s.point_node[on_node], :2, k],
                                    rtol=0, atol=4 * np.finfo(float).eps * np.abs(shapes).max())
+        # rz is the same in every frame: the solver's value, kept exactly by the file
         np.testing.assert_array_equal(rot[on_node], shapes[s.point_node[on_node], 2, k])
         # between nodes: the element's cubic, checked in the link frame of every element
         element = 0
@@ -228,7 +230,7 @@ def test_joint_springs_join_the_displaced_link_ends():
         nodes = model.joint_nodes[sp.name]
         # (displacements rotated to the link frame and back: a few ulps)
         if sp.ground:
-            np.testing.assert_array_equal(sp.start, case3.pose.joints[sp.name])
+            np.testing.assert_array_equal(sp.start, case3.pose.joints[sp.name])  # not moved
             np.testing.assert_allclose(sp.end, displaced[nodes[0]], rtol=0, atol=1e-15)
         else:
             np.testing.assert_allclose([sp.start, sp.end], displaced[list(nodes)], rtol=0,
@@ -249,7 +251,7 @@ def test_zigzag_runs_between_its_ends():
     start, end, width = np.array([1.0, 2.0]), np.array([4.0, 6.0]), 0.1
     points = zigzag(start, end, width, teeth=4)
     assert len(points) == 2 * 4 + 3
-    np.testing.assert_array_equal(points[[0, -1]], [start, end])
+    np.testing.assert_array_equal(points[[0, -1]], [start, end])  # the ends themselves
     unit = (end - start) / 5.0
     normal = np.array([-unit[1], unit[0]])
     offset = (points - start) @ normal

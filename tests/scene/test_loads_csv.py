@@ -80,7 +80,7 @@ def test_a_force_csv_has_two_components_at_its_point(tmp_path):
     angles = np.arange(0, 360, 120)
     (load,) = loads_of(tmp_path, FORCE, grid(angles, [1, 2, 3], [4, 5, 6],
                                              header="crank_angle_deg,Fx,Fy"))
-    np.testing.assert_array_equal(load.values, [[1, 4], [2, 5], [3, 6]])
+    np.testing.assert_array_equal(load.values, [[1, 4], [2, 5], [3, 6]])  # integers, parsed
     assert load.at == (0.01, 0.0)
 
 
@@ -88,7 +88,7 @@ def test_a_constant_torque_has_one_row_no_angles_and_acts_at_the_origin(tmp_path
     (load,) = loads_of(tmp_path, '[[loads]]\nkind = "torque"\nlink = "rocker"\n'
                                  'torque = "2 N*m"\n', None)
     assert load.angles is None and load.values.tolist() == [[2.0]] and load.at == (0.0, 0.0)
-    assert float(load.value_at(1.0)[0]) == 2.0
+    assert float(load.value_at(1.0)[0]) == 2.0  # a constant load's one row, not interpolated
 
 
 @pytest.mark.parametrize("csv, words", [

@@ -55,7 +55,7 @@ def test_resonance_check_finds_harmonics_by_construction():
     omega = 2 * math.pi * 50.0  # 50 Hz crank: harmonic 2 = 100 Hz crosses mode 1, 6 = 300 Hz
     hits = {(h.harmonic, h.mode): h for h in resonances(m, omega, margin=0.02, harmonics=8)}
     assert set(hits) == {(2, 1), (6, 2)}
-    assert hits[(2, 1)].closest == 0.0  # crossed
+    assert hits[(2, 1)].closest == 0.0  # crossed: set to 0, not computed
     assert hits[(6, 2)].closest == pytest.approx(5 / 305)
     near = np.degrees(hits[(2, 1)].angles)  # |10 sin q| <= 2 Hz
     assert near.min() == pytest.approx(0.0) and near.max() <= 360

@@ -37,6 +37,7 @@ def test_a_grid_starting_past_divergence_still_records_it(case1):
                             elements_per_link=8)
     assert past.stable_speeds == 0 and np.isnan(past.frequencies).all()
     d = past.divergence
+    # the grid speed and the pose angle are picked from the grids, not computed
     assert d is not None and d.grid_speed == 2900.0 * RPM and d.line is None
     assert d.q == kept.q and d.speed == pytest.approx(kept.speed, rel=1e-12)
     assert 2700 * RPM < d.speed < 2900 * RPM

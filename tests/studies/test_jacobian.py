@@ -84,4 +84,5 @@ def test_followers_probe_downwards_where_the_upward_probe_fails():
 
     free = followers(lambda v: problem.scene(SCENES[0], v), values, kt, ["in-plane"], 4)
     down = followers(capped, values, kt, ["in-plane"], 4)
+    # the followed springs: boolean masks
     assert down is not None and np.array_equal(free[0][0], down[0][0]) and free[0][0].any()
