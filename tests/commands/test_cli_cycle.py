@@ -38,7 +38,7 @@ def test_kinematics_reports_synthesis_and_family(tmp_path):
                  "--json", "--out", tmp_path)
     assert result.exit_code == 0, result.output
     doc = json.loads(result.stdout)
-    assert doc["synthesis"]["lengths_m"]["rocker"] == 0.1
+    assert doc["synthesis"]["lengths_m"]["rocker"] == 0.1  # the scene's "100 mm", parsed
     assert len(doc["family"]) == 3 + 8
     rocker = doc["bodies"]["rocker"]
     assert abs(rocker["swing_deg"] - 30) < 1e-9 and abs(rocker["time_ratio"] - 1) < 1e-9

@@ -14,6 +14,7 @@ from flexlink.cli import main
 from flexlink.studies.cycle.modal_map import ModalMap, resonance_speed, resonances
 
 from conftest import ROOT
+from contents import mismatches
 COMMANDS = ROOT / "flexlink" / "commands"
 
 
@@ -71,7 +72,7 @@ def test_cycle_command_with_negative_and_zero_speed(tmp_path):
               "-n", "2", "--harmonics", "100", "--json", "--out", tmp_path)
     forward = json.loads(run(*common, "--speed", "600 rev/min").stdout)
     backward = json.loads(run(*common, "--speed", "-600 rev/min").stdout)
-    assert forward["resonances"] and backward["resonances"] == forward["resonances"]
+    assert forward["resonances"] and not mismatches(backward["resonances"], forward["resonances"])
     # rev/min to rad/s and back: one rounding each way
     assert backward["crank_speed_rev_per_min"] == pytest.approx(-600.0, rel=1e-15)
     assert backward["resonance_check"]["speed_rev_per_min"] == pytest.approx(600.0, rel=1e-15)
