@@ -157,11 +157,15 @@ class JointSpec:
     welded: bool = False  # ground joint only: its links are welded together (see module docstring)
 
     def __post_init__(self):
-        for field in ("Kt", "Kr", "mass"):
+        # as the scene's reader: stiffnesses >= 0 or inf (rigid), a mass >= 0 and finite;
+        # `not value >= 0` refuses NaN too
+        for field, unit in (("Kt", "N/m"), ("Kr", "N*m/rad"), ("mass", "kg")):
             value = getattr(self, field)
-            if not (value >= 0) or math.isnan(value):
-                raise InputError(f"must be >= 0, got {value!r}", source=f"joint {self.name}",
-                                 field=field, expected="N/m, N*m/rad or kg, >= 0")
+            if not value >= 0 or (field == "mass" and math.isinf(value)):
+                raise InputError(f"must be >= 0{' and finite' if field == 'mass' else ''}, "
+                                 f"got {value!r}", source=f"joint {self.name}", field=field,
+                                 expected=f"{unit}, >= 0" + (", finite" if field == "mass"
+                                                            else " or inf (rigid)"))
         if self.welded and not self.ground:
             raise InputError("only a ground joint can be welded (a moving weld is Kt = Kr = rigid)",
                              source=f"joint {self.name}", field="welded")
@@ -174,6 +178,11 @@ class DriveSpec:
     link: str
     joint: str
     stiffness: float
+
+    def __post_init__(self):
+        if not self.stiffness >= 0:  # NaN too
+            raise InputError(f"must be >= 0, got {self.stiffness!r}", source="drive",
+                             field="stiffness", expected="N*m/rad, >= 0")
 
 
 @dataclasses.dataclass(frozen=True)

@@ -40,6 +40,7 @@ import dataclasses
 import numpy as np
 import scipy.sparse as sp
 
+from flexlink.errors import InputError
 from flexlink.fe.assembly import reduced_dense_pair, springs_stiffness_entries
 from flexlink.fe.joints import JointDofs, Springs, joint_mass_entries
 from flexlink.fe.model import FrameModel, Section
@@ -162,8 +163,13 @@ def strip_entries(model: FrameModel, strips: tuple[StripProperties, ...]):
 
 def out_of_plane_stiffness(joint, tilt) -> tuple[float, float, float]:
     """A joint's bearing stiffness on (w, rx, ry): Kt [N/m], then its Ktilt [N m/rad] from
-    ``tilt`` (joint name -> Ktilt) twice."""
-    return joint.Kt, tilt[joint.name], tilt[joint.name]
+    ``tilt`` (joint name -> Ktilt) twice. InputError for a Ktilt that is not >= 0 (NaN
+    included), as the scene's reader refuses it."""
+    k = tilt[joint.name]
+    if not k >= 0:
+        raise InputError(f"must be >= 0, got {k!r}", source=f"joint {joint.name}", field="Ktilt",
+                         expected="N*m/rad, >= 0")
+    return joint.Kt, k, k
 
 
 def strip_mass_entries(model: FrameModel):
