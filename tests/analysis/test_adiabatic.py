@@ -5,13 +5,14 @@ Systems in the crank angle theta: dx/dtheta = (A0 / Omega + A1 + Omega A2) x, on
 import numpy as np
 import pytest
 import scipy.linalg as sla
-from scipy.linalg import eigh_tridiagonal
 from scipy.optimize import brentq
 
 from flexlink.analysis import adiabatic
 from flexlink.analysis.adiabatic import adiabatic_basis, adiabatic_monodromy, step_bounds
 from flexlink.analysis.floquet import monodromy
 from flexlink.errors import NumericalError
+
+from mathieu import first_order_matrix, hill_edges
 
 GRID = 256
 
@@ -35,13 +36,7 @@ def mathieu_basis(delta: float, epsilon: float, c: float = 0.0, grid: int = GRID
 
 def mathieu_reference(delta, epsilon, c, speed, steps=4000):
     """The same system in time t = theta / speed by the Magnus steps."""
-    def a(t):
-        out = np.zeros(np.shape(t) + (2, 2))
-        out[..., 0, 1] = 1.0
-        out[..., 1, 0] = -(delta + epsilon * np.cos(speed * t))
-        out[..., 1, 1] = -2.0 * c
-        return out
-    return monodromy(a, 2.0 * np.pi / speed, steps)
+    return monodromy(first_order_matrix(delta, epsilon, c, speed), 2.0 * np.pi / speed, steps)
 
 
 def test_constant_coefficients_give_the_exact_exponential():
@@ -97,17 +92,6 @@ def test_undamped_stable_multipliers_stay_on_the_unit_circle():
     assert np.abs(np.abs(result.multipliers) - 1.0).max() < 1e-9
 
 
-def _hill_edges(epsilon: float, order: int = 30) -> tuple[float, float]:
-    """The first tongue's edges of q'' + (delta + epsilon cos t) q = 0 from Hill's determinant
-    on 4 pi periodic solutions (odd harmonics n / 2): eigenvalues of the tridiagonal matrix of
-    diagonal n^2 / 4 and off-diagonal -epsilon / 2 nearest 1/4."""
-    n = np.arange(-(2 * order + 1), 2 * order + 2, 2)
-    values = eigh_tridiagonal(n**2 / 4.0, np.full(n.size - 1, -epsilon / 2.0),
-                              eigvals_only=True)
-    nearest = np.sort(values[np.argsort(np.abs(values - 0.25))[:2]])
-    return float(nearest[0]), float(nearest[1])
-
-
 def test_mathieu_tongue_edges_equal_hills_determinant():
     # at speed 1 the system is the standard Mathieu equation; an edge of the first tongue is
     # where the undamped monodromy's trace passes through -2. 1e-8 in delta: the 128-step
@@ -117,7 +101,7 @@ def test_mathieu_tongue_edges_equal_hills_determinant():
     def excess(delta):
         return -np.trace(adiabatic_monodromy(mathieu_basis(delta, epsilon), 1.0,
                                              least=128).monodromy) - 2.0
-    low, high = _hill_edges(epsilon)
+    low, high = hill_edges(epsilon)
     centre = 0.25 - epsilon**2 / 8.0
     assert brentq(excess, centre, centre - 0.6 * epsilon, xtol=1e-13) == pytest.approx(low, abs=1e-8)
     assert brentq(excess, centre, centre + 0.6 * epsilon, xtol=1e-13) == pytest.approx(high,

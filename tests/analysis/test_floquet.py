@@ -6,19 +6,21 @@ period-doubling tongue: a multiplier leaves the unit circle through -1).
 import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
-from scipy.linalg import eigh_tridiagonal
 from scipy.optimize import brentq
 
 from flexlink.analysis.floquet import (first_order, floquet, monodromy, ordered_product,
                                        propagators)
 from flexlink.errors import NumericalError
 
+from mathieu import first_order_matrix, hill_edges
+
 PERIOD = 2.0 * np.pi
 STEPS = 200
 
 
 def mathieu(delta: float, epsilon: float, c: float = 0.0):
-    """A(t) of the (damped) Mathieu equation in first-order form, through first_order."""
+    """A(t) of the (damped) Mathieu equation in first-order form, built by flexlink's
+    first_order (the reference's matrix, as the first test checks)."""
     mass, damping = np.eye(1), np.array([[2.0 * c]])
     return lambda t: first_order(mass, damping, (delta + epsilon * np.cos(t))[..., None, None])
 
@@ -37,19 +39,10 @@ def boundary(epsilon: float, side: int) -> float:
     return brentq(excess, centre, centre + side * (epsilon + 0.05), xtol=1e-13)
 
 
-def hill_boundaries(epsilon: float, order: int = 30) -> tuple[float, float]:
-    """The first tongue's edges from Hill's infinite determinant, truncated at |n| <= 2 order + 1.
-
-    On an edge the solution is 4 pi periodic: q = sum over odd n of a_n exp(i n t / 2). Putting
-    it into the equation gives (delta - n^2/4) a_n + epsilon/2 (a_{n-2} + a_{n+2}) = 0, so the
-    edge values of delta are the eigenvalues of the symmetric tridiagonal matrix with diagonal
-    n^2/4 and off-diagonal -epsilon/2 over odd n; the two nearest 1/4 are the edges. No time
-    integration enters; the truncation error falls faster than any power of the order (the
-    coefficients decay like epsilon^k / (k!)^2)."""
-    n = np.arange(-(2 * order + 1), 2 * order + 2, 2)
-    values = eigh_tridiagonal(n**2 / 4.0, np.full(n.size - 1, -epsilon / 2.0), eigvals_only=True)
-    nearest = np.sort(values[np.argsort(np.abs(values - 0.25))[:2]])
-    return float(nearest[0]), float(nearest[1])
+def test_first_order_builds_the_reference_matrix():
+    t = np.linspace(0.0, PERIOD, 7)
+    assert np.allclose(mathieu(0.3, 0.4, 0.02)(t), first_order_matrix(0.3, 0.4, 0.02)(t),
+                       rtol=1e-15, atol=0)
 
 
 @pytest.mark.parametrize("epsilon", [0.02, 0.05, 0.1])
@@ -65,7 +58,7 @@ def test_tongue_edges_follow_ince_strutt_for_small_epsilon(epsilon):
 def test_tongue_edges_match_hill_determinant_up_to_half(epsilon):
     # Hill's determinant is exact to round-off at this order; the Magnus error at 200 steps
     # is below 1e-8 in delta (measured 1.2e-9 at epsilon 0.5), so 1e-8 is the bound.
-    low, high = hill_boundaries(epsilon)
+    low, high = hill_edges(epsilon)
     assert boundary(epsilon, -1) == pytest.approx(low, abs=1e-8)
     assert boundary(epsilon, 1) == pytest.approx(high, abs=1e-8)
 
@@ -73,7 +66,7 @@ def test_tongue_edges_match_hill_determinant_up_to_half(epsilon):
 def test_hill_reference_is_converged_in_its_order():
     # The reference itself: doubling the truncation changes the edges only at round-off, which
     # scales with the largest diagonal entry (~3600 at order 60) times 2e-16: 1e-11.
-    assert np.allclose(hill_boundaries(0.5, 30), hill_boundaries(0.5, 60), atol=1e-11, rtol=0)
+    assert np.allclose(hill_edges(0.5, order=30), hill_edges(0.5, order=60), atol=1e-11, rtol=0)
 
 
 def test_growth_rate_equals_long_time_integration_inside_tongue():
