@@ -21,6 +21,15 @@ def beam_scale(section=SECTION, length=LENGTH):
     return math.sqrt(section.EI / (section.mass_per_length * length**4))
 
 
+# beta_n L roots of the Euler-Bernoulli characteristic equations (Blevins, Formulas for Natural
+# Frequency): cantilever 1 + cos x cosh x = 0, pinned-pinned sin x = 0, free-free
+# 1 - cos x cosh x = 0; omega_n = (beta_n L)^2 beam_scale()
+BETA_L = {
+    "cantilever": [1.875104068711961, 4.694091132974175, 7.854757438237613, 10.99554073487547],
+    "pinned-pinned": [math.pi * n for n in range(1, 5)],
+    "free-free": [4.730040744862704, 7.853204624095838, 10.99560783800167, 14.13716549125746],
+}
+
 SUPPORTS = {
     # (start joint Kt, Kr), (end joint Kt, Kr); None = free end (no joint springs)
     "cantilever": ((INF, INF), None),

@@ -5,14 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from helpers import beam_scale, bending_frequencies, modes_of, single_beam
-
-# beta_n L roots of the characteristic equations (Blevins, Formulas for Natural Frequency)
-BETA_L = {
-    "cantilever": [1.875104068711961, 4.694091132974175, 7.854757438237613, 10.99554073487547],
-    "pinned-pinned": [math.pi * n for n in range(1, 5)],
-    "free-free": [4.730040744862704, 7.853204624095838, 10.99560783800167, 14.13716549125746],
-}
+from helpers import BETA_L, beam_scale, bending_frequencies, modes_of, single_beam
 
 
 @pytest.mark.parametrize("support", list(BETA_L))

@@ -16,13 +16,13 @@ from flexlink.fe.strip import (StripProperties, strip_chain_matrices, strip_elem
 from flexlink.scene import load_scene
 
 from conftest import CASES_DIR as CASES
+from helpers import BETA_L
+
 INF = math.inf
 LENGTH = 0.5
 # a flat strip 20 x 2 mm: torsion and weak-axis bending frequencies interleave but never coincide
 STRIP = Section.rectangle(E=70e9, G=26e9, density=2700.0, width=0.02, thickness=0.002)
 P = StripProperties.of(STRIP)
-CANTILEVER_BETA_L = [1.875104068711961, 4.694091132974175, 7.854757438237613,
-                     10.99554073487547]
 
 
 def strip_modes(start, end, elements, n, angle=0.0):
@@ -80,7 +80,7 @@ def test_rotated_chain_keeps_three_rigid_body_modes():
 @pytest.mark.parametrize("angle", [0.0, 1.1])
 def test_cantilever_bending_and_torsion_match_closed_forms(angle):
     result = strip_modes((INF, INF), None, 40, 6, angle)
-    exact = np.sort(np.concatenate([bending(CANTILEVER_BETA_L), torsion([0.5, 1.5])]))
+    exact = np.sort(np.concatenate([bending(BETA_L["cantilever"]), torsion([0.5, 1.5])]))
     # Hermite bending converges as h^4, linear torsion as h^2: (pi/2/40)^2/12 ~ 1e-4 at 40 elements
     np.testing.assert_allclose(result.elastic_frequencies[:5], exact[:5], rtol=3e-4)
 

@@ -19,12 +19,12 @@ import math
 import numpy as np
 from hypothesis import given
 from hypothesis import strategies as st
+from helpers import BETA_L
 from strategies import cantilever_toml, fewer, linkages, load, log_uniform, write_scene
 
 from flexlink.analysis.modal import analyze
 from flexlink.scene import load_scene
 
-BETA_L = (1.8751040687119611, 4.6940911329741746)  # cantilever roots of 1 + cos x cosh x = 0
 
 
 def orders(f: dict) -> np.ndarray:
@@ -48,7 +48,7 @@ def test_euler_bernoulli_cantilever_converges_at_order_four_from_above(text):
     scene = load_scene(write_scene(text))
     s = scene.links[0].section
     length = scene.linkage.bodies[0].length
-    exact = (np.array(BETA_L) ** 2 * math.sqrt(s.EI / (s.mass_per_length * length**4))
+    exact = (np.array(BETA_L["cantilever"][:2]) ** 2 * math.sqrt(s.EI / (s.mass_per_length * length**4))
              / (2 * math.pi))
     f = {e: analyze(scene, 2, e).elastic_frequencies(2) for e in (4, 8, 16)}
     errors = {e: (fe - exact) / exact for e, fe in f.items()}
