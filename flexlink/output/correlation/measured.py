@@ -9,45 +9,22 @@ in 15 six. Units: dataset 164's length factor is file units per metre (1000 for 
 
 from __future__ import annotations
 
-import dataclasses
 from pathlib import Path
 
 import numpy as np
 
 from flexlink.fileio import write_atomic, write_atomic_with
-from flexlink.studies.array_shapes import check_shape
+from flexlink.studies.correlation.correlation import ModesAtPoints
 from flexlink.units import UNITS
 
 GEOMETRY_DATASETS = (15, 2411)
 UNIT_CODES = {"m": 1, "mm": 3}  # I-DEAS unit systems: SI metre, mm-N; others "user" (0)
 
 
-@dataclasses.dataclass(frozen=True)
-class ShapesAtPoints:
-    """Mode shapes at labelled points, ready to write: ``labels`` (P,) positive integers
-    (UFF node numbers), ``coordinates`` (P, 3) in ``unit``, ``values`` (P, 3, k) along the
-    file's X, Y, Z, ``frequencies`` (k,) [Hz], ``damping`` (k,) viscous ratios (0 where
-    unknown), ``title`` (UFF ID line 1)."""
-
-    labels: np.ndarray
-    coordinates: np.ndarray
-    values: np.ndarray
-    frequencies: np.ndarray
-    damping: np.ndarray
-    unit: str
-    title: str
-
-    def __post_init__(self):
-        p, k = len(self.labels), len(self.frequencies)
-        check_shape("ShapesAtPoints", "coordinates", self.coordinates, (p, 3))
-        check_shape("ShapesAtPoints", "values", self.values, (p, 3, k))
-        check_shape("ShapesAtPoints", "damping", self.damping, (k,))
-        if self.unit not in UNITS["length"]:
-            raise ValueError(f"ShapesAtPoints.unit {self.unit!r} is not a length unit")
-
-
-def uff_datasets(shapes: ShapesAtPoints, geometry: int = 15) -> list[dict]:
-    """pyuff's dictionaries of datasets 164, ``geometry`` (15 or 2411) and one 55 per mode."""
+def uff_datasets(shapes: ModesAtPoints, title: str, damping=None, geometry: int = 15
+                 ) -> list[dict]:
+    """pyuff's dictionaries of datasets 164, ``geometry`` (15 or 2411) and one 55 per mode;
+    ``title`` is every 55's ID line 1, ``damping`` (k,) viscous ratios (None: 0)."""
     import pyuff
 
     if geometry not in GEOMETRY_DATASETS:
@@ -66,32 +43,34 @@ def uff_datasets(shapes: ShapesAtPoints, geometry: int = 15) -> list[dict]:
     for k, f in enumerate(shapes.frequencies):
         v = shapes.values[:, :, k]
         out.append(pyuff.prepare_55(
-            id1=shapes.title[:80] or "NONE", id4=f"mode {k + 1}", model_type=1,
+            id1=title[:80] or "NONE", id4=f"mode {k + 1}", model_type=1,
             analysis_type=2, data_ch=2, spec_data_type=8, data_type=2, n_data_per_node=3,
             r1=v[:, 0].astype(float), r2=v[:, 1].astype(float), r3=v[:, 2].astype(float),
             load_case=1, mode_n=k + 1, freq=float(f), modal_m=0.0,
-            modal_damp_vis=float(shapes.damping[k]), modal_damp_his=0.0,
+            modal_damp_vis=0.0 if damping is None else float(damping[k]), modal_damp_his=0.0,
             node_nums=np.array(labels)))
     return out
 
 
-def write_uff(path: str | Path, shapes: ShapesAtPoints, geometry: int = 15) -> Path:
+def write_uff(path: str | Path, shapes: ModesAtPoints, title: str, damping=None,
+              geometry: int = 15) -> Path:
     """``shapes`` as a UFF file (``uff_datasets``), written by pyuff, atomically."""
     import pyuff
 
-    datasets = uff_datasets(shapes, geometry)
+    datasets = uff_datasets(shapes, title, damping, geometry)
     return write_atomic_with(path, lambda tmp: pyuff.UFF(str(tmp)).write_sets(
         datasets, mode="overwrite"))
 
 
-def shapes_csv(shapes: ShapesAtPoints) -> str:
+def shapes_csv(shapes: ModesAtPoints, damping=None) -> str:
     """The CSV form (``studies.correlation.measured.read_csv``): one row per point and
     direction with a non-zero reading in some mode."""
+    damping = np.zeros(len(shapes.frequencies)) if damping is None else damping
     unit = shapes.unit
     lines = [f"sensor,x [{unit}],y [{unit}],z [{unit}],dx,dy,dz,"
              + ",".join(f"mode {k + 1}" for k in range(len(shapes.frequencies)))]
     lines.append("frequency [Hz],,,,,,," + ",".join(f"{f:.9g}" for f in shapes.frequencies))
-    lines.append("damping,,,,,,," + ",".join(f"{z:.6g}" for z in shapes.damping))
+    lines.append("damping,,,,,,," + ",".join(f"{z:.6g}" for z in damping))
     for label, xyz, values in zip(shapes.labels, shapes.coordinates, shapes.values):
         for axis in range(3):
             if not np.any(values[axis]):
@@ -103,5 +82,5 @@ def shapes_csv(shapes: ShapesAtPoints) -> str:
     return "\n".join(lines) + "\n"
 
 
-def write_shapes_csv(path: str | Path, shapes: ShapesAtPoints) -> Path:
-    return write_atomic(path, shapes_csv(shapes))
+def write_shapes_csv(path: str | Path, shapes: ModesAtPoints, damping=None) -> Path:
+    return write_atomic(path, shapes_csv(shapes, damping))

@@ -22,6 +22,7 @@ from flexlink.fe.sensors import Placement, channel_operator, place_points
 from flexlink.scene import Scene
 from flexlink.studies.array_shapes import check_shape
 from flexlink.studies.correlation.measured import ModalTest
+from flexlink.units import UNITS
 
 SPARE_MODES = 4  # model modes beyond the test's count, so a mode out of order can still pair
 
@@ -132,3 +133,53 @@ def correlate_test(scene: Scene, test: ModalTest, n_modes: int | None = None,
     by_order = tuple((i, j, float(result.mac[i, j]))
                      for i, j in pair_by_order(test.n_modes, len(modes.frequencies)))
     return TestCorrelation(scene, test, sensors, modes, at_sensors, result, by_order)
+
+
+@dataclasses.dataclass(frozen=True)
+class ModesAtPoints:
+    """Model mode shapes at labelled points, for test software: ``labels`` (P,) positive
+    integers, ``coordinates`` (P, 3) in ``unit`` in the frame they are written in,
+    ``values`` (P, 3, k) along that frame's X, Y, Z [m / sqrt(kg), mass-normalised],
+    ``frequencies`` (k,) [Hz]."""
+
+    labels: np.ndarray
+    coordinates: np.ndarray
+    values: np.ndarray
+    frequencies: np.ndarray
+    unit: str
+
+    def __post_init__(self):
+        p, k = len(self.labels), len(self.frequencies)
+        check_shape("ModesAtPoints", "coordinates", self.coordinates, (p, 3))
+        check_shape("ModesAtPoints", "values", self.values, (p, 3, k))
+
+
+def modes_at_nodes(model, shapes: np.ndarray, frequencies) -> ModesAtPoints:
+    """In-plane ``shapes`` (n_dofs, k) at every node of ``model``: node i is label i + 1,
+    coordinates and (ux, uy, 0) in the scene's frame, metres."""
+    k = shapes.shape[1]
+    nodal = shapes.reshape(-1, 3, k)
+    values = np.concatenate([nodal[:, :2, :], np.zeros((len(model.nodes), 1, k))], axis=1)
+    return ModesAtPoints(np.arange(1, len(model.nodes) + 1),
+                         np.column_stack([model.nodes, np.zeros(len(model.nodes))]), values,
+                         np.asarray(frequencies, dtype=float), "m")
+
+
+def modes_at_test_points(scene: Scene, test: ModalTest, model, shapes: np.ndarray,
+                         frequencies, part: Part = Part.IN_PLANE) -> ModesAtPoints:
+    """``shapes`` (n_dofs, k) of ``part`` on ``model`` read at ``test``'s sensor points
+    (placed by the scene's [test] table) along the test frame's X, Y and Z, with the test's
+    own coordinates and unit (its labels where they are whole numbers, else 1, 2, ...)."""
+    sensors = place_sensors(scene, test, model)
+    n = len(test.labels)
+    point = np.repeat(np.arange(n), 3)
+    directions = scene.options.test.direction_to_scene(np.tile(np.eye(3), (n, 1)))
+    S = channel_operator(part, model, sensors.placement, point, directions)
+    values = (S @ shapes).reshape(n, 3, -1)
+    labels = (np.array([int(x) for x in test.labels])
+              if all(x.isdigit() and int(x) > 0 for x in test.labels) else np.arange(1, n + 1))
+    unit = next((name for name, metres in UNITS["length"].items()
+                 if abs(metres / sensors.metres_per_unit - 1) < 1e-9), None)
+    coordinates = test.coordinates if unit else test.coordinates * sensors.metres_per_unit
+    return ModesAtPoints(labels, coordinates, values,
+                         np.asarray(frequencies, dtype=float), unit or "m")
