@@ -78,6 +78,19 @@ class ModalTestFrame:
         p = np.asarray(points, dtype=float)[:, :2] * metres_per_unit
         return np.column_stack([c * p[:, 0] - s * p[:, 1], s * p[:, 0] + c * p[:, 1]]) + self.offset
 
+    def to_test(self, points, metres_per_unit: float):
+        """(P, 2) test-frame coordinates in the file's unit of scene points (P, 2) [m]: the
+        inverse of ``to_scene``."""
+        c, s = math.cos(self.rotation), math.sin(self.rotation)
+        p = np.asarray(points, dtype=float) - self.offset
+        return np.column_stack([c * p[:, 0] + s * p[:, 1], -s * p[:, 0] + c * p[:, 1]]) / metres_per_unit
+
+    def direction_to_test(self, directions):
+        """Unit directions (C, 3) of the scene's frame turned into the test frame."""
+        c, s = math.cos(self.rotation), math.sin(self.rotation)
+        d = np.asarray(directions, dtype=float).reshape(-1, 3)
+        return np.column_stack([c * d[:, 0] + s * d[:, 1], -s * d[:, 0] + c * d[:, 1], d[:, 2]])
+
     def direction_to_scene(self, directions):
         """Unit directions (C, 3) of the test frame turned into the scene's frame."""
         c, s = math.cos(self.rotation), math.sin(self.rotation)

@@ -187,3 +187,24 @@ def test_the_model_exported_at_the_tests_points_correlates_perfectly_with_itself
     assert [(p["test"], p["model"]) for p in document["pairs"]] == [(k, k) for k in range(1, 7)]
     assert min(p["mac"] for p in document["pairs"]) > 1 - 1e-8
     assert max(abs(p["error_pct"]) for p in document["pairs"]) < 1e-3
+
+
+@pytest.mark.parametrize("layout", ["sensors.csv", "sensors.uff"])
+def test_a_sensor_layout_reads_back_as_a_pre_test_of_the_same_model(tmp_path, layout):
+    """``flexlink sensors`` writes its layout, in the scene's [test] frame, with the target
+    modes the model predicts there (CSV: along each chosen direction; UFF: the whole
+    displacement at each chosen point); ``flexlink correlate`` reads either file back and
+    pairs every target mode with itself at MAC 1 (to the digits kept)."""
+    result = run("sensors", SCENE, "--count", "8", "--modes", "5", "--no-pictures", "--json",
+                 "--out", tmp_path)
+    assert result.exit_code == 0, result.output
+    document = json.loads(result.stdout)
+    planned = document["effective_independence"]
+    assert len(planned["sensors"]) == 8 and planned["unseen_modes"] == []
+    path = tmp_path / "case3_timoshenko" / layout
+    again = run("correlate", SCENE, path, "-n", "5", "--no-pictures", "--json",
+                "--out", tmp_path / "again")
+    assert again.exit_code == 0, again.output
+    pairs = json.loads(again.stdout)["pairs"]
+    assert [(p["test"], p["model"]) for p in pairs] == [(k, k) for k in range(1, 6)]
+    assert min(p["mac"] for p in pairs) > 1 - 1e-8
