@@ -208,3 +208,24 @@ def test_a_sensor_layout_reads_back_as_a_pre_test_of_the_same_model(tmp_path, la
     pairs = json.loads(again.stdout)["pairs"]
     assert [(p["test"], p["model"]) for p in pairs] == [(k, k) for k in range(1, 6)]
     assert min(p["mac"] for p in pairs) > 1 - 1e-8
+
+
+def test_the_report_gets_a_test_correlation_section(tmp_path):
+    """``report --test`` adds the section: the MAC heat map's figure and one table row per
+    pair (8 for the shipped example), the swapped pair among them; without --test the page
+    has no such section."""
+    import re
+
+    result = run("report", SCENE, "--test", EXAMPLE, "--cycle-poses", "0", "-n", "2",
+                 "--out", tmp_path / "with")
+    assert result.exit_code == 0, result.output
+    page = (tmp_path / "with" / "report.html").read_text()
+    section = page[page.index("<h3>Test correlation</h3>"):]
+    section = section[:section.index("</tbody>")]
+    assert 'id="fig-case3_timoshenko-mac"' in section
+    rows = re.findall(r"<tr><td class=\"num\">(\d+)</td><td class=\"num\">[^<]*</td>"
+                      r"<td class=\"num\">(\d+)</td>", section)
+    assert len(rows) == 8 and ("6", "7") in rows and ("7", "6") in rows
+    plain = run("report", SCENE, "--cycle-poses", "0", "-n", "2", "--out", tmp_path / "without")
+    assert plain.exit_code == 0, plain.output
+    assert "Test correlation" not in (tmp_path / "without" / "report.html").read_text()
