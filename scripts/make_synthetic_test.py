@@ -48,8 +48,16 @@ SENSORS_PER_LINK = {"crank": 4, "coupler": 10, "rocker": 6}
 DAMPING = 0.005
 
 
-def truth_modes(scene_path=SCENE, modes=MODES):
-    """(model, frequencies [Hz], shapes (n_dofs, modes)) of the perturbed scene, fine mesh."""
+# For the calibration check: a test structure that differs from the model only in inputs
+# `flexlink calibrate --free` can fit (every bearing three times stiffer, 3 g on every pin).
+CALIBRATION_PERTURBATION = {"joints.Kt": "3e6 N/m", "joints.O2.mass": "3 g",
+                            "joints.A.mass": "3 g", "joints.B.mass": "3 g",
+                            "joints.O4.mass": "3 g"}
+
+
+def truth_modes(scene_path=SCENE, modes=MODES, calibration: bool = False):
+    """(model, frequencies [Hz], shapes (n_dofs, modes)) of the perturbed scene, fine mesh;
+    ``calibration``: the perturbation of scene inputs only (CALIBRATION_PERTURBATION)."""
     import functools
 
     from flexlink.analysis.solve import lowest_elastic, solve_modes
@@ -57,15 +65,19 @@ def truth_modes(scene_path=SCENE, modes=MODES):
     from flexlink.fe.model_at_pose import in_plane_eigen_scale, pose_model
     from flexlink.scene import load_scene
 
-    scene = load_scene(scene_path, overrides=PERTURBATION)
+    scene = load_scene(scene_path, overrides=CALIBRATION_PERTURBATION if calibration
+                       else PERTURBATION)
     topology = scene.topology(FINE)
-    links = tuple(dataclasses.replace(l, section=dataclasses.replace(
-        l.section, E=MODULUS_FACTOR * l.section.E)) for l in topology.links)
-    topology = dataclasses.replace(topology, links=links)
+    if not calibration:
+        links = tuple(dataclasses.replace(l, section=dataclasses.replace(
+            l.section, E=MODULUS_FACTOR * l.section.E)) for l in topology.links)
+        topology = dataclasses.replace(topology, links=links)
     model = pose_model(topology, scene.rigid_pose().joints, warn=False)
-    coupler = next(l for l in model.links if l.name == "coupler")
-    node = coupler.first_node + round(POINT_MASS_AT * FINE)
-    model = dataclasses.replace(model, point_masses=model.point_masses + ((node, POINT_MASS),))
+    if not calibration:
+        coupler = next(l for l in model.links if l.name == "coupler")
+        node = coupler.first_node + round(POINT_MASS_AT * FINE)
+        model = dataclasses.replace(model, point_masses=model.point_masses
+                                    + ((node, POINT_MASS),))
     K, M = assemble(model)
     result = lowest_elastic(functools.partial(
         solve_modes, K, M, T=rigid_elimination(model), lambda_ref=in_plane_eigen_scale(model)),
@@ -85,10 +97,11 @@ def sensor_nodes(model) -> list[int]:
     return out
 
 
-def synthetic_test(seed: int = 7, scene_path=SCENE):
+def synthetic_test(seed: int = 7, scene_path=SCENE, calibration: bool = False):
     """(test-frame coordinates (P, 3) [mm], readings (P, 3, modes) along the test frame's
-    X, Y, Z, frequencies [Hz]) of the synthetic test."""
-    model, freqs, shapes = truth_modes(scene_path)
+    X, Y, Z, frequencies [Hz]) of the synthetic test (``calibration``: of the calibration
+    check's structure)."""
+    model, freqs, shapes = truth_modes(scene_path, calibration=calibration)
     nodes = sensor_nodes(model)
     c, s = math.cos(FRAME_ROTATION), math.sin(FRAME_ROTATION)
     to_test = np.array([[c, s], [-s, c]])  # scene -> test frame (the inverse rotation)

@@ -229,3 +229,11 @@ def test_the_report_gets_a_test_correlation_section(tmp_path):
     plain = run("report", SCENE, "--cycle-poses", "0", "-n", "2", "--out", tmp_path / "without")
     assert plain.exit_code == 0, plain.output
     assert "Test correlation" not in (tmp_path / "without" / "report.html").read_text()
+
+
+def test_calibrate_with_a_test_needs_free_inputs_and_one_scene(tmp_path):
+    no_free = run("calibrate", SCENE, "--test", EXAMPLE, "--out", tmp_path)
+    assert no_free.exit_code == 2 and "--free" in no_free.stderr
+    two = run("calibrate", SCENE, ROOT / "cases" / "case3.toml", "--test", EXAMPLE,
+              "--free", "Kt=1e5 N/m:1e8 N/m", "--out", tmp_path)
+    assert two.exit_code == 2 and "a test belongs to one" in two.stderr

@@ -97,13 +97,16 @@ def place_sensors(scene: Scene, test: ModalTest, model) -> SensorsOnModel:
                           metres)
 
 
-def model_modes(scene: Scene, n_modes: int, elements: int | None) -> ModelModes:
-    """The lowest ``n_modes`` elastic modes of the scene's family at its pose."""
+def model_modes(scene: Scene, n_modes: int, elements: int | None, labelled: bool = True
+                ) -> ModelModes:
+    """The lowest ``n_modes`` elastic modes of the scene's family at its pose; ``labelled``:
+    name in-plane modes by their strain energy (``identity.mode_identity``), else by part."""
     solved = part_modes(scene, n_modes, elements)
     frequencies, source = paired(solved, n_modes)
     found = len(source)
-    named = [mode_identity(part.model, part.shapes).labels if part.part is Part.IN_PLANE
-             else (str(Part.OUT_OF_PLANE),) * part.shapes.shape[1] for part in solved]
+    named = [mode_identity(part.model, part.shapes).labels
+             if labelled and part.part is Part.IN_PLANE
+             else (str(part.part),) * part.shapes.shape[1] for part in solved]
     labels = [named[p][k] for p, k in source]
     return ModelModes(frequencies[:found], tuple(solved[p].part for p, _ in source), source,
                       tuple(labels), solved, solved[0].model.links[0].elements)
@@ -123,10 +126,11 @@ def readings(modes: ModelModes, sensors: SensorsOnModel, channel_point) -> np.nd
 
 
 def correlate_test(scene: Scene, test: ModalTest, n_modes: int | None = None,
-                   elements: int | None = None) -> TestCorrelation:
+                   elements: int | None = None, labelled: bool = True) -> TestCorrelation:
     """``test`` against the lowest ``n_modes`` (default: the test's modes + SPARE_MODES)
-    elastic modes of ``scene``'s family at its pose, ``elements`` per link."""
-    modes = model_modes(scene, n_modes or test.n_modes + SPARE_MODES, elements)
+    elastic modes of ``scene``'s family at its pose, ``elements`` per link (``labelled`` as
+    ``model_modes``)."""
+    modes = model_modes(scene, n_modes or test.n_modes + SPARE_MODES, elements, labelled)
     sensors = place_sensors(scene, test, modes.solved[0].model)
     at_sensors = readings(modes, sensors, test.channel_point)
     result = correlate(test.shapes, at_sensors)
