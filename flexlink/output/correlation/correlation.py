@@ -5,7 +5,6 @@ test by the modal scale factor)."""
 
 from __future__ import annotations
 
-import io
 import math
 from pathlib import Path
 
@@ -13,6 +12,7 @@ import numpy as np
 
 from flexlink.analysis.correlation import ALIAS_MAC, DOUBTFUL_MAC, GOOD_MAC
 from flexlink.fe.motions import Part
+from flexlink.output.figures import figure_png
 from flexlink.studies.correlation.correlation import TestCorrelation
 
 WORST_COMAC = 5  # channels listed in the text, lowest CoMAC first
@@ -122,17 +122,6 @@ def mac_matrix_csv(c: TestCorrelation) -> str:
     return "\n".join(lines) + "\n"
 
 
-def _png(fig) -> bytes:
-    import matplotlib.pyplot as plt
-
-    buffer = io.BytesIO()
-    try:
-        fig.savefig(buffer, format="png", dpi=110)
-    finally:
-        plt.close(fig)
-    return buffer.getvalue()
-
-
 def mac_heat_map(c: TestCorrelation) -> bytes:
     """PNG: the MAC matrix (test rows, model columns), accepted pairs outlined."""
     import matplotlib
@@ -159,7 +148,7 @@ def mac_heat_map(c: TestCorrelation) -> bytes:
     ax.set_title(f"MAC, {c.scene.name}\n(outlined: pairs; red: doubtful)", fontsize=9)
     fig.colorbar(image, ax=ax, shrink=0.8)
     fig.tight_layout()
-    return _png(fig)
+    return figure_png(fig, 110)
 
 
 def _sensor_displacements(c: TestCorrelation, values: np.ndarray) -> np.ndarray:
@@ -249,7 +238,7 @@ def overlay_pictures(c: TestCorrelation) -> bytes:
                      f"({c.model.frequencies[j]:.1f} Hz)\nMAC {v:.3f}, {part.part}", fontsize=8)
     fig.suptitle(f"{c.scene.name}: model (blue, x MSF) and test (red) shapes", fontsize=10)
     fig.tight_layout()
-    return _png(fig)
+    return figure_png(fig, 110)
 
 
 def paraview_meshes(c: TestCorrelation):

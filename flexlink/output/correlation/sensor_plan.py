@@ -4,12 +4,12 @@ software and ``flexlink correlate`` read it as a pre-test), and a picture on the
 
 from __future__ import annotations
 
-import io
 import math
 from pathlib import Path
 
 import numpy as np
 
+from flexlink.output.figures import figure_png
 from flexlink.studies.correlation.correlation import ModesAtPoints
 from flexlink.studies.correlation.sensor_plan import Layout, SensorPlan, displacements
 from flexlink.units import UNITS
@@ -137,12 +137,7 @@ def plan_picture(plan: SensorPlan) -> bytes:
     ax.legend(fontsize=8)
     ax.set_title(f"{plan.scene.name}: {plan.count} sensors for {len(plan.modes.frequencies)} "
                  f"modes\n(rings: out-of-plane z)", fontsize=9)
-    buffer = io.BytesIO()
-    try:
-        fig.savefig(buffer, format="png", dpi=110)
-    finally:
-        plt.close(fig)
-    return buffer.getvalue()
+    return figure_png(fig, 110)
 
 
 def write_plan_files(folder: Path, plan: SensorPlan, geometry: int, pictures: bool
