@@ -237,3 +237,24 @@ def test_calibrate_with_a_test_needs_free_inputs_and_one_scene(tmp_path):
     two = run("calibrate", SCENE, ROOT / "cases" / "case3.toml", "--test", EXAMPLE,
               "--free", "Kt=1e5 N/m:1e8 N/m", "--out", tmp_path)
     assert two.exit_code == 2 and "a test belongs to one" in two.stderr
+
+
+def test_a_3d_layout_reads_out_of_plane_modes_back_through_the_z_channels(tmp_path):
+    """The 3d family: the plan takes z channels for the out-of-plane modes, and the layout
+    read back pairs every mode, in-plane and out-of-plane, with itself at MAC 1, through the
+    out-of-plane model's own reading of w."""
+    scene = tmp_path / "case3_3d.toml"
+    scene.write_text(f'base = "{SCENE.as_posix()}"\n[model]\nfamily = "3d"\n')
+    result = run("sensors", scene, "--count", "10", "--modes", "6", "--no-pictures", "--json",
+                 "--out", tmp_path)
+    assert result.exit_code == 0, result.output
+    document = json.loads(result.stdout)
+    parts = {m["part"] for m in document["target_modes"]}
+    kinds = {s["kind"] for s in document["effective_independence"]["sensors"]}
+    assert parts == {"in-plane", "out-of-plane"} and "z" in kinds
+    again = run("correlate", scene, tmp_path / "case3_3d" / "sensors.csv", "-n", "6",
+                "--no-pictures", "--json", "--out", tmp_path / "again")
+    assert again.exit_code == 0, again.output
+    pairs = json.loads(again.stdout)["pairs"]
+    assert [(p["test"], p["model"]) for p in pairs] == [(k, k) for k in range(1, 7)]
+    assert min(p["mac"] for p in pairs) > 1 - 1e-8
