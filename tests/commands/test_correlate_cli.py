@@ -258,3 +258,28 @@ def test_a_3d_layout_reads_out_of_plane_modes_back_through_the_z_channels(tmp_pa
     pairs = json.loads(again.stdout)["pairs"]
     assert [(p["test"], p["model"]) for p in pairs] == [(k, k) for k in range(1, 7)]
     assert min(p["mac"] for p in pairs) > 1 - 1e-8
+
+
+def test_a_complex_mode_is_read_as_its_real_shape_frequency_and_damping(tmp_path):
+    """A complex mode (UFF 55 analysis type 3) whose entries share one phase is that phase
+    times a real shape: read back as the real shape (up to sign and the six digits kept),
+    f = |lambda| / 2 pi and zeta = -Re(lambda) / |lambda|."""
+    import cmath
+    import math
+
+    shape = np.array([[0.3, -1.0, 0.0], [0.7, 0.2, 0.0], [-0.4, 0.5, 0.0]])
+    phase = cmath.exp(0.7j)
+    zeta, f = 0.02, 80.0
+    w = 2 * math.pi * f
+    eig = complex(-zeta * w, w * math.sqrt(1 - zeta**2))
+    values = shape * phase
+    mode = pyuff.prepare_55(model_type=1, analysis_type=3, data_ch=2, spec_data_type=8,
+                            data_type=5, n_data_per_node=3, r1=values[:, 0], r2=values[:, 1],
+                            r3=values[:, 2] + 0j, load_case=1, mode_n=1, eig=eig,
+                            modal_a=0j, modal_b=0j, node_nums=np.arange(1, 4))
+    test = read_test(_uff(tmp_path / "complex.uff", [_mm(), _geometry(), mode]))
+    expected = shape[test.channel_point, np.argmax(test.channel_direction, axis=1)]
+    sign = np.sign(test.shapes[0, 0] / expected[0])
+    np.testing.assert_allclose(sign * test.shapes[:, 0], expected, rtol=0, atol=SIX_DIGITS)
+    assert test.frequencies[0] == pytest.approx(f, rel=SIX_DIGITS)
+    assert test.damping[0] == pytest.approx(zeta, rel=1e-4)
