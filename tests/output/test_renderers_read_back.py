@@ -47,10 +47,13 @@ def spread(*shape, low=1.0, high=100.0) -> np.ndarray:
 class Rendered:
     """A renderer's output and what each of its named fields must hold: ``columns`` (CSV
     header -> (expected values, significant digits printed, or None for fixed decimals given
-    as -places)), ``numbers`` (JSON path -> expected value(s))."""
+    as -places)), ``rows`` (the first cell of a row that precedes the data, such as a mode
+    table's "frequency [Hz]" -> (its numbers, digits)), ``numbers`` (JSON path -> expected
+    value(s))."""
 
     csv: str | None = None
     columns: dict = dataclasses.field(default_factory=dict)
+    rows: dict = dataclasses.field(default_factory=dict)  # a labelled row -> (values, digits)
     document: dict | None = None
     numbers: dict = dataclasses.field(default_factory=dict)
 
@@ -330,10 +333,75 @@ def _at_speed() -> Rendered:
                     document=operating_document([summary], {}), numbers=numbers)
 
 
+def _mac_matrix() -> Rendered:
+    from flexlink.output.correlation.correlation import mac_matrix_csv
+
+    mac = RNG.uniform(0, 1, (2, 3))
+    c = SimpleNamespace(correlation=SimpleNamespace(mac=mac))
+    return Rendered(csv=mac_matrix_csv(c), columns={
+        "test_mode": (np.arange(1, 3), 0),
+        **{f"model{j + 1}": (mac[:, j], -6) for j in range(3)}})
+
+
+def _pairs() -> Rendered:
+    from flexlink.output.correlation.correlation import pairs_csv
+
+    pairs = [{"test": t, "test_Hz": th, "model": m, "model_Hz": mh,
+              "error_pct": 100 * (mh - th) / th, "mac": mac, "quality": "good",
+              "test_damping": z, "scale": scale}
+             for t, th, m, mh, mac, z, scale in ((1, 31.25, 2, 33.5, 0.97, 0.012, 1.5e-3),
+                                                 (2, 88.125, 1, 86.0, 0.91, 0.021, -2.25e-3))]
+    column = {key: np.array([p[key] for p in pairs], dtype=float) for key in pairs[0]
+              if key != "quality"}
+    return Rendered(csv=pairs_csv({"pairs": pairs}), columns={
+        "test_mode": (column["test"], 0), "model_mode": (column["model"], 0),
+        "test_Hz": (column["test_Hz"], -6), "model_Hz": (column["model_Hz"], -6),
+        "error_pct": (column["error_pct"], -4), "mac": (column["mac"], -6),
+        "test_damping": (column["test_damping"], 6), "scale": (column["scale"], 6)})
+
+
+def _shapes() -> Rendered:
+    from flexlink.output.correlation.measured import shapes_csv
+    from flexlink.studies.correlation.correlation import ModesAtPoints
+
+    values = spread(2, 3, 2, low=-1, high=1)
+    values[1, 2] = 0.0  # a direction read in no mode: no row
+    coordinates, f, damping = spread(2, 3, low=-50, high=50), np.array([12.5, 40.25]), [0.01, 0.02]
+    shapes = ModesAtPoints(np.array([3, 7]), coordinates, values, f, "mm")
+    rows = [(i, axis) for i in range(2) for axis in range(3) if values[i, axis].any()]
+    columns = {"sensor": (np.array([[3, 7][i] for i, _ in rows]), 0)}
+    for k, name in enumerate(("x [mm]", "y [mm]", "z [mm]")):
+        columns[name] = (np.array([coordinates[i, k] for i, _ in rows]), 9)
+    for k, name in enumerate(("dx", "dy", "dz")):
+        columns[name] = (np.array([float(axis == k) for _, axis in rows]), 0)
+    for j in range(2):
+        columns[f"mode {j + 1}"] = (np.array([values[i, axis, j] for i, axis in rows]), 9)
+    return Rendered(csv=shapes_csv(shapes, damping), columns=columns,
+                    rows={"frequency [Hz]": (f, 9), "damping": (np.array(damping), 6)})
+
+
+def _layout() -> Rendered:
+    from flexlink.output.correlation.sensor_plan import layout_csv
+    from flexlink.studies.correlation.sensor_plan import plan_sensors
+
+    plan = plan_sensors(_case1(), 4, 3)  # no [test] table: the scene's frame, in mm
+    chosen = plan.chosen
+    columns = {"x [mm]": (1e3 * chosen.points[:, 0], 9), "y [mm]": (1e3 * chosen.points[:, 1], 9),
+               "z [mm]": (np.zeros(len(chosen.points)), 9)}
+    for k, name in enumerate(("dx", "dy", "dz")):
+        columns[name] = (chosen.directions[:, k], 9)
+    for j in range(3):
+        columns[f"mode {j + 1}"] = (chosen.readings[:, j], 9)
+    return Rendered(csv=layout_csv(plan), columns=columns,
+                    rows={"frequency [Hz]": (plan.modes.frequencies, 9)})
+
+
 RENDERERS = {"modal map": _modal_map, "tracked map": _tracked, "critical speeds": _critical,
              "stability map": _stability, "response": _response, "response sweep": _sweep,
              "torque": _torque, "dynamic campbell": _dynamic, "rigid motion": _motion,
-             "mac": _mac, "convergence": _convergence, "modes": _modes, "modes at speed": _at_speed}
+             "mac": _mac, "convergence": _convergence, "modes": _modes, "modes at speed": _at_speed,
+             "test-model MAC": _mac_matrix, "test-model pairs": _pairs, "mode shapes": _shapes,
+             "sensor layout": _layout}
 
 
 def _at(document, path):
@@ -346,13 +414,20 @@ def _at(document, path):
 def test_every_named_field_holds_what_the_result_says_in_the_unit_its_label_names(renderer):
     rendered = RENDERERS[renderer]()
     if rendered.csv is not None:
-        read = csv_columns(rendered.csv)
+        lines = rendered.csv.splitlines()
+        for label, (expected, digits) in rendered.rows.items():
+            [row] = [line.split(",") for line in lines if line.split(",")[0] == label]
+            found = np.array([float(c) for c in row[1:] if c != ""])
+            np.testing.assert_allclose(found, expected, rtol=0.5 * 10.0 ** (1 - digits),
+                                       atol=0, err_msg=label)
+        read = csv_columns("\n".join(line for line in lines
+                                     if line.split(",")[0] not in rendered.rows))
         assert set(rendered.columns) <= set(read["header"]), set(rendered.columns) - set(
             read["header"])
         for name, (expected, digits) in rendered.columns.items():
             found = np.asarray(read["columns"][name], dtype=float)
             expected = np.asarray(expected, dtype=float)
-            if digits == 0:  # integers
+            if digits == 0:  # integers and unit vectors
                 np.testing.assert_array_equal(found, expected, err_msg=name)
             elif digits < 0:  # fixed decimals: half a unit in the last place printed
                 np.testing.assert_allclose(found, expected, rtol=0, atol=0.5 * 10.0**digits,
@@ -386,5 +461,6 @@ def test_every_csv_renderer_of_output_is_read_back_here():
                   and getattr(module, name).__module__ == info.name}
     covered = {"modal_map_csv", "tracked_csv", "critical_csv", "stability_csv", "response_csv",
                "sweep_csv", "torque_csv", "dynamic_csv", "motion_csv", "mac_csv",
-               "convergence_csv", "comparison_csv", "operating_csv"}
+               "convergence_csv", "comparison_csv", "operating_csv", "mac_matrix_csv",
+               "pairs_csv", "shapes_csv", "layout_csv"}
     assert {name.rsplit(".", 1)[1] for name in found} <= covered, found
