@@ -27,7 +27,8 @@ def toggle_crank_angles(fb):
 ])
 def test_minimax_recovers_table2(theta4i, delta, printed):
     fb = minimax(deg(theta4i), deg(delta))
-    assert [round(r, 3) for r in fb.ratios] == list(printed)
+    # as printed: within half a unit of the third decimal
+    assert list(fb.ratios) == pytest.approx(printed, rel=0, abs=5e-4)
     R2, R3, R4 = fb.ratios
     assert R3**2 + R4**2 - R2**2 == pytest.approx(1.0, abs=1e-12)
     mu_min, mu_max = fb.transmission_limits()
