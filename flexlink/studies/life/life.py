@@ -1,0 +1,270 @@
+"""Will each link survive: peak stress, range, safety factors and fatigue life of every link
+over the crank turn at a crank speed (``stress_field``), from its material's strength data.
+
+A metal link (a material file with ``[strength]``): at every element end and fibre the stress
+history of one turn is counted and judged by ``analysis.fatigue`` on the part's S-N line
+(``materials.fatigue``: the specimen line of the material file with the Marin factors of the
+part: the given surface finish, the size of the link's section (a rectangle's equivalent
+diameter 0.808 sqrt(b h), a tube's outer diameter, else the section depth), the load type of
+the larger alternating part at that point (axial or bending), the temperature and the
+reliability). The link's verdict is its worst point: the smallest fatigue safety factor, the
+shortest life, with where (distance from the start joint, fibre) and when (the crank angle of
+the peak).
+
+A composite link (a woven laminate from constituent files): the stress along and across the
+fibres in each ply (``materials.laminate``) against the ply strengths, as strength ratios by
+maximum stress and Tsai-Wu; no life is given (``COMPOSITE_NOTE``).
+
+A link whose material is written as E and density in the scene has no strength data: refused,
+naming the scene file and the field. No strength is ever assumed.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import enum
+import math
+
+import numpy as np
+
+from flexlink.analysis.fatigue import MeanStress, history_fatigue
+from flexlink.errors import InputError
+from flexlink.fe.model import Bending
+from flexlink.materials.fatigue import (LoadType, PartCurve, Surface, marin_factors,
+                                        rectangle_diameter, specimen_curve)
+from flexlink.materials.laminate import (layer_stresses, max_stress_ratio, ply_strength,
+                                         tsai_wu_ratio)
+from flexlink.materials.mixtures import isotropic_shear, load_constituent, rule_of_mixtures
+from flexlink.materials.mixtures import ShearSource
+from flexlink.materials.strength import load_strength
+from flexlink.scene import Scene
+from flexlink.studies.life.stress_field import StressField, StressModel
+
+COMPOSITE_NOTE = ("composite fatigue does not follow a metal's S-N rules (stiffness loss, "
+                  "matrix cracking, delamination); no life is given without a measured fatigue "
+                  "curve of this laminate")
+HOUR = 3600.0
+
+
+class LinkKind(enum.StrEnum):
+    METAL = "metal"
+    COMPOSITE = "composite"
+
+
+@dataclasses.dataclass(frozen=True)
+class Conditions:
+    """How the parts are judged: surface finish, temperature [C], reliability (0, 1), the
+    mean-stress correction, and a required life [h] (None: against the endurance limit)."""
+
+    surface: Surface = Surface.MACHINED
+    temperature: float = 20.0
+    reliability: float = 0.5
+    mean_stress: MeanStress = MeanStress.GOODMAN
+    hours: float | None = None
+
+    def __post_init__(self):
+        if not (isinstance(self.reliability, (int, float)) and 0.0 < self.reliability < 1.0):
+            raise InputError(f"got {self.reliability!r}", source="command line",
+                             field="--reliability", expected="a probability in (0, 1), e.g. 0.99")
+        if self.hours is not None and not (math.isfinite(self.hours) and self.hours > 0):
+            raise InputError(f"got {self.hours!r}", source="command line", field="--hours",
+                             expected="a positive finite number of hours")
+        if not math.isfinite(self.temperature):
+            raise InputError(f"got {self.temperature!r}", source="command line",
+                             field="--temperature", expected="a temperature in C")
+        object.__setattr__(self, "surface", Surface(self.surface))
+        object.__setattr__(self, "mean_stress", MeanStress(self.mean_stress))
+
+
+@dataclasses.dataclass(frozen=True)
+class Where:
+    """A point and instant: value [Pa], distance from the link's start joint [m], fibre
+    (+1: y = +c, -1: y = -c), crank angle [rad]."""
+
+    value: float
+    position: float
+    fibre: int
+    angle: float
+
+
+@dataclasses.dataclass(frozen=True)
+class LinkLife:
+    """One link's verdict. peak: largest |sigma|; range: the largest stress range over the
+    turn at one point (its crank angle that of the point's maximum), mean: that point's mean
+    stress [Pa]. Metal: safety (fatigue, [-]) at ``worst`` with that cycle's amplitude and
+    mean (the Haigh point), life [turns] (inf: unlimited), yield_safety Sy / max|sigma|,
+    endurance Se and Sut, Sy [Pa] of the part, the Marin factors at the worst point.
+    Composite: strength ratios (max stress, Tsai-Wu) and the ply (0 at the y = -c face) where
+    the smaller one is. material: the material file(s)."""
+
+    link: str
+    kind: LinkKind
+    material: str
+    peak: Where
+    range: Where
+    mean: float
+    quasi_static_peak: float
+    safety: float = math.nan
+    worst: Where | None = None
+    amplitude: float = math.nan
+    cycle_mean: float = math.nan
+    life: float = math.nan
+    yield_safety: float = math.nan
+    endurance: float = math.nan
+    Sut: float = math.nan
+    Sy: float = math.nan
+    marin: dict = dataclasses.field(default_factory=dict)
+    load_type: str = ""
+    max_stress_ratio: float = math.nan
+    tsai_wu_ratio: float = math.nan
+    ply: int = -1
+
+    @property
+    def margin(self) -> float:
+        """The number the links are ordered by (smallest first): the fatigue safety factor, or
+        the smaller strength ratio of a composite."""
+        if self.kind is LinkKind.METAL:
+            return self.safety
+        return min(self.max_stress_ratio, self.tsai_wu_ratio)
+
+
+@dataclasses.dataclass(frozen=True)
+class LifeStudy:
+    """Every link's verdict, worst first, at crank ``speed`` [rad/s] under ``conditions``; the
+    field it came from."""
+
+    speed: float
+    conditions: Conditions
+    links: tuple[LinkLife, ...]
+    field: StressField
+
+    @property
+    def turns_per_hour(self) -> float:
+        return self.speed / (2.0 * math.pi) * HOUR
+
+    def hours(self, link: LinkLife) -> float:
+        """``link``'s life [h] at this speed."""
+        return link.life / self.turns_per_hour
+
+
+def life_study(scene: Scene, model: StressModel, field: StressField,
+               conditions: Conditions = Conditions()) -> LifeStudy:
+    """Each link's ``LinkLife`` (module docstring), the worst (smallest margin) first."""
+    out = []
+    required = None if conditions.hours is None else \
+        conditions.hours * HOUR * field.speed / (2.0 * math.pi)
+    for i, name in enumerate(model.points.links):
+        source = scene.materials.get(name)
+        if source is None:
+            raise InputError(f"no material record of link {name!r}", source=scene.path,
+                             field=f"links.{name}")
+        index = model.points.of(name)
+        common = _common(field, model, index)
+        if source.composite is not None:
+            out.append(_composite(name, source, model.sections[i], field, model, index, common))
+        elif source.isotropic is not None:
+            out.append(_metal(name, source, model.sections[i], field, model, index, common,
+                              conditions, required))
+        else:
+            raise InputError(
+                "E and density are written in the scene: no material file gives this link's "
+                "strength, and none is assumed", source=source.source, field=source.field,
+                expected="isotropic = 'name' of a material file with a [strength] table, e.g. "
+                         "'aisi_1080'")
+    return LifeStudy(speed=field.speed, conditions=conditions,
+                     links=tuple(sorted(out, key=lambda l: l.margin)), field=field)
+
+
+def _where(field: StressField, model: StressModel, index, sample: int, column: int,
+           value: float) -> Where:
+    point = index[column]
+    return Where(value=float(value), position=float(model.points.position[point]),
+                 fibre=1 if model.points.fibre[point] == 0 else -1,
+                 angle=float(field.angles[sample]))
+
+
+def _common(field, model, index):
+    """(peak Where, range Where, mean at the range's point, quasi-static peak) of a link."""
+    s = field.total[:, index]
+    sample, column = np.unravel_index(np.argmax(np.abs(s)), s.shape)
+    peak = _where(field, model, index, sample, column, s[sample, column])
+    spans = s.max(axis=0) - s.min(axis=0)
+    worst = int(np.argmax(spans))
+    span = _where(field, model, index, int(np.argmax(s[:, worst])), worst, spans[worst])
+    return peak, span, float(s[:, worst].mean()), float(np.abs(field.quasi_static[:, index]).max())
+
+
+def _diameter(section) -> float:
+    """The size of the section for the Marin size factor [m]."""
+    if section.name and "tube" in section.name:
+        return section.depth
+    width, thickness = section.strip
+    if abs(width * thickness - section.area) <= 1e-9 * section.area:
+        return rectangle_diameter(width, thickness)
+    return section.depth
+
+
+def _metal(name, source, section, field, model, index, common, conditions, required):
+    strength = load_strength(source.isotropic)
+    try:
+        specimen = specimen_curve(strength)
+    except InputError as exc:  # say which link and scene asked for it
+        raise InputError(f"{exc} (link {name!r}, {source.source}: {source.field})") from None
+    s = field.total[:, index]
+    # the pair of fibres at each element end: axial = their mean, bending = half their difference
+    pair = s.reshape(len(s), -1, 2)
+    axial, bending = pair.mean(axis=-1), 0.5 * (pair[..., 0] - pair[..., 1])
+    axial_dominant = np.repeat(np.ptp(axial, axis=0) > np.ptp(bending, axis=0), 2)
+    curves = {kind: PartCurve(specimen, marin_factors(
+        specimen.Sut, conditions.surface, _diameter(section), kind, conditions.temperature,
+        conditions.reliability)) for kind in (LoadType.BENDING, LoadType.AXIAL)}
+    results = []
+    for column in range(s.shape[1]):
+        kind = LoadType.AXIAL if axial_dominant[column] else LoadType.BENDING
+        results.append((history_fatigue(s[:, column], curves[kind], conditions.mean_stress,
+                                        required), kind))
+    column = min(range(len(results)), key=lambda c: (results[c][0].safety, -results[c][0].damage))
+    result, kind = results[column]
+    part = curves[kind]
+    peak_sample = int(np.argmax(np.abs(s[:, column])))
+    lives = [r.life for r, _ in results]
+    peak, span, mean, quasi = common
+    return LinkLife(
+        link=name, kind=LinkKind.METAL, material=strength.path, peak=peak, range=span,
+        mean=mean, quasi_static_peak=quasi, safety=result.safety,
+        worst=_where(field, model, index, peak_sample, column, s[peak_sample, column]),
+        amplitude=result.amplitude, cycle_mean=result.mean, life=float(min(lives)),
+        yield_safety=specimen.Sy / max(abs(peak.value), 1e-300), endurance=part.endurance,
+        Sut=specimen.Sut, Sy=specimen.Sy, marin=dataclasses.asdict(part.marin),
+        load_type=str(kind))
+
+
+def _composite(name, source, section, field, model, index, common):
+    c = source.composite
+    fiber, matrix = load_constituent(c.fiber), load_constituent(c.matrix)
+    if ShearSource(c.shear_modulus) is ShearSource.ISOTROPIC:
+        fiber, matrix = isotropic_shear(fiber), isotropic_shear(matrix)
+    ply = rule_of_mixtures(fiber, matrix, c.fiber_volume_fraction)
+    strength = ply_strength(fiber, load_strength(c.fiber), matrix, load_strength(c.matrix),
+                            c.fiber_volume_fraction)
+    s = field.total[:, index]
+    pair = s.reshape(len(s), -1, 2) / section.E  # laminate strain at the fibres y = +c, -c
+    middle, half = pair.mean(axis=-1), 0.5 * (pair[..., 0] - pair[..., 1])
+    plies = source.plies or 1
+    if section.bending is Bending.FLATWISE:  # the plies stack through the in-plane depth
+        faces = np.linspace(-1.0, 1.0, plies + 1)  # y / c of the ply faces, -c first
+        strain = middle[..., None, None] + half[..., None, None] * np.stack([faces[:-1],
+                                                                              faces[1:]], -1)
+    else:  # edgewise: every ply reaches both extreme fibres
+        strain = np.repeat(pair[..., None, :], plies, axis=-2)
+    layers = layer_stresses(ply, strain)  # (samples, ends, plies, faces, 2 layers, 2)
+    ratios = [np.min(f(layers, strength), axis=(0, 1, 3, 4)) for f in (max_stress_ratio,
+                                                                        tsai_wu_ratio)]
+    worst_ply = int(np.argmin(np.minimum(*ratios)))
+    peak, span, mean, quasi = common
+    return LinkLife(
+        link=name, kind=LinkKind.COMPOSITE,
+        material=f"{load_strength(c.fiber).path} + {load_strength(c.matrix).path}",
+        peak=peak, range=span, mean=mean, quasi_static_peak=quasi,
+        max_stress_ratio=float(ratios[0].min()), tsai_wu_ratio=float(ratios[1].min()),
+        ply=worst_ply)
