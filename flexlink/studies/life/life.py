@@ -268,3 +268,42 @@ def _composite(name, source, section, field, model, index, common):
         peak=peak, range=span, mean=mean, quasi_static_peak=quasi,
         max_stress_ratio=float(ratios[0].min()), tsai_wu_ratio=float(ratios[1].min()),
         ply=worst_ply)
+
+
+@dataclasses.dataclass(frozen=True)
+class SafetySweep:
+    """The smallest margin (``LinkLife.margin``) of each link (``links``) against crank
+    ``speeds`` [rad/s]: margin (speeds, links), NaN where no steady state exists; the
+    stability map's unstable ranges over the same speeds (``stability_map.InstabilityRange``)
+    and the largest multiplier modulus per speed."""
+
+    speeds: np.ndarray
+    links: tuple[str, ...]
+    margin: np.ndarray
+    ranges: tuple
+    largest_modulus: np.ndarray
+
+    def __post_init__(self):
+        if self.margin.shape != (len(self.speeds), len(self.links)):
+            raise ValueError(f"margin must be ({len(self.speeds)}, {len(self.links)})")
+
+
+def safety_sweep(scene: Scene, model: StressModel, speeds, conditions: Conditions = Conditions(),
+                 progress=None) -> SafetySweep:
+    """Each link's margin at each of ``speeds`` [rad/s] > 0 beside the stability map over
+    them (one verdict per speed, which the stress fields then skip)."""
+    from flexlink.studies.life.stress_field import stress_field
+    from flexlink.studies.running.stability_map import stability_map
+
+    speeds = np.asarray(speeds, dtype=float)
+    verdict = stability_map(model.forced.periodic, speeds)
+    names = model.points.links
+    margin = np.full((len(speeds), len(names)), np.nan)
+    for i in (progress or iter)(range(len(speeds))):
+        if verdict.largest_modulus[i] >= 1.0:
+            continue
+        study = life_study(scene, model, stress_field(model, speeds[i], check_stability=False),
+                           conditions)
+        for link in study.links:
+            margin[i, names.index(link.link)] = link.margin
+    return SafetySweep(speeds, names, margin, verdict.ranges, verdict.largest_modulus)
