@@ -53,7 +53,8 @@ def command(scene_path, speed, speeds, count, hours, reliability, surface, tempe
     from flexlink.output.life import life as render
     from flexlink.studies.cycle.bands import _check_speeds
     from flexlink.studies.life.convergence import peak_error
-    from flexlink.studies.life.life import Conditions, life_study, safety_sweep
+    from flexlink.studies.life.life import (Conditions, check_strengths, life_study,
+                                           safety_sweep)
     from flexlink.studies.life.stress_field import stress_field, stress_model
     from flexlink.studies.running.modes_at_speed import crank_speed
     from flexlink.units import parse_quantity
@@ -70,6 +71,7 @@ def command(scene_path, speed, speeds, count, hours, reliability, surface, tempe
     one = speed and parse_quantity(speed, "angular speed", source="command line",
                                    field="--speed")
     folder, scene = folder_and_scene(out_dir, scene_path)
+    check_strengths(scene)
     model = stress_model(scene, n_modes, damping_ratio=damping_ratio,
                          elements_per_link=elements)
     if sweep is not None:

@@ -153,6 +153,9 @@ def specimen_curve(strength: Strength) -> SpecimenCurve:
     sigma_f' (2 N_e)^b = Se'); an InputError naming the file and key where one is missing."""
     why = "a fatigue life"
     Sut, Sy = strength.need("Sut", why).value, strength.need("Sy", why).value
+    if Sy > Sut:
+        raise InputError(f"Sy = {Sy / MPA:.4g} MPa is above Sut = {Sut / MPA:.4g} MPa",
+                         source=strength.path, field="strength.Sy", expected="Sy <= Sut")
     given = {k: strength.get(k) for k in ("endurance_limit", "fatigue_coefficient",
                                           "fatigue_exponent")}
     Se, sf, b = (d.value if d is not None else None for d in given.values())

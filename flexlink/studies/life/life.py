@@ -147,30 +147,50 @@ class LifeStudy:
         return link.life / self.turns_per_hour
 
 
-def life_study(scene: Scene, model: StressModel, field: StressField,
-               conditions: Conditions = Conditions()) -> LifeStudy:
-    """Each link's ``LinkLife`` (module docstring), the worst (smallest margin) first."""
-    out = []
-    required = None if conditions.hours is None else \
-        conditions.hours * HOUR * field.speed / (2.0 * math.pi)
-    for i, name in enumerate(model.points.links):
+def check_strengths(scene: Scene, links=None) -> None:
+    """Refuse (InputError naming the file and key) a link of ``scene`` (or of ``links``, names)
+    whose material lacks the strength data its verdict needs; cheap, so a command checks
+    before its study."""
+    for name in links or [link.name for link in scene.links]:
         source = scene.materials.get(name)
         if source is None:
             raise InputError(f"no material record of link {name!r}", source=scene.path,
                              field=f"links.{name}")
-        index = model.points.of(name)
-        common = _common(field, model, index)
         if source.composite is not None:
-            out.append(_composite(name, source, model.sections[i], field, model, index, common))
+            c = source.composite
+            ply_strength(load_constituent(c.fiber), load_strength(c.fiber),
+                         load_constituent(c.matrix), load_strength(c.matrix),
+                         c.fiber_volume_fraction)
         elif source.isotropic is not None:
-            out.append(_metal(name, source, model.sections[i], field, model, index, common,
-                              conditions, required))
+            try:
+                specimen_curve(load_strength(source.isotropic))
+            except InputError as exc:  # say which link and scene asked for it
+                raise InputError(f"{exc} (link {name!r}, {source.source}: "
+                                 f"{source.field})") from None
         else:
             raise InputError(
                 "E and density are written in the scene: no material file gives this link's "
                 "strength, and none is assumed", source=source.source, field=source.field,
-                expected="isotropic = 'name' of a material file with a [strength] table, e.g. "
-                         "'aisi_1080'")
+                expected="isotropic = 'name' of a material file with a [strength] table, "
+                         "e.g. 'aisi_1080'")
+
+
+def life_study(scene: Scene, model: StressModel, field: StressField,
+               conditions: Conditions = Conditions()) -> LifeStudy:
+    """Each link's ``LinkLife`` (module docstring), the worst (smallest margin) first."""
+    check_strengths(scene, model.points.links)
+    out = []
+    required = None if conditions.hours is None else \
+        conditions.hours * HOUR * field.speed / (2.0 * math.pi)
+    for i, name in enumerate(model.points.links):
+        source = scene.materials[name]
+        index = model.points.of(name)
+        common = _common(field, model, index)
+        if source.composite is not None:
+            out.append(_composite(name, source, model.sections[i], field, model, index, common))
+        else:
+            out.append(_metal(name, source, model.sections[i], field, model, index, common,
+                              conditions, required))
     return LifeStudy(speed=field.speed, conditions=conditions,
                      links=tuple(sorted(out, key=lambda l: l.margin)), field=field)
 
@@ -206,10 +226,7 @@ def _diameter(section) -> float:
 
 def _metal(name, source, section, field, model, index, common, conditions, required):
     strength = load_strength(source.isotropic)
-    try:
-        specimen = specimen_curve(strength)
-    except InputError as exc:  # say which link and scene asked for it
-        raise InputError(f"{exc} (link {name!r}, {source.source}: {source.field})") from None
+    specimen = specimen_curve(strength)
     s = field.total[:, index]
     # the pair of fibres at each element end: axial = their mean, bending = half their difference
     pair = s.reshape(len(s), -1, 2)
