@@ -77,11 +77,11 @@ def command(scene_path, speed, speeds, count, hours, reliability, surface, tempe
     if sweep is not None:
         result = safety_sweep(scene, model, sweep[sweep > 0], conditions,
                               progress=progress_bar("speeds", as_json))
-        document = render.sweep_document(scene, result)
+        document = render.margin_document(scene, result)
         path = folder / "life_speeds.png"
-        render.plot_sweep(result, path, scene.name)
+        render.plot_margin_sweep(result, path, scene.name)
         publish(folder / "life_speeds.json", document, [path],
-                "\n".join(render.sweep_lines(document)), as_json)
+                "\n".join(render.margin_lines(document)), as_json)
         return
     field = stress_field(model, crank_speed(scene, one))
     study = life_study(scene, model, field, conditions)

@@ -252,7 +252,7 @@ def plot_stress_maps(study, model, path, title: str) -> None:
     write_figure(fig, path)
 
 
-def sweep_document(scene, sweep) -> dict:
+def margin_document(scene, sweep) -> dict:
     """``life --speeds``: each link's margin against speed, unstable speeds null, beside the
     stability map's unstable ranges."""
     return {
@@ -272,7 +272,7 @@ def sweep_document(scene, sweep) -> dict:
     }
 
 
-def sweep_lines(document: dict) -> list[str]:
+def margin_lines(document: dict) -> list[str]:
     speeds = document["speeds_rev_per_min"]
     out = [f"{document['scene']}: smallest margin over {len(speeds)} speeds, {speeds[0]:g} to "
            f"{speeds[-1]:g} rev/min ({document['margin']})"]
@@ -283,7 +283,7 @@ def sweep_lines(document: dict) -> list[str]:
     return out
 
 
-def plot_sweep(sweep, path, title: str) -> None:
+def plot_margin_sweep(sweep, path, title: str) -> None:
     """PNG: each link's margin against speed, the stability map's unstable ranges shaded."""
     import matplotlib
 
