@@ -180,8 +180,6 @@ def life_study(scene: Scene, model: StressModel, field: StressField,
     """Each link's ``LinkLife`` (module docstring), the worst (smallest margin) first."""
     check_strengths(scene, model.points.links)
     out = []
-    required = None if conditions.hours is None else \
-        conditions.hours * HOUR * field.speed / (2.0 * math.pi)
     for i, name in enumerate(model.points.links):
         source = scene.materials[name]
         index = model.points.of(name)
@@ -190,7 +188,7 @@ def life_study(scene: Scene, model: StressModel, field: StressField,
             out.append(_composite(name, source, model.sections[i], field, model, index, common))
         else:
             out.append(_metal(name, source, model.sections[i], field, model, index, common,
-                              conditions, required))
+                              conditions))
     return LifeStudy(speed=field.speed, conditions=conditions,
                      links=tuple(sorted(out, key=lambda l: l.margin)), field=field)
 
@@ -224,33 +222,52 @@ def _diameter(section) -> float:
     return section.depth
 
 
-def _metal(name, source, section, field, model, index, common, conditions, required):
-    strength = load_strength(source.isotropic)
-    specimen = specimen_curve(strength)
-    s = field.total[:, index]
-    # the pair of fibres at each element end: axial = their mean, bending = half their difference
+def fibre_pair_fatigue(histories, material: str, section, conditions: Conditions = Conditions(),
+                       speed: float | None = None):
+    """The fatigue of stress ``histories`` (samples over one turn, points) [Pa] whose columns
+    come in pairs, the fibres y = +c and y = -c of one section (so the axial and bending parts
+    of each pair are known, for the Marin load factor), in ``section`` (a ``fe.model.Section``:
+    its size for the Marin size factor) of the material file ``material`` (a shipped name or a
+    .toml path with [strength]), under ``conditions``; ``speed`` [rad/s] turns a required life
+    in hours into cycles (needed only with ``conditions.hours``). Returns (per column
+    ``analysis.fatigue.Fatigue``, per column the LoadType, the part curves by LoadType, the
+    specimen curve). For any stress history over a turn, e.g. a large-deflection analysis'."""
+    specimen = specimen_curve(load_strength(material))
+    s = np.asarray(histories, dtype=float)
+    if s.ndim != 2 or s.shape[1] % 2:
+        raise ValueError(f"histories must be (samples, 2 k) fibre pairs, got {s.shape}")
+    required = None
+    if conditions.hours is not None:
+        if speed is None:
+            raise ValueError("a required life in hours needs the crank speed")
+        required = conditions.hours * HOUR * speed / (2.0 * math.pi)
     pair = s.reshape(len(s), -1, 2)
     axial, bending = pair.mean(axis=-1), 0.5 * (pair[..., 0] - pair[..., 1])
-    axial_dominant = np.repeat(np.ptp(axial, axis=0) > np.ptp(bending, axis=0), 2)
+    kinds = [LoadType.AXIAL if a else LoadType.BENDING
+             for a in np.repeat(np.ptp(axial, axis=0) > np.ptp(bending, axis=0), 2)]
     curves = {kind: PartCurve(specimen, marin_factors(
         specimen.Sut, conditions.surface, _diameter(section), kind, conditions.temperature,
         conditions.reliability)) for kind in (LoadType.BENDING, LoadType.AXIAL)}
-    results = []
-    for column in range(s.shape[1]):
-        kind = LoadType.AXIAL if axial_dominant[column] else LoadType.BENDING
-        results.append((history_fatigue(s[:, column], curves[kind], conditions.mean_stress,
-                                        required), kind))
-    column = min(range(len(results)), key=lambda c: (results[c][0].safety, -results[c][0].damage))
-    result, kind = results[column]
+    results = [history_fatigue(s[:, c], curves[kinds[c]], conditions.mean_stress, required)
+               for c in range(s.shape[1])]
+    return results, kinds, curves, specimen
+
+
+def _metal(name, source, section, field, model, index, common, conditions):
+    s = field.total[:, index]
+    results, kinds, curves, specimen = fibre_pair_fatigue(s, source.isotropic, section,
+                                                          conditions, field.speed)
+    column = min(range(len(results)), key=lambda c: (results[c].safety, -results[c].damage))
+    result, kind = results[column], kinds[column]
     part = curves[kind]
     peak_sample = int(np.argmax(np.abs(s[:, column])))
-    lives = [r.life for r, _ in results]
     peak, span, mean, quasi = common
     return LinkLife(
-        link=name, kind=LinkKind.METAL, material=strength.path, peak=peak, range=span,
-        mean=mean, quasi_static_peak=quasi, safety=result.safety,
+        link=name, kind=LinkKind.METAL, material=str(load_strength(source.isotropic).path),
+        peak=peak, range=span, mean=mean, quasi_static_peak=quasi, safety=result.safety,
         worst=_where(field, model, index, peak_sample, column, s[peak_sample, column]),
-        amplitude=result.amplitude, cycle_mean=result.mean, life=float(min(lives)),
+        amplitude=result.amplitude, cycle_mean=result.mean,
+        life=float(min(r.life for r in results)),
         yield_safety=specimen.Sy / max(abs(peak.value), 1e-300), endurance=part.endurance,
         Sut=specimen.Sut, Sy=specimen.Sy, marin=dataclasses.asdict(part.marin),
         load_type=str(kind))
