@@ -26,9 +26,10 @@ def _where(w) -> dict:
             "fibre": "+y" if w.fibre > 0 else "-y", "crank_deg": math.degrees(w.angle) % 360}
 
 
-def life_document(scene, study, model, error=None) -> dict:
+def life_document(scene, study, model=None, error=None) -> dict:
     """The ``life`` command's document: what is included and assumed, the conditions, the
-    error estimate, and per link (worst first) its peak, range, mean, safety and life."""
+    error estimate, and per link (worst first) its peak, range, mean, safety and life; the
+    basis, damping and mesh of the stress ``model`` where given."""
     c = study.conditions
     links = []
     for link in study.links:
@@ -62,14 +63,15 @@ def life_document(scene, study, model, error=None) -> dict:
                        "required_hours": c.hours,
                        "safety_against": ("the strength at the required life" if c.hours
                                           else "the endurance limit")},
-        "basis_frequencies_Hz": model.forced.periodic.frequencies.tolist(),
-        "damping_source": model.forced.periodic.damping_source,
-        "elements_per_link": list(model.elements),
         "harmonic_balance": {"harmonics": field.harmonics,
                              "estimated_error": field.harmonic_error},
         "largest_modulus": _number(field.largest_modulus),
         "links": links,
     }
+    if model is not None:
+        document.update({"basis_frequencies_Hz": model.forced.periodic.frequencies.tolist(),
+                         "damping_source": model.forced.periodic.damping_source,
+                         "elements_per_link": list(model.elements)})
     if error is not None:
         document["peak_stress_error"] = {
             "how": HOW, "tolerance": error.tolerance, "met": error.met,
