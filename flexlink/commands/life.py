@@ -7,8 +7,7 @@ import click
 
 from flexlink.analysis.fatigue import MeanStress
 from flexlink.commands._failures import names_scene
-from flexlink.commands._options import (EnumChoice, json_option, out_option, parse_speeds,
-                                       periodic_basis_options)
+from flexlink.commands._options import EnumChoice, json_option, out_option, parse_speeds
 from flexlink.materials.fatigue import Surface
 
 
@@ -31,7 +30,13 @@ from flexlink.materials.fatigue import Surface
               help="Operating temperature [C] (Marin factor kd).")
 @click.option("--mean-stress", type=EnumChoice(MeanStress), default=MeanStress.GOODMAN.value,
               show_default=True, help="Mean-stress correction.")
-@periodic_basis_options
+@click.option("-n", "--modes", "n_modes", default=14, show_default=True,
+              type=click.IntRange(1, 50),
+              help="Static modes per pose behind the reduced basis (stress needs more than "
+                   "the frequencies: docs/life.md).")
+@click.option("--damping-ratio", default=None, type=float,
+              help="Modal damping ratio in [0, 1) for every basis vector [default: the scene's "
+                   "[damping] table, else the loss factors its materials write, else 0.01].")
 @click.option("--elements", type=click.IntRange(1, 10000), default=None,
               help="Elements per link [default: the scene's mesh].")
 @click.option("--estimate/--no-estimate", default=True, show_default=True,

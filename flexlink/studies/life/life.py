@@ -330,7 +330,7 @@ def safety_sweep(scene: Scene, model: StressModel, speeds, conditions: Condition
     from flexlink.studies.running.stability_map import stability_map
 
     speeds = np.asarray(speeds, dtype=float)
-    verdict = stability_map(model.forced.periodic, speeds)
+    verdict = stability_map(model.verdict, speeds)
     names = model.points.links
     margin = np.full((len(speeds), len(names)), np.nan)
     for i in (progress or iter)(range(len(speeds))):
