@@ -46,21 +46,28 @@ def _axial_and_bending(field):
 
 
 def test_rotating_bar_axial_stress_through_the_chain(tmp_path):
-    """rho Omega^2 (L^2 - x^2) / 2 at every element end at every crank angle, to 1e-9 (the
-    model leaves out the axial centrifugal softening Omega^2 / omega_axial^2 ~ 4e-5 of the
-    stretch, as it is outside the basis, and the static answer is exact at element ends);
-    the basis alone gives none of it (checked: the mode-displacement part is < 1 % of it)."""
+    """A bar clamped at the axis turning at Omega stretches under its centrifugal load and
+    that stretch softens it: E A u'' + rho A Omega^2 (x + u) = 0, u(0) = 0, N(L) = 0 give
+    sigma = E (cos k x / cos k L - 1), k^2 = rho Omega^2 / E, whose small-k limit is
+    rho Omega^2 (L^2 - x^2) / 2 (4.5e-5 apart here). The chain holds it at every element end
+    and crank angle to 1e-5 of the root stress (measured 4.4e-6: the part of the softening
+    outside the basis is answered statically). The basis alone misses the element-end values:
+    its element ends carry each element's mean axial force (no elements' own loads), so the
+    static answer outside the basis is what makes it exact."""
     model = stress_model(load_scene(rotor(tmp_path)))
     speed = 500 * RPM
     field = stress_field(model, speed, samples=12)
     axial, bending = _axial_and_bending(field)
     x = model.points.position.reshape(-1, 2)[:, 0]
-    exact = RHO * speed**2 * (L**2 - x**2) / 2.0
-    assert np.abs(axial - exact).max() < 1e-9 * exact.max()
+    E = 200e9
+    k = math.sqrt(RHO * speed**2 / E)
+    exact = E * (np.cos(k * x) / math.cos(k * L) - 1.0)
+    limit = RHO * speed**2 * (L**2 - x**2) / 2.0
+    assert np.abs(exact - limit).max() < 5e-5 * limit.max()
+    assert np.abs(axial - exact).max() < 1e-5 * exact.max()
     assert np.abs(bending).max() < 1e-9 * exact.max()
-    np.testing.assert_allclose(field.quasi_static, field.total, atol=1e-9 * exact.max())
-    outside = model.forced.at(model.residual, field.angles) @ np.array([speed**2, 1.0])
-    assert np.abs(field.total - outside).max() < 0.01 * exact.max()
+    np.testing.assert_allclose(field.quasi_static, limit.repeat(2)[None, :].repeat(12, 0),
+                               rtol=0, atol=1e-9 * exact.max())  # K^-1 f: no softening
 
 
 def test_slow_bar_under_a_fixed_force_is_the_hand_fatigue_chain(tmp_path):
