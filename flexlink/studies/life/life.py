@@ -213,12 +213,12 @@ def _common(field, model, index):
 
 
 def _diameter(section) -> float:
-    """The size of the section for the Marin size factor [m]."""
-    if section.name and "tube" in section.name:
-        return section.depth
-    width, thickness = section.strip
-    if abs(width * thickness - section.area) <= 1e-9 * section.area:
-        return rectangle_diameter(width, thickness)
+    """The size of the section for the Marin size factor [m]: a rectangle's (I = A h^2 / 12)
+    equivalent diameter 0.808 sqrt(b h), else its depth (a round's outer diameter; for any
+    other section the larger size, which gives the smaller kb)."""
+    if abs(section.second_moment - section.area * section.depth**2 / 12.0) \
+            <= 1e-9 * section.second_moment:
+        return rectangle_diameter(*section.strip)
     return section.depth
 
 
