@@ -37,7 +37,8 @@ ARGS = {
     "report": [CASE1, "-e", "2", "-n", "2", "--cycle-poses", "0"],
     "response": [CASE1, "--speed", "1200 rev/min", "-n", "1"],
     "schema": [],
-    "stability": [CASE1],
+    "verify": [CASE1],
+    "stability": [CASE1],  # the old name of verify, kept for one release
     "stability-map": [CASE1, "--speeds", "0:600 rev/min", "--count", "3", "-n", "2", "--poses", "13"],
     "torque": [CASE1, "--speed", "600 rev/min", "--poses", "8"],
 }
