@@ -26,6 +26,23 @@ def _where(w) -> dict:
             "fibre": "+y" if w.fibre > 0 else "-y", "crank_deg": math.degrees(w.angle) % 360}
 
 
+def strength_data(materials: str) -> dict:
+    """The strength data of the material(s) ``materials`` (shipped names or paths, " + "
+    between two) with their ranges and sources: what the verdict rests on, estimates
+    included."""
+    from flexlink.materials.strength import EXPONENT_KEY, load_strength
+
+    out = {}
+    for name in materials.split(" + "):
+        strength = load_strength(name)
+        out[name] = {key: {("value" if key == EXPONENT_KEY else "value_MPa"):
+                           d.value if key == EXPONENT_KEY else d.value / MPA,
+                           "range": [d.low, d.high] if key == EXPONENT_KEY
+                           else [d.low / MPA, d.high / MPA], "source": d.source}
+                     for key, d in strength.data.items()}
+    return out
+
+
 def life_document(scene, study, model=None, error=None) -> dict:
     """The ``life`` command's document: what is included and assumed, the conditions, the
     error estimate, and per link (worst first) its peak, range, mean, safety and life; the
@@ -36,7 +53,8 @@ def life_document(scene, study, model=None, error=None) -> dict:
         entry = {"link": link.link, "kind": str(link.kind), "material": link.material,
                  "peak": _where(link.peak), "range": _where(link.range),
                  "range_mean_MPa": link.mean / MPA,
-                 "quasi_static_peak_MPa": link.quasi_static_peak / MPA}
+                 "quasi_static_peak_MPa": link.quasi_static_peak / MPA,
+                 "strength_data": strength_data(link.material)}
         if link.kind is LinkKind.METAL:
             hours = study.hours(link)
             entry.update({

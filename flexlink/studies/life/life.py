@@ -95,7 +95,8 @@ class LinkLife:
     mean (the Haigh point), life [turns] (inf: unlimited), yield_safety Sy / max|sigma|,
     endurance Se and Sut, Sy [Pa] of the part, the Marin factors at the worst point.
     Composite: strength ratios (max stress, Tsai-Wu) and the ply (0 at the y = -c face) where
-    the smaller one is. material: the material file(s)."""
+    the smaller one is. material: the material (a shipped name or a path, as the scene writes
+    it; a composite's fibre + matrix)."""
 
     link: str
     kind: LinkKind
@@ -263,7 +264,7 @@ def _metal(name, source, section, field, model, index, common, conditions):
     peak_sample = int(np.argmax(np.abs(s[:, column])))
     peak, span, mean, quasi = common
     return LinkLife(
-        link=name, kind=LinkKind.METAL, material=str(load_strength(source.isotropic).path),
+        link=name, kind=LinkKind.METAL, material=source.isotropic,
         peak=peak, range=span, mean=mean, quasi_static_peak=quasi, safety=result.safety,
         worst=_where(field, model, index, peak_sample, column, s[peak_sample, column]),
         amplitude=result.amplitude, cycle_mean=result.mean,
@@ -298,7 +299,7 @@ def _composite(name, source, section, field, model, index, common):
     peak, span, mean, quasi = common
     return LinkLife(
         link=name, kind=LinkKind.COMPOSITE,
-        material=f"{load_strength(c.fiber).path} + {load_strength(c.matrix).path}",
+        material=f"{c.fiber} + {c.matrix}",
         peak=peak, range=span, mean=mean, quasi_static_peak=quasi,
         max_stress_ratio=float(ratios[0].min()), tsai_wu_ratio=float(ratios[1].min()),
         ply=worst_ply)
