@@ -225,7 +225,8 @@ def plot_haigh(study, path, title: str) -> None:
         colour = f"C{k}"
         ax.plot([0, link.Sut / MPA], [link.endurance / MPA, 0], color=colour, lw=1,
                 label=f"{link.link}: Goodman, Se {link.endurance / MPA:.0f} MPa")
-        ax.plot([0, link.Sy / MPA], [link.Sy / MPA, 0], color=colour, lw=0.8, ls="--")
+        ax.plot([0, link.Sy / MPA], [link.Sy / MPA, 0], color=colour, lw=0.8, ls="--",
+                label=f"{link.link}: first-cycle yield, Sy {link.Sy / MPA:.0f} MPa")
         ax.plot([link.cycle_mean / MPA], [link.amplitude / MPA], "o", color=colour,
                 label=f"{link.link}: worst cycle, n = {link.safety:.3g}")
     if not metals:
@@ -241,8 +242,9 @@ def plot_haigh(study, path, title: str) -> None:
 
 
 def plot_stress_maps(study, model, path, title: str) -> None:
-    """PNG: per link, the larger |stress| of its two fibres (signed) as a colour map of crank
-    angle against the distance along the link."""
+    """PNG: per link, the stress at its +y fibre (the left side, start -> end) as a colour map
+    of crank angle against the distance along the link (the -y fibre's is N/A less the same
+    bending part; both are in life.csv)."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -256,7 +258,7 @@ def plot_stress_maps(study, model, path, title: str) -> None:
     deg = np.degrees(field.angles - field.angles[0])
     for ax, name in zip(axes[:, 0], names):
         s = node_stresses(field, model, name)
-        signed = np.where(np.abs(s[..., 0]) >= np.abs(s[..., 1]), s[..., 0], s[..., 1]) / MPA
+        signed = s[..., 0] / MPA
         e = model.elements[names.index(name)]
         length = model.points.position[model.points.of(name)].max()
         x = np.linspace(0.0, length, e + 1) * 1e3
@@ -267,8 +269,7 @@ def plot_stress_maps(study, model, path, title: str) -> None:
         ax.set(ylabel=f"{name} [mm]")
     axes[-1, 0].set(xlabel=f"crank angle from {math.degrees(field.angles[0]) % 360:.1f} deg "
                            "[deg]")
-    axes[0, 0].set(title=f"{title}: the larger-magnitude fibre stress at "
-                         f"{study.speed / RPM:g} rev/min")
+    axes[0, 0].set(title=f"{title}: stress at the +y fibre at {study.speed / RPM:g} rev/min")
     write_figure(fig, path)
 
 
