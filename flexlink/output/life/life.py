@@ -237,7 +237,8 @@ def plot_haigh(study, path, title: str) -> None:
                  f"({study.conditions.mean_stress})")
     ax.set_xlim(left=min(0.0, ax.get_xlim()[0]))
     ax.set_ylim(bottom=0)
-    ax.legend(fontsize=7)
+    if metals:
+        ax.legend(fontsize=7)
     write_figure(fig, path)
 
 
