@@ -179,10 +179,12 @@ def life_data(scene: ReportScene) -> dict | None:
             "curves": curves}
 
 
-def scene_page(scene: ReportScene, files: dict, out: Path) -> dict:
+def scene_page(scene: ReportScene, files: dict, out: Path, correlation: dict | None = None
+               ) -> dict:
     """Everything the report shows for one scene (``studies.report_scene``), its modes drawn
     on the mesh they were solved on; ``files``: ``export.export_case``'s answer, linked
-    relative to ``out``."""
+    relative to ``out``; ``correlation``: a modal test's correlation with the scene
+    (``output.correlation.correlation.correlation_json``), or None."""
     def relative(paths):
         return [Path(p).relative_to(out).as_posix() for p in paths]
 
@@ -195,6 +197,7 @@ def scene_page(scene: ReportScene, files: dict, out: Path) -> dict:
             "cycle": cycle_data(scene.cycle, result.pose.crank_angle, scene.cycle_unavailable),
             "at_speed": at_speed_data(scene.at_speed),
             "life": life_data(scene),
+            "correlation": correlation,
             "files": {"vtu": relative(files.get("vtu", [])),
                       "pvd": relative(files.get("pvd", []))}}
 
