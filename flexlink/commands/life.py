@@ -49,7 +49,7 @@ def command(scene_path, speed, speeds, count, hours, reliability, surface, tempe
     """Stress at both fibres of every element end over one crank turn at a speed, and each
     link's peak stress, range, mean, safety factor and life (worst link first). Writes
     life.json, life.csv (the full field), life.pvd (a ParaView series over the crank angle),
-    life_haigh.png and life_stress.png to OUT/<scene>/; with --speeds, life_speeds.json and
+    life_haigh.png (where a link is metal) and life_stress.png to OUT/<scene>/; with --speeds, life_speeds.json and
     .png."""
     import numpy as np
 
@@ -94,9 +94,9 @@ def command(scene_path, speed, speeds, count, hours, reliability, surface, tempe
              if estimate else None)
     document = render.life_document(scene, study, model, error)
     files = [write_atomic(folder / "life.csv", render.field_csv(study))]
-    render.plot_haigh(study, folder / "life_haigh.png", scene.name)
+    files += render.plot_haigh(study, folder / "life_haigh.png", scene.name)
     render.plot_stress_maps(study, model, folder / "life_stress.png", scene.name)
-    files += [folder / "life_haigh.png", folder / "life_stress.png"]
+    files.append(folder / "life_stress.png")
     files += render.write_series(folder, "life", scene, study, model)
     publish(folder / "life.json", document, files, "\n".join(render.life_lines(document)),
             as_json)

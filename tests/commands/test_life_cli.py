@@ -99,6 +99,17 @@ def test_a_run_writes_the_field_and_orders_links(tmp_path):
     assert pvd.count("<DataSet") == 180
 
 
+def test_an_all_composite_scene_gets_no_haigh_diagram(tmp_path):
+    """A composite link has no Goodman line: no empty Haigh picture is written for Table II
+    case 3 (all three links carbon/polyester), and the stress maps still are."""
+    result = _run([CASE3, "--speed", "600 rev/min", "--no-estimate", "--json",
+                   "--out", str(tmp_path / "out")])
+    assert result.exit_code == 0, result.output
+    files = {Path(f).name for f in json.loads(result.stdout)["files"]}
+    assert "life_stress.png" in files and "life_haigh.png" not in files
+    assert not (tmp_path / "out" / "case3" / "life_haigh.png").exists()
+
+
 def test_speeds_give_the_margin_against_speed(tmp_path):
     result = _run([CASE3, "--speeds", "300:3000 rev/min", "--count", "4", "--json", "--out",
                    str(tmp_path)])

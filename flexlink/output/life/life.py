@@ -209,9 +209,14 @@ def write_series(folder, stem: str, scene, study, model) -> list:
     return written
 
 
-def plot_haigh(study, path, title: str) -> None:
+def plot_haigh(study, path, title: str) -> list:
     """PNG: the Haigh diagram (alternating against mean stress) of each metal link's part,
-    with its Goodman line Se - Sut, the yield line Sy, and the link's worst cycle."""
+    with its Goodman line Se - Sut, the yield line Sy, and the link's worst cycle; returns
+    ``[path]``, or ``[]`` (nothing drawn) where no link is metal: a composite link has no
+    Goodman line (its verdict is the ply strength ratio, in the table)."""
+    metals = [link for link in study.links if link.kind is LinkKind.METAL]
+    if not metals:
+        return []
     import matplotlib
 
     matplotlib.use("Agg")
@@ -220,7 +225,6 @@ def plot_haigh(study, path, title: str) -> None:
     from flexlink.output.figures import write_figure
 
     fig, ax = plt.subplots(figsize=(7, 5))
-    metals = [link for link in study.links if link.kind is LinkKind.METAL]
     for k, link in enumerate(metals):
         colour = f"C{k}"
         ax.plot([0, link.Sut / MPA], [link.endurance / MPA, 0], color=colour, lw=1,
@@ -229,17 +233,14 @@ def plot_haigh(study, path, title: str) -> None:
                 label=f"{link.link}: first-cycle yield, Sy {link.Sy / MPA:.0f} MPa")
         ax.plot([link.cycle_mean / MPA], [link.amplitude / MPA], "o", color=colour,
                 label=f"{link.link}: worst cycle, n = {link.safety:.3g}")
-    if not metals:
-        ax.text(0.5, 0.5, "no metal link: " + COMPOSITE_NOTE, ha="center", va="center",
-                wrap=True, transform=ax.transAxes, fontsize=8)
     ax.set(xlabel="mean stress [MPa]", ylabel="alternating stress [MPa]",
            title=f"{title}: Haigh diagram at {study.speed / RPM:g} rev/min "
                  f"({study.conditions.mean_stress})")
     ax.set_xlim(left=min(0.0, ax.get_xlim()[0]))
     ax.set_ylim(bottom=0)
-    if metals:
-        ax.legend(fontsize=7)
+    ax.legend(fontsize=7)
     write_figure(fig, path)
+    return [path]
 
 
 def plot_stress_maps(study, model, path, title: str) -> None:
