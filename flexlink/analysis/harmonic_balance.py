@@ -19,13 +19,12 @@ response vary over the turn, not by the stiffest frequency of the system over th
 the steps of a time integration over the turn are (~ omega_max / Omega).
 
 Solved by scipy's GMRES on the full Hill matrix. q is real, so Q_-k = conj Q_k: the unknowns
-are the harmonics k = 0..H (Q_0 real), a real vector space (GMRES in real arithmetic, in
-variables scaled so that its Euclidean norm counts each k > 0 twice: the norms are those of
-all 2H + 1 harmonics). The product with the Hill matrix is done in the angle domain: q and q'
-are synthesised by real FFTs on a grid of more than 2H + P angles, multiplied pointwise by the
-real S(theta) and D(theta), and analysed back (exact: the product's harmonics up to H alias
-nowhere). It is right preconditioned by LAPACK's band LU (double precision) of the Hill matrix
-with the coefficients' harmonics cut to |d| <= band (exact at constant coefficients), over the
+are the harmonics k = 0..H (Q_0 real), a real vector space (GMRES in real arithmetic). The
+product with the Hill matrix is done in the angle domain: q and q' are synthesised by real
+FFTs on a grid of more than 2H + P angles, multiplied pointwise by the real S(theta) and
+D(theta), and analysed back (exact: the product's harmonics up to H alias nowhere). It is
+right preconditioned by LAPACK's band LU (double precision) of the Hill matrix with the
+coefficients' harmonics cut to |d| <= band (exact at constant coefficients), over the
 harmonics -band..H only: the rows below 0 stand in for the conjugate half. That LU is the
 cost, about 2 (H + band) n ((band + 1) n)^2 complex operations (half the whole -H..H band's).
 
@@ -64,8 +63,7 @@ log = logging.getLogger(__name__)
 
 BAND = 4  # coefficient harmonics in the preconditioner: 5-8 GMRES steps on case 3 (3: 11-19)
 MAX_HARMONICS = 400  # the largest H tried by default
-ITERATIONS = 100  # GMRES iterations at most with the coefficients' whole band
-BAND_ITERATIONS = 15  # and with a narrower band, before the next is tried
+ITERATIONS = 20  # GMRES iterations at most per band (case 3 takes 5 to 8 at BAND)
 RTOL = 1e-12  # GMRES' relative residual
 SOLVE_ERROR = 1e-8  # the largest estimated relative error of a solve: a tenth of the
 # default tolerance
@@ -76,7 +74,7 @@ class HarmonicSolution:
     """The periodic solution: coefficients (H + 1, n) complex, Q_k for k = 0..H (Q_-k =
     conj Q_k), in the units of q; error [-]: the estimated truncation error (the tail
     beyond H) relative to max over theta of |q(theta)| (Euclidean norm over the n
-    coordinates); residual [-]: GMRES' final |g - A Q| / |g|."""
+    coordinates); residual [-]: the final |g - A Q| / |g| (over harmonics k = 0..H)."""
 
     coefficients: np.ndarray
     error: float
@@ -146,12 +144,9 @@ def _solve(stiffness, damping, forcing, speed, H, guess, band):
     """Q (H + 1, n), k = 0..H, the relative residual and the preconditioner's band that
     reached it, by GMRES right preconditioned by the band LU of ``_band_preconditioner``
     over the real vector space of the real functions' harmonics k >= 0 (Q_0 real). From
-    ``band`` the bands of ``_bands`` are tried in turn, the next where GMRES has not
-    converged in BAND_ITERATIONS steps (NumericalError where it does not in ITERATIONS
-    with the last, the coefficients' whole band)."""
+    ``band`` the bands of ``_bands`` are tried in turn, the next where GMRES' answer is
+    refused (NumericalError where it is with the last, the coefficients' whole band)."""
     P, n = stiffness.shape[0] - 1, stiffness.shape[-1]
-    weights = np.full((H + 1, n, 2), 2.0)  # |Q_-k| = |Q_k|: k > 0 counts twice
-    weights[0] = 1.0
     product = _hill_product(stiffness, damping, speed, H)
     rhs = np.zeros((H + 1, n), complex)
     m = min(P, H)
@@ -164,8 +159,7 @@ def _solve(stiffness, damping, forcing, speed, H, guess, band):
         last = band == bands[-1]
         precondition = _band_preconditioner(stiffness, damping, speed, H, band)
         try:
-            x, residual = _gmres(product, precondition, b, x0, weights.ravel(),
-                                 iterations=ITERATIONS if last else BAND_ITERATIONS)
+            x, residual = _gmres(product, precondition, b, x0)
         except NumericalError as error:
             if last:
                 raise
@@ -270,28 +264,25 @@ def _band_matrix(stiffness, damping, speed, harmonics, band):
     return ab, kl
 
 
-def _gmres(product, precondition, b, x0, weights, rtol: float = RTOL,
-           iterations: int = ITERATIONS):
+def _gmres(product, precondition, b, x0, rtol: float = RTOL, iterations: int = ITERATIONS):
     """x with |b - A x| <= rtol |b| and the relative residual reached, by scipy's GMRES
-    right preconditioned (A P^-1 y = b - A x0, x = x0 + P^-1 y), over real vectors with the
-    inner product sum(weights u v): in the variables sqrt(weights) x, where it is the
-    Euclidean one scipy's GMRES minimises. The residual r is recomputed from x, and the
-    error of x estimated as |P^-1 r| (P^-1 near A^-1 where GMRES converges): NumericalError
-    where that is above SOLVE_ERROR |x|, or not a number (an overflow)."""
-    root = np.sqrt(weights)
-    scale = np.linalg.norm(root * b)
+    right preconditioned (A P^-1 y = b - A x0, x = x0 + P^-1 y) in ``iterations`` steps at
+    most. The residual r is recomputed from x, and the error of x estimated as |P^-1 r|
+    (P^-1 near A^-1 where GMRES converges): NumericalError where that is above SOLVE_ERROR
+    |x|, or not a number (an overflow)."""
+    scale = np.linalg.norm(b)
     if scale == 0.0:  # no forcing: the periodic solution is rest
         return np.zeros_like(b), 0.0
     operator = LinearOperator((b.size, b.size), dtype=float,
-                              matvec=lambda y: root * product(precondition(y / root)))
+                              matvec=lambda y: product(precondition(y)))
     steps = []  # one entry per GMRES iteration
-    y, _ = gmres(operator, root * (b - product(x0) if x0.any() else b), rtol=0.0,
+    y, _ = gmres(operator, b - product(x0) if x0.any() else b, rtol=0.0,
                  atol=rtol * scale, restart=iterations, maxiter=1, callback=steps.append,
                  callback_type="pr_norm")
-    x = x0 + precondition(y / root)
+    x = x0 + precondition(y)
     r = b - product(x)
-    residual = np.linalg.norm(root * r) / scale
-    error = np.linalg.norm(root * precondition(r)) / np.linalg.norm(root * x)
+    residual = np.linalg.norm(r) / scale
+    error = np.linalg.norm(precondition(r)) / np.linalg.norm(x)
     if not error <= SOLVE_ERROR:
         raise NumericalError(f"harmonic balance: GMRES stalled at relative residual "
                              f"{residual:.2g} after {len(steps)} iterations (estimated "
