@@ -205,8 +205,9 @@ def swinging_stiffness(P, w0=20.0, zeta=0.01, a=5.0):
 def test_a_fast_swinging_stiffness_widens_the_preconditioner_band(P, caplog):
     # the coefficients cut to |d| <= 4 misplace the swinging frozen frequency, so GMRES with
     # that band stagnates; with P = 8 the next band is the whole one (the last tried), with
-    # P = 16 an intermediate one. The answer is the Hill system's own,
-    # solved here directly (dense LU: round-off ~1e-16 times its condition, ~1e4)
+    # P = 16 an intermediate one. The answer is the Hill system's own, solved here directly
+    # (dense LU: round-off ~1e-16 times its condition, ~1e4), to the error the solver
+    # accepts (SOLVE_ERROR, 1e-8; 1e-13 is reached)
     S, D, g = swinging_stiffness(P)
     with caplog.at_level(logging.INFO, logger="flexlink.analysis.harmonic_balance"):
         solution = harmonic_balance(S, D, g, 1.0)
@@ -216,7 +217,7 @@ def test_a_fast_swinging_stiffness_widens_the_preconditioner_band(P, caplog):
     H = solution.harmonics
     A, b = hill_matrix(S, D, g, 1.0, H)
     direct = np.linalg.solve(A, b).reshape(2 * H + 1, 1)[H:]
-    assert np.abs(solution.coefficients - direct).max() <= 1e-9 * np.abs(direct).max()
+    assert np.abs(solution.coefficients - direct).max() <= 1e-8 * np.abs(direct).max()
 
 
 def stiff_and_soft(separation, zeta=0.01, r=0.9):
