@@ -21,6 +21,7 @@ for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
 
 import argparse  # noqa: E402
 import time  # noqa: E402
+import timeit  # noqa: E402
 from pathlib import Path  # noqa: E402
 
 import numpy as np  # noqa: E402
@@ -62,13 +63,9 @@ def _recorded_stacks(model) -> list[tuple[str, np.ndarray]]:
     return stacks
 
 
-def _best(repeats, work):
-    times = []
-    for _ in range(repeats):
-        t = time.process_time()
-        result = work()
-        times.append(time.process_time() - t)
-    return min(times), result
+def _best(repeats, work) -> float:
+    """The best CPU time [s] of ``repeats`` calls of work()."""
+    return min(timeit.repeat(work, timer=time.process_time, repeat=repeats, number=1))
 
 
 def main() -> None:
@@ -84,9 +81,10 @@ def main() -> None:
             largest[label] = stack
     ratios, worst = {}, 0.0
     for label, stack in largest.items():
-        ours, mine = _best(repeats, lambda s=stack: floquet.exponentials(s))
-        theirs, reference = _best(repeats, lambda s=stack: sla.expm(s))
-        looped, _ = _best(repeats, lambda s=stack: [sla.expm(a) for a in s])
+        mine, reference = floquet.exponentials(stack), sla.expm(stack)
+        ours = _best(repeats, lambda s=stack: floquet.exponentials(s))
+        theirs = _best(repeats, lambda s=stack: sla.expm(s))
+        looped = _best(repeats, lambda s=stack: [sla.expm(a) for a in s])
         size = np.abs(reference).sum(axis=-2).max(axis=-1)  # 1-norm per matrix
         difference = (np.abs(mine - reference).sum(axis=-2).max(axis=-1) / size).max()
         worst = max(worst, difference)
