@@ -238,11 +238,12 @@ def rayleigh_law(scene):
     return {link.name: RAYLEIGH_BETA for link in scene.topology().links}, RAYLEIGH_BETA
 
 
-def constant_ratio_law(scene, theta0, elements, iterations=12, tolerance=1e-7):
+def constant_ratio_law(scene, theta0, elements, iterations=20, tolerance=1e-4):
     """Per-link betas [s] giving each link's first mode the ratio ZETA, and the joint
     dampers' beta (ZETA at mode 1 as if all were stiffness-proportional), by fixed-point
     iteration on the ratios of the linearised model (each link's first mode, the lowest whose
-    bending energy lies mostly in it, answers mainly to its own link's beta)."""
+    bending energy lies mostly in it, answers mainly to its own link's beta), until every
+    first mode's ratio is within ``tolerance`` of ZETA, relative."""
     names = [link.name for link in scene.topology().links]
     f, _, _ = linear_modes(Linkage(scene, theta0, elements, dict.fromkeys(names, 0.0), 0.0), 1)
     spring_beta = 2.0 * ZETA / (2.0 * math.pi * f[0])
