@@ -13,9 +13,14 @@ peak.
 Why they need not agree to round-off: flexlink's model is linear about the rigid motion in a
 reduced basis (16 vectors, the Fourier series of 37 poses, 16 elements a link with the strain
 read on one side of the midspan node), Exudyn's is geometrically exact at 32 elements a link
-(its own mesh and step changes: under 0.1 % of the peaks); and "constant ratio" damps every
-basis vector at 0.02 in flexlink, but in the time domain each link's first mode only, its higher
-modes more (stiffness-proportional).
+(its own mesh and step changes: under 0.2 % of the peaks); and "constant ratio" damps every
+basis vector at 0.02 in flexlink, but in the time domain only each link's first mode, the
+others more (stiffness-proportional per link; see ``tolerances``).
+
+The comparisons that fail today are marked strict xfail (``KNOWN_FAILURES``): with Rayleigh
+damping, and at 1200 rev/min even with one ratio, flexlink's curves move with the damping of its
+stiff basis vectors, which a quasi-static strain should not feel. When the damping acts on the
+deformation only they should pass, turn into XPASS failures, and lose their mark.
 
     PYTHONPATH=. python benchmarks/time_domain_comparison.py   # prints the comparison tables
 """
@@ -42,10 +47,22 @@ N_MODES = 6  # flexlink response's default basis
 RATIO = 0.02
 RAYLEIGH_BETA = 1.1423e-4
 LINKS = ("crank", "coupler", "rocker")
-PEAK_TOLERANCE = 0.015
-CURVE_TOLERANCE = 0.03
-RAYLEIGH_REASON = ("flexlink's modal damping acts on the moving basis, so Rayleigh damping "
-                   "distorts the quasi-static strain of the crank (issue 33, item 1)")
+# The agreement asked of flexlink's reduced linear model where the damping laws are the same:
+# its own mesh moves the midspan peaks by 0.2 % (16 to 32 elements a link), the record's mesh
+# and step by under 0.2 % (its convergence check), the transient left by 1e-4.
+PEAK_TOLERANCE = 0.01
+CURVE_TOLERANCE = 0.02
+BASIS_DAMPING = ("flexlink's modal damping acts on the motion of its basis: the damping of the "
+                 "stiff basis vectors moves the quasi-static strain (issue 33, item 1)")
+KNOWN_FAILURES = {  # (damping, rev/min, link): why, until the damping acts on deformation only
+    ("rayleigh", 600.0, "crank"): BASIS_DAMPING,
+    ("rayleigh", 600.0, "coupler"): BASIS_DAMPING,
+    ("rayleigh", 1200.0, "crank"): BASIS_DAMPING,
+    ("rayleigh", 1200.0, "coupler"): BASIS_DAMPING,
+    ("rayleigh", 1200.0, "rocker"): BASIS_DAMPING,
+    ("constant ratio", 1200.0, "crank"): BASIS_DAMPING + "; at 1200 rev/min even at one ratio",
+    ("constant ratio", 1200.0, "rocker"): BASIS_DAMPING + "; at 1200 rev/min even at one ratio",
+}
 
 
 def scene_for(law: str):
@@ -74,39 +91,63 @@ def recorded(law: str, rpm: float) -> dict:
                 if run["damping"] == law and run["speed_rev_min"] == rpm)
 
 
-def differences(reference: np.ndarray, ours: np.ndarray) -> tuple[float, float]:
-    """(peak |ours| / peak |reference| - 1, RMS of ours - reference / peak |reference|)."""
+def differences(reference: np.ndarray, ours: np.ndarray) -> tuple[float, float, float]:
+    """(peak |ours| / peak |reference| - 1, RMS of ours - reference, max |ours - reference|),
+    the last two relative to peak |reference|."""
     peak = np.abs(reference).max()
     return (float(np.abs(ours).max() / peak - 1.0),
-            float(np.sqrt(np.mean((ours - reference) ** 2)) / peak))
+            float(np.sqrt(np.mean((ours - reference) ** 2)) / peak),
+            float(np.abs(ours - reference).max() / peak))
+
+
+def tolerances(law: str, rpm: float, link: str) -> tuple[float, float]:
+    """(peak, curve) tolerances [-]. A constant ratio for every mode is not a law strain-rate
+    damping can hold: the record fits each link's first mode and damps the others more. So the
+    record's own spread between its two laws (how far its answer moves when the damping of
+    every mode but the first changes) is added there; Rayleigh is the same law in both."""
+    if law != "constant ratio":
+        return PEAK_TOLERANCE, CURVE_TOLERANCE
+    a = np.asarray(recorded("constant ratio", rpm)["strain_microstrain"][link])
+    b = np.asarray(recorded("rayleigh", rpm)["strain_microstrain"][link])
+    peak, curve, _ = differences(a, b)
+    return PEAK_TOLERANCE + abs(peak), CURVE_TOLERANCE + curve
 
 
 def comparison_rows() -> list[dict]:
-    """One row per recorded speed, damping law and link: the peaks [microstrain] and the two
-    differences [%]."""
+    """One row per recorded speed, damping law and link: the peaks [microstrain], the
+    differences [%] and their tolerances [%]."""
     rows = []
     for run in RECORD["runs"]:
         law, rpm = run["damping"], run["speed_rev_min"]
         _, ours = flexlink_curves(law, rpm)
         for name in LINKS:
             theirs = np.asarray(run["strain_microstrain"][name])
-            peak, curve = differences(theirs, ours[name])
+            peak, curve, largest = differences(theirs, ours[name])
+            peak_tol, curve_tol = tolerances(law, rpm, name)
             rows.append({"link": name, "speed_rev_min": rpm, "damping": law,
                          "peak_flexlink": float(np.abs(ours[name]).max()),
                          "peak_exudyn": float(np.abs(theirs).max()),
-                         "peak_diff_pct": 100 * peak, "curve_diff_pct": 100 * curve})
+                         "peak_diff_pct": 100 * peak, "curve_diff_pct": 100 * curve,
+                         "max_diff_pct": 100 * largest, "peak_tolerance_pct": 100 * peak_tol,
+                         "curve_tolerance_pct": 100 * curve_tol,
+                         "known_failure": (law, rpm, name) in KNOWN_FAILURES})
     return rows
 
 
 def table(rows: list[dict]) -> str:
     head = (f"{'link':8} {'rev/min':>7}  {'damping':15} {'peak flexlink':>13} "
-            f"{'peak exudyn':>11} {'peak diff %':>11} {'curve diff %':>12}")
+            f"{'peak exudyn':>11} {'peak diff %':>11} {'curve diff %':>12} {'max diff %':>10} "
+            f"{'tol peak/curve %':>16}")
     lines = [head, "-" * len(head)]
     lines += [f"{r['link']:8} {r['speed_rev_min']:7g}  {r['damping']:15} "
               f"{r['peak_flexlink']:13.3f} {r['peak_exudyn']:11.3f} "
-              f"{r['peak_diff_pct']:+11.2f} {r['curve_diff_pct']:12.2f}" for r in rows]
-    return "\n".join(lines + ["(peaks in microstrain; curve diff: RMS of the difference over "
-                              "the turn / Exudyn's peak)"])
+              f"{r['peak_diff_pct']:+11.2f} {r['curve_diff_pct']:12.2f} "
+              f"{r['max_diff_pct']:10.2f} "
+              f"{r['peak_tolerance_pct']:7.2f}/{r['curve_tolerance_pct']:<5.2f}"
+              + ("  known failure" if r["known_failure"] else "") for r in rows]
+    return "\n".join(lines + [
+        "peaks in microstrain; curve diff: RMS of flexlink - Exudyn over the turn, max diff: "
+        "its largest value, both / Exudyn's peak"])
 
 
 def test_record_checked_its_element_against_closed_forms():
@@ -152,18 +193,20 @@ def test_record_reached_its_steady_state():
 
 def _cases():
     for run in RECORD["runs"]:
+        law, rpm = run["damping"], run["speed_rev_min"]
         for name in LINKS:
             marks = [pytest.mark.slow]
-            if run["damping"] == "rayleigh" and name == "crank":
-                marks.append(pytest.mark.xfail(strict=True, reason=RAYLEIGH_REASON))
-            yield pytest.param(run["damping"], run["speed_rev_min"], name, marks=marks,
-                               id=f"{run['damping'].replace(' ', '-')}-{run['speed_rev_min']:g}"
-                                  f"-{name}")
+            if (law, rpm, name) in KNOWN_FAILURES:
+                marks.append(pytest.mark.xfail(strict=True,
+                                               reason=KNOWN_FAILURES[law, rpm, name]))
+            yield pytest.param(law, rpm, name, marks=marks,
+                               id=f"{law.replace(' ', '-')}-{rpm:g}-{name}")
 
 
 @pytest.mark.parametrize("law, rpm, link", list(_cases()))
 def test_steady_strain_matches_the_time_domain_record(law, rpm, link):
     theirs = np.asarray(recorded(law, rpm)["strain_microstrain"][link])
     _, ours = flexlink_curves(law, rpm)
-    peak, curve = differences(theirs, ours[link])
-    assert abs(peak) < PEAK_TOLERANCE and curve < CURVE_TOLERANCE, (peak, curve)
+    peak, curve, _ = differences(theirs, ours[link])
+    peak_tol, curve_tol = tolerances(law, rpm, link)
+    assert abs(peak) < peak_tol and curve < curve_tol, (peak, curve, peak_tol, curve_tol)
