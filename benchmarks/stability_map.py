@@ -24,7 +24,7 @@ from pathlib import Path  # noqa: E402
 import numpy as np  # noqa: E402
 
 from flexlink.scene import load_scene  # noqa: E402
-from flexlink.studies.stability_map import (  # noqa: E402
+from flexlink.studies.running.stability_map import (  # noqa: E402
     Integrator,
     periodic_model,
     stability_map,

@@ -21,8 +21,8 @@ import time  # noqa: E402
 from pathlib import Path  # noqa: E402
 
 from flexlink.scene import load_scene  # noqa: E402
-from flexlink.studies.stability_map import speed_multipliers  # noqa: E402
-from flexlink.studies.steady_response import (  # noqa: E402
+from flexlink.studies.running.stability_map import speed_multipliers  # noqa: E402
+from flexlink.studies.running.steady_response import (  # noqa: E402
     forced_model,
     periodic_solution,
     steady_response,

@@ -4,11 +4,11 @@ from __future__ import annotations
 
 
 def run_operating(files, folders, n_modes, elements, tol, at, as_json) -> None:
-    """Modes at the operating point ``at`` (a ``studies.operating_point.OperatingRequest``) of
+    """Modes at the operating point ``at`` (a ``studies.running.modes_at_speed.OperatingRequest``) of
     each scene file, on ``elements`` per link or the mesh rule at ``tol``; writes
     modes_at_speed.json and .csv to each file's folder in ``folders``."""
-    from flexlink.output.operating_report import operating_files, operating_text
-    from flexlink.studies.operating_point import scene_operating_modes
+    from flexlink.output.running.modes_at_speed import operating_files, operating_text
+    from flexlink.studies.running.modes_at_speed import scene_operating_modes
 
     from ._analysed import each_scene
     from ._failures import finish

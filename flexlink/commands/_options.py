@@ -175,7 +175,7 @@ def deprecated_for(new: str):
 def periodic_basis_options(command):
     """-n/--modes and --damping-ratio of the commands on the periodic equations at speed
     (``stability-map``, ``response``): the static modes the reduced basis must reproduce and
-    the modal damping in it (None when not given: ``studies.periodic_damping`` picks)."""
+    the modal damping in it (None when not given: ``studies.running.periodic_damping`` picks)."""
     options = (
         click.option("-n", "--modes", "n_modes", default=6, show_default=True,
                      type=click.IntRange(1, 50), help="Static modes of the reduced basis."),

@@ -28,10 +28,10 @@ def command(scene_path, speed, speeds, count, n_modes, damping_ratio, points, as
     import numpy as np
 
     from flexlink.errors import InputError
-    from flexlink.output.steady_response import response_lines, write_response
-    from flexlink.studies import steady_response as study
-    from flexlink.studies.campbell import _check_speeds
-    from flexlink.studies.operating_point import crank_speed
+    from flexlink.output.running.steady_response import response_lines, write_response
+    from flexlink.studies.running import steady_response as study
+    from flexlink.studies.cycle.bands import _check_speeds
+    from flexlink.studies.running.modes_at_speed import crank_speed
     from flexlink.units import parse_quantity
     from ._progress import progress_bar
     from ._written import folder_and_scene, publish

@@ -40,9 +40,9 @@ def command(scene_path, speeds, count, n_modes, damping_ratio, poses, basis_size
     import numpy as np
 
     from flexlink.parallel import use_scheduler
-    from flexlink.output.stability_map import stability_document, stability_lines, write_stability
-    from flexlink.studies.campbell import _check_speeds
-    from flexlink.studies.stability_map import Integrator, periodic_model, stability_map
+    from flexlink.output.running.stability_map import stability_document, stability_lines, write_stability
+    from flexlink.studies.cycle.bands import _check_speeds
+    from flexlink.studies.running.stability_map import Integrator, periodic_model, stability_map
     from ._progress import progress_bar
     from ._written import folder_and_scene, publish
 

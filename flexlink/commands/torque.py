@@ -25,9 +25,9 @@ def command(scene_path, speed, acceleration, poses, as_json, out_dir):
     speed, from the links' mass and inertia and the scene's [[loads]]. Writes torque.csv,
     torque.json and torque.png to OUT/<scene>/."""
     from flexlink.fileio import prepare_out_dir, write_atomic
-    from flexlink.output.torque import torque_csv, torque_document, torque_plot, torque_text
+    from flexlink.output.running.torque import torque_csv, torque_document, torque_plot, torque_text
     from flexlink.scene import load_scene
-    from flexlink.studies.torque import operating_point, torque_study
+    from flexlink.studies.running.torque import operating_point, torque_study
     from flexlink.units import parse_quantity
     from ._progress import progress_bar
     from ._written import announce, scene_folders

@@ -32,7 +32,7 @@ COMMANDS = {
     # one scene: the study cross-validates leaving one out, so it refuses (a full fit of two
     # scenes costs tens of seconds: tests/commands/test_calibrate_cli.py runs those)
     "calibrate": lambda s: ["calibrate", s, "--starts", "1", "--samples", "2", "-e", "2"],
-    "stability": lambda s: ["stability", s],
+    "verify": lambda s: ["verify", s],
 }
 # (command, family) pairs refused by design, with a word of the reason
 REFUSED = {("mac", "3d"): "cannot compare", ("calibrate", "planar"): "at least two scenes",
@@ -40,7 +40,7 @@ REFUSED = {("mac", "3d"): "cannot compare", ("calibrate", "planar"): "at least t
            ("calibrate", "3d"): "at least two scenes"}
 # the stability checks vary the in-plane model only: one family is enough (5 s each)
 CELLS = [(beam, family, name) for beam in BEAMS for family in FAMILIES for name in COMMANDS
-         if name != "stability" or family == "planar"]
+         if name != "verify" or family == "planar"]
 
 
 def variant(tmp_path, beam: str, family: str, base) -> str:

@@ -1,4 +1,4 @@
-"""Campbell diagram: critical speed ranges and nearest margin (studies/campbell.py), and the
+"""Campbell diagram: critical speed ranges and nearest margin (studies/cycle/bands.py), and the
 `flexlink campbell` command."""
 
 import json
@@ -10,7 +10,7 @@ from click.testing import CliRunner
 from flexlink.cli import main
 from flexlink.commands._options import parse_speeds
 from flexlink.errors import InputError
-from flexlink.studies.campbell import RPM, Band, bands, critical_speeds, nearest_margin
+from flexlink.studies.cycle.bands import RPM, Band, bands, critical_speeds, nearest_margin
 
 
 def test_critical_speeds_against_a_hand_computation():

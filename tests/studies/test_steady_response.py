@@ -1,4 +1,4 @@
-"""The steady elastic response of a running linkage (``studies.steady_response``).
+"""The steady elastic response of a running linkage (``studies.running.steady_response``).
 
 Each check is an independent route to the same answer: a time integration from rest run to
 steady state, the quasi-static deflection under the inertia loads, the full finite-element
@@ -21,9 +21,9 @@ from flexlink.fe.model_at_pose import pose_model
 from flexlink.fe.preload import inertia_loads, static_displacement
 from flexlink.kinematics.dynamics import rigid_motion
 from flexlink.scene import load_scene
-from flexlink.studies.operating_point import link_motion
-from flexlink.studies.stability_map import PeriodicModel
-from flexlink.studies.steady_response import (
+from flexlink.studies.running.modes_at_speed import link_motion
+from flexlink.studies.running.stability_map import PeriodicModel
+from flexlink.studies.running.steady_response import (
     ForcedModel,
     StrainPoint,
     forced_model,

@@ -13,7 +13,7 @@ from conftest import CASES_DIR, ROOT, SCENES_DIR
 from flexlink.cli import main
 from flexlink.errors import InputError
 from flexlink.scene import load_scene
-from flexlink.studies.torque import operating_point, torque_study
+from flexlink.studies.running.torque import operating_point, torque_study
 
 SHIPPED = sorted(CASES_DIR.glob("case*.toml")) + sorted(SCENES_DIR.glob("*.toml"))
 CASE3 = CASES_DIR / "case3.toml"

@@ -1,0 +1,92 @@
+"""Rendering of ``studies.running.torque.TorqueCurve``: CSV (one row per crank angle), the JSON
+document, the text summary and the torque plot (PNG bytes; the caller writes them)."""
+
+from __future__ import annotations
+
+import io
+import math
+
+import numpy as np
+
+RPM = 60 / (2 * math.pi)  # [rev/min] per [rad/s]
+
+
+def torque_csv(curve) -> str:
+    """Crank angle [deg], torque [N m], power [W], kinetic energy [J], load power [W], then
+    Fx, Fy, |F| [N] of every reported joint force ("joint:body": on that body at that joint)."""
+    cols = ["crank_angle_deg", "torque_N_m", "power_W", "kinetic_energy_J", "load_power_W"]
+    for key in curve.forces:
+        cols += [f"{key}_Fx_N", f"{key}_Fy_N", f"{key}_F_N"]
+    lines = [",".join(cols)]
+    for i, q in enumerate(curve.q):
+        row = [math.degrees(q), curve.torque[i], curve.power[i], curve.kinetic_energy[i],
+               curve.load_power[i]]
+        for f in curve.forces.values():
+            row += [f[i, 0], f[i, 1], math.hypot(*f[i])]
+        lines.append(",".join(f"{v:.10g}" for v in row))
+    return "\n".join(lines) + "\n"
+
+
+def torque_document(curve, assumptions, files) -> dict:
+    """The JSON document: operating point, summary, per-joint peak forces, mass properties,
+    the model's assumptions and the scene's."""
+    peaks = {}
+    for key, f in curve.forces.items():
+        magnitude = np.hypot(f[:, 0], f[:, 1])
+        i = int(np.argmax(magnitude))
+        peaks[key] = {"peak_N": float(magnitude[i]),
+                      "at_deg": float(math.degrees(curve.q[i]) % 360.0)}
+    return {"command": "torque", "scene": curve.scene, "crank_speed_rad_s": curve.speed,
+            "crank_speed_rev_per_min": curve.speed * RPM,
+            "crank_acceleration_rad_s2": curve.crank_acceleration, "poses": len(curve.q),
+            **curve.summary(), "joint_forces": peaks,
+            "bodies": [{"body": m.body, "mass_kg": m.mass, "centroid_m": list(m.centroid),
+                        "inertia_kg_m2": m.inertia} for m in curve.masses],
+            "model": list(curve.model), "assumptions": list(assumptions), "files": files}
+
+
+def torque_text(doc: dict) -> str:
+    lines = [(f"{doc['scene']}: driving torque at {doc['crank_speed_rev_per_min']:.6g} rev/min "
+              f"({doc['crank_speed_rad_s']:.6g} rad/s), crank acceleration "
+              f"{doc['crank_acceleration_rad_s2']:.6g} rad/s^2, {doc['poses']} poses"),
+             (f"  torque  peak {doc['peak_torque_N_m']:.6g} N m at "
+              f"{doc['peak_torque_at_deg']:.1f} deg; max {doc['max_torque_N_m']:.6g}, min "
+              f"{doc['min_torque_N_m']:.6g}, mean {doc['mean_torque_N_m']:.6g}, rms "
+              f"{doc['rms_torque_N_m']:.6g} N m"),
+             (f"  power   mean {doc['mean_power_W']:.6g} W, peak {doc['peak_power_W']:.6g} W at "
+              f"{doc['peak_power_at_deg']:.1f} deg"),
+             "  joint forces (peak |F| on the body at the joint):"]
+    lines += [f"    {k:<16} {v['peak_N']:.6g} N at {v['at_deg']:.1f} deg"
+              for k, v in doc["joint_forces"].items()]
+    lines += ["  model: " + m for m in doc["model"]]
+    return "\n".join(lines)
+
+
+def torque_plot(curve, size=(8.0, 6.0), dpi: int = 120) -> bytes:
+    """PNG: driving torque over the crank angle (top) and the joint forces' magnitudes."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    deg = np.degrees(curve.q)
+    fig = Figure(figsize=size, dpi=dpi, layout="constrained")
+    FigureCanvasAgg(fig)
+    top, bottom = fig.subplots(2, 1, sharex=True)
+    top.plot(deg, curve.torque, color="#1f77b4")
+    top.axhline(curve.torque.mean(), color="grey", ls="--", lw=1,
+                label=f"mean {curve.torque.mean():.4g} N m")
+    top.set_ylabel("driving torque [N m]")
+    top.set_title(f"{curve.scene}: {curve.speed * RPM:.4g} rev/min ({curve.speed:.4g} rad/s)"
+                  + (f", {curve.crank_acceleration:.4g} rad/s^2" if curve.crank_acceleration
+                     else ""))
+    top.legend(fontsize=9)
+    for key, f in curve.forces.items():
+        bottom.plot(deg, np.hypot(f[:, 0], f[:, 1]), label=key)
+    bottom.set_ylabel("joint force |F| [N]")
+    bottom.set_xlabel("crank angle [deg]")
+    if curve.forces:
+        bottom.legend(fontsize=8, ncol=2)
+    for ax in (top, bottom):
+        ax.grid(alpha=0.3)
+    buffer = io.BytesIO()
+    fig.savefig(buffer, format="png")
+    return buffer.getvalue()
