@@ -37,7 +37,7 @@ import pytest
 
 from flexlink.analysis.modal import analyze
 from flexlink.scene import load_scene
-from flexlink.studies.steady_response import forced_model, steady_response
+from flexlink.studies.running.steady_response import forced_model, steady_response
 
 ROOT = Path(__file__).resolve().parents[2]
 RECORD = json.loads((ROOT / "tests" / "data" / "exudyn_case3.json").read_text())
