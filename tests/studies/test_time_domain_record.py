@@ -53,7 +53,7 @@ LINKS = ("crank", "coupler", "rocker")
 PEAK_TOLERANCE = 0.01
 CURVE_TOLERANCE = 0.02
 BASIS_DAMPING = ("flexlink's modal damping acts on the motion of its basis: the damping of the "
-                 "stiff basis vectors moves the quasi-static strain (issue 33, item 1)")
+                 "stiff basis vectors moves the quasi-static strain")
 KNOWN_FAILURES = {  # (damping, rev/min, link): why, until the damping acts on deformation only
     ("rayleigh", 600.0, "crank"): BASIS_DAMPING,
     ("rayleigh", 600.0, "coupler"): BASIS_DAMPING,
