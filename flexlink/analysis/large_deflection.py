@@ -163,10 +163,10 @@ class DrivenPath:
 
 
 def driven_path(frame: CorotationalFrame, driven: int, turns, label=None,
-                max_iterations: int = 30, progress=None) -> DrivenPath:
+                max_iterations: int = 30, progress=None, K_springs=None) -> DrivenPath:
     """Continuation in the driven rotation: q[driven] = ``turns`` (n,) [rad] in order, from
     the stress-free state, each step's Newton iteration started from the secant extrapolation
-    of the two before it. ``label(turn)`` names a step in the NumericalError of a step that
+    of the two before it; ``K_springs`` as ``solve_static``'s. ``label(turn)`` names a step in the NumericalError of a step that
     does not converge (e.g. the crank angle); ``progress``: an iterable wrapper."""
     label = label or (lambda turn: f"driven rotation {np.degrees(turn):.2f} deg")
     turns = np.asarray(turns, dtype=float)
@@ -176,12 +176,13 @@ def driven_path(frame: CorotationalFrame, driven: int, turns, label=None,
     for turn in (progress(turns) if progress else turns):
         guess = 2 * q - q_prev if qs else q.copy()
         guess[driven] = turn
-        solution = solve_static(frame, driven_entry, guess, max_iterations=max_iterations,
-                                where=label(turn))
+        solution = solve_static(frame, driven_entry, guess, K_springs,
+                                max_iterations=max_iterations, where=label(turn))
         q_prev, q = q, solution.q
         qs.append(q)
         moments.append(solution.reactions[driven])
-        energies.append(solution.state.energy.sum())
+        spring_energy = 0.0 if K_springs is None else 0.5 * q @ K_springs @ q
+        energies.append(solution.state.energy.sum() + spring_energy)
         states.append(solution.state)
         iterations.append(solution.iterations)
     return DrivenPath(np.array(qs), np.array(moments), np.array(energies), tuple(states),

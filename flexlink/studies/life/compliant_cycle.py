@@ -30,10 +30,11 @@ import dataclasses
 import math
 
 import numpy as np
+import scipy.sparse as sp
 
 from flexlink.analysis.large_deflection import CorotationalFrame, driven_path
 from flexlink.errors import InputError
-from flexlink.fe.assembly import rigid_elimination
+from flexlink.fe.assembly import rigid_elimination, spring_entries
 from flexlink.fe.corotational import end_resultants
 from flexlink.fe.model_at_pose import pose_model
 from flexlink.studies.array_shapes import check_shape
@@ -153,11 +154,24 @@ def _periodic_derivative(values, step):
     return (np.roll(values, -1) - np.roll(values, 1)) / (2 * step)
 
 
-def fe_cycle(scene, angles, elements: int | None = None, progress=None,
-             max_iterations: int = 30):
-    """The co-rotational FE model driven through ``angles`` [rad] (from the scene's start
-    pose, equally spaced over one turn). Returns (model, frame, path, the full-DOF
-    displacements (n, n_dofs) of each angle, the closure error [m])."""
+@dataclasses.dataclass(frozen=True)
+class DrivenFrame:
+    """The scene's frame at its start pose for large-deflection statics: ``model`` (its
+    ``FrameModel``, drive spring removed), ``T`` (the exact constraints), ``frame`` (the
+    co-rotational elements on the unknowns of T), ``driven`` (the unknown of the crank's
+    rotation at its ground pivot) and ``springs`` (n, n) the finite joint springs on those
+    unknowns (linear in the DOFs, and so exact: they join coincident nodes or hold a node to
+    the ground)."""
+
+    model: object
+    T: object
+    frame: CorotationalFrame
+    driven: int
+    springs: np.ndarray
+
+
+def driven_frame(scene, elements: int | None = None) -> DrivenFrame:
+    """The scene's ``DrivenFrame`` (InputError if the crank cannot turn at its pivot)."""
     topology = scene.topology(elements)
     model = pose_model(topology, scene.rigid_pose().joints, warn=False)
     model = dataclasses.replace(model, springs=_without_drive(model.springs))
@@ -168,23 +182,39 @@ def fe_cycle(scene, angles, elements: int | None = None, progress=None,
     mesh = model.links[link_index]
     node = mesh.first_node if spec.start == pivot else mesh.first_node + mesh.elements
     rz = 3 * node + 2
-    Tc = T.tocsr() if T is not None else None
-    driven = rz if Tc is None else int(Tc.indices[Tc.indptr[rz]])
-    if Tc is not None and Tc.indptr[rz + 1] - Tc.indptr[rz] != 1:
+    rows, cols, values = spring_entries(model)
+    K = sp.coo_matrix((values, (rows, cols)), shape=(model.n_dofs,) * 2).tocsr()
+    if T is None:
+        return DrivenFrame(model, T, frame, rz, K.toarray())
+    Tc = T.tocsr()
+    if Tc.indptr[rz + 1] - Tc.indptr[rz] != 1:
         raise InputError(f"the driven link {spec.name!r} cannot turn at {pivot!r}: its "
                          "rotation there is held", source=scene.path, field=f"joints.{pivot}")
-    if Tc is not None and np.count_nonzero(Tc[:, driven].toarray()) > 1:
+    driven = int(Tc.indices[Tc.indptr[rz]])
+    if Tc.tocsc()[:, driven].nnz > 1:
         raise InputError(f"the driven link {spec.name!r} is welded to another at {pivot!r}",
                          source=scene.path, field=f"joints.{pivot}")
+    return DrivenFrame(model, T, frame, driven, (T.T @ K @ T).toarray())
+
+
+def fe_cycle(scene, angles, elements: int | None = None, progress=None,
+             max_iterations: int = 30):
+    """The co-rotational FE model driven through ``angles`` [rad] (from the scene's start
+    pose, equally spaced over one turn) and on to a full turn. Returns (the ``DrivenFrame``,
+    the path (n + 1 states, the last after the full turn), the full-DOF displacements
+    (n + 1, n_dofs), the closure error [m]: how far any node is from its start after the
+    full turn)."""
+    d = driven_frame(scene, elements)
+    T, frame, driven = d.T, d.frame, d.driven
 
     def label(turn):
         return f"crank angle {math.degrees(scene.start + turn) % 360:.1f} deg"
 
     turns = np.append(np.asarray(angles) - scene.start, 2 * math.pi)
-    path = driven_path(frame, driven, turns, label, max_iterations, progress)
+    path = driven_path(frame, driven, turns, label, max_iterations, progress, d.springs)
     u = path.q @ (np.eye(frame.n_dofs) if T is None else T.T.toarray())
     closure = float(np.abs(u[-1].reshape(-1, 3)[:, :2]).max())
-    return model, frame, path, u, closure
+    return d, path, u, closure
 
 
 def _without_drive(springs):
@@ -266,8 +296,8 @@ def compliant_cycle(scene, count: int = CRANK_ANGLES, elements: int | None = Non
                          field="prb")
     angles = crank_angles(scene, count)
     prb = prb_cycle(scene, angles)
-    model, frame, path, u, closure = fe_cycle(scene, angles, elements, progress,
-                                                   max_iterations)
+    d, path, u, closure = fe_cycle(scene, angles, elements, progress, max_iterations)
+    model, frame = d.model, d.frame
     names = [link.name for link in model.links]
     index = names.index(p.strip)
     nodes = model.nodes[None] + u[:-1].reshape(len(angles), -1, 3)[:, :, :2]
