@@ -23,6 +23,7 @@ infinite when sigma_ar <= Se.
 from __future__ import annotations
 
 import dataclasses
+import enum
 import math
 
 import numpy as np
@@ -47,12 +48,19 @@ class SteelStrength:
                              source=self.source, field="strength", expected="Pa")
 
 
+class StripSteel(enum.StrEnum):
+    """Steels whose strength ranges this module knows."""
+
+    AISI_1080_QT315 = "aisi-1080-qt315"
+
+
 # The compliant wiper's strip: AISI 1080, oil quenched and tempered at 315 C (Ashby, CES data):
 # the two ends of its published ranges
 AISI_1080_QT315 = (
     SteelStrength(1170e6, 880e6, "Ashby (CES): AISI 1080 Q&T 315 C, low end (Sut 1170, Sy 880 MPa)"),
     SteelStrength(1440e6, 1080e6, "Ashby (CES): AISI 1080 Q&T 315 C, high end (Sut 1440, Sy 1080 MPa)"),
 )
+STRENGTHS = {StripSteel.AISI_1080_QT315: AISI_1080_QT315}
 
 
 @dataclasses.dataclass(frozen=True)
