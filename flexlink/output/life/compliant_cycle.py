@@ -37,6 +37,19 @@ def _life(verdict) -> dict:
             "infinite_life": math.isinf(verdict.cycles), "yield_margin": verdict.yield_margin}
 
 
+def _variant_notes(scene) -> list[str]:
+    """What the analysis does not take from the scene's model choices."""
+    from flexlink.fe.beams import BeamTheory
+
+    notes = ["in-plane: the scene's out-of-plane model family, if any, is not part of it"]
+    shear = [link.name for link in scene.links
+             if link.section.beam is not BeamTheory.EULER_BERNOULLI]
+    if shear:
+        notes.append(f"links {', '.join(shear)} taken as Euler-Bernoulli beams (the "
+                     "co-rotational element neglects shear deformation)")
+    return notes
+
+
 def compliant_document(scene, cycle, lives: dict, required: float, reliability: float) -> dict:
     """The JSON document (without its ``files``). ``lives``: label -> ``StripLife`` (FE and
     PRB at each strength; empty: no steel given), at ``reliability``; ``required``
@@ -80,7 +93,7 @@ def compliant_document(scene, cycle, lives: dict, required: float, reliability: 
             else _at(cycle.crank_angles[int(np.argmax(gap))])},
         "life": {"required_cycles": required, "reliability": reliability,
                  "verdicts": {label: _life(v) for label, v in lives.items()}},
-        "model": list(MODEL) + [LIFE_NOTE],
+        "model": list(MODEL) + [LIFE_NOTE] + _variant_notes(scene),
         "assumptions": [f"{a.field}: {a.note}" for a in scene.assumptions],
     }
 
