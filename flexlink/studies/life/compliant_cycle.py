@@ -37,6 +37,7 @@ from flexlink.errors import InputError
 from flexlink.fe.assembly import rigid_elimination, spring_entries
 from flexlink.fe.corotational import end_resultants
 from flexlink.fe.model_at_pose import pose_model
+from flexlink.kinematics.linkage import crank_angles
 from flexlink.studies.array_shapes import check_shape
 
 CRANK_ANGLES = 360
@@ -133,11 +134,6 @@ class CompliantCycle:
             check_shape("CompliantCycle", name, getattr(self, name), (n,))
         for joint, xy in self.joints.items():
             check_shape("CompliantCycle", f"joints[{joint!r}]", xy, (n, 2))
-
-
-def crank_angles(scene, count: int = CRANK_ANGLES) -> np.ndarray:
-    """``count`` crank angles [rad] over one turn from the scene's start pose (unstressed)."""
-    return scene.start + 2 * math.pi * np.arange(count) / count
 
 
 def _driven_link(scene):
@@ -294,7 +290,7 @@ def compliant_cycle(scene, count: int = CRANK_ANGLES, elements: int | None = Non
     if p is None:
         raise InputError("no [prb] table: the compliant strip is not named", source=scene.path,
                          field="prb")
-    angles = crank_angles(scene, count)
+    angles = crank_angles(count, scene.start)  # from the unstressed pose
     prb = prb_cycle(scene, angles)
     d, path, u, closure = fe_cycle(scene, angles, elements, progress, max_iterations)
     model, frame = d.model, d.frame
