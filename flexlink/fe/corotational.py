@@ -25,7 +25,8 @@ the internal force f = B^T f_l and the tangent stiffness
 K_l the local stiffness [[EA/L0, 0, 0], [0, 4EI/L0, 2EI/L0], [0, 2EI/L0, 4EI/L0]].
 
 Stress resultants at the element's ends (tension and sagging positive, M = EI v'' in the
-chord frame, as ``fe.stress``): N at both ends, M = (-m1, m2).
+chord frame): the end forces in the chord frame (``chord_end_forces``) read by
+``fe.stress.end_resultants``, giving N at both ends and M = (-m1, m2).
 """
 
 from __future__ import annotations
@@ -128,8 +129,10 @@ def tangent_stiffness(chords: Chords, state: ElementState) -> np.ndarray:
             + m_sum[:, None, None] * (rz + np.swapaxes(rz, 1, 2)) / L**2)
 
 
-def end_resultants(state: ElementState) -> tuple[np.ndarray, np.ndarray]:
-    """(N (e, 2) [N], M (e, 2) [N m]) at each element's two ends (module doc's signs)."""
-    N = np.repeat(state.f_local[:, :1], 2, axis=1)
-    M = np.stack([-state.f_local[:, 1], state.f_local[:, 2]], axis=1)
-    return N, M
+def chord_end_forces(state: ElementState) -> np.ndarray:
+    """The forces (e, 6) the nodes put on each element, in its chord frame, DOF order
+    (u1, v1, rz1, u2, v2, rz2): (-N, V, m1, N, -V, m2), V = (m1 + m2) / L the shear that
+    balances the end moments; ``fe.stress.end_resultants`` turns them into N and M."""
+    N, m1, m2 = state.f_local.T
+    V = (m1 + m2) / state.L
+    return np.stack([-N, V, m1, N, -V, m2], axis=1)

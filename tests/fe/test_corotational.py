@@ -14,7 +14,8 @@ from scipy.optimize import brentq
 from scipy.special import ellipeinc, ellipkinc
 
 from flexlink.analysis.large_deflection import CorotationalFrame, solve_static
-from flexlink.fe.corotational import Chords, element_state, internal_forces, tangent_stiffness
+from flexlink.fe.corotational import (Chords, chord_end_forces, element_state, internal_forces,
+                                      tangent_stiffness)
 
 EI, EA, LENGTH = 2.0, 4.0e6, 1.0  # [N m^2], [N], [m]: slender (EA L^2 / EI = 2e6)
 
@@ -54,6 +55,23 @@ def test_tangent_is_the_derivative_of_the_internal_force():
         numeric[:, :, j] = (internal_forces(element_state(chords, X, u + du))
                             - internal_forces(element_state(chords, X, u - du))) / (2 * h)
     assert np.abs(K - numeric).max() < 1e-7 * np.abs(K).max()
+
+
+def test_chord_end_forces_are_the_internal_forces_in_the_chord_frame():
+    """The end forces handed to stress recovery, turned from the chord frame to the global one,
+    are the internal forces B^T f_l (a wrong shear sign or a moment at the wrong end shows)."""
+    rng = np.random.default_rng(4)
+    X, chords = _random_elements(rng)
+    state = element_state(chords, X, rng.normal(scale=0.2, size=(len(X), 6)))
+    c, s = np.cos(state.beta), np.sin(state.beta)
+    local = chord_end_forces(state)
+    turned = np.empty_like(local)
+    for node in (0, 3):
+        fx, fy = local[:, node], local[:, node + 1]
+        turned[:, node], turned[:, node + 1] = c * fx - s * fy, s * fx + c * fy
+        turned[:, node + 2] = local[:, node + 2]
+    f = internal_forces(state)
+    assert np.abs(turned - f).max() < 1e-12 * np.abs(f).max()
 
 
 def test_internal_force_is_the_gradient_of_the_energy():

@@ -35,13 +35,13 @@ import scipy.sparse as sp
 from flexlink.analysis.large_deflection import CorotationalFrame, driven_path
 from flexlink.errors import InputError
 from flexlink.fe.assembly import rigid_elimination, spring_entries
-from flexlink.fe.corotational import end_resultants
+from flexlink.fe.corotational import chord_end_forces
 from flexlink.fe.model_at_pose import pose_model
+from flexlink.fe.stress import end_resultants, fibre_stress
 from flexlink.kinematics.linkage import crank_angles
 from flexlink.studies.array_shapes import check_shape
 
 CRANK_ANGLES = 360
-FIBRES = (1.0, -1.0)  # y / c of the two extreme fibres: +y side first (as fe.stress)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -229,16 +229,13 @@ def strip_stress(frame, states, link_index: int, section, angles) -> StripStress
     arc = np.concatenate([[0.0], np.cumsum(h)])
     N, M = [], []
     for state in states:
-        n_end, m_end = end_resultants(state)
+        n_end, m_end = end_resultants(chord_end_forces(state))
         # node j: element j's start (j = 0), else element j-1's end (equal at equilibrium:
         # nothing loads the strip between its nodes)
         N.append(np.append(n_end[elements, 0][:1], n_end[elements, 1]))
         M.append(np.append(m_end[elements, 0][:1], m_end[elements, 1]))
     N, M = np.array(N), np.array(M)
-    c = section.depth / 2
-    y = np.array(FIBRES) * c
-    sigma = N[..., None] / section.area - M[..., None] * y / section.second_moment
-    return StripStress(np.asarray(angles), arc, N, M, sigma)
+    return StripStress(np.asarray(angles), arc, N, M, fibre_stress(section, N, M))
 
 
 def _cross(a, b):
@@ -275,9 +272,7 @@ def prb_cycle(scene, angles) -> PrbCycle:
     to_ground = O4 - C
     moment = _cross(to_ground, F)
     axial = np.einsum("ij,ij->i", F, to_ground) / np.hypot(*to_ground.T)
-    c = section.depth / 2
-    stress = (axial[:, None] / section.area
-              - moment[:, None] * np.array(FIBRES) * c / section.second_moment)
+    stress = fibre_stress(section, axial, moment)
     return PrbCycle(points, Theta, torque, torque * rate, -_cross(A - O2, F), moment, stress, K)
 
 
