@@ -7,8 +7,7 @@ from __future__ import annotations
 import click
 
 from flexlink.commands._failures import names_scene
-from flexlink.commands._options import EnumChoice, json_option, out_option
-from flexlink.studies.life.strip_life import StripSteel
+from flexlink.commands._options import json_option, out_option
 
 
 @click.command("compliant")
@@ -17,9 +16,9 @@ from flexlink.studies.life.strip_life import StripSteel
               help="Crank angles over one turn (the continuation's steps).")
 @click.option("-e", "--elements", default=None, type=click.IntRange(1, 100000),
               help="Elements per link (default: the scene's).")
-@click.option("--steel", default=None, type=EnumChoice(StripSteel),
-              help="The strip's steel, for its fatigue life at both ends of its strength "
-                   "range (default: no life).")
+@click.option("--life/--no-life", "with_life", default=True, show_default=True,
+              help="The strip's fatigue life from its material file's strength data (refused, "
+                   "naming the file and key, where a datum is missing).")
 @click.option("--reliability", default=0.5, show_default=True,
               type=click.FloatRange(0, 1, min_open=True, max_open=True),
               help="Reliability of the endurance limit (Marin ke).")
@@ -28,7 +27,7 @@ from flexlink.studies.life.strip_life import StripSteel
 @json_option
 @out_option
 @names_scene("scene_path")
-def command(scene_path, angles, elements, steel, reliability, required, as_json, out_dir):
+def command(scene_path, angles, elements, with_life, reliability, required, as_json, out_dir):
     """SCENE (with a [prb] table) turned quasi-statically through one crank turn: every link
     as co-rotational frame elements, Newton's method continued in the crank angle, the strip
     straight at the start pose. Writes compliant.csv, compliant.png and compliant.json to
@@ -36,23 +35,18 @@ def command(scene_path, angles, elements, steel, reliability, required, as_json,
     from flexlink.fileio import write_atomic
     from flexlink.output.life.compliant_cycle import (compliant_csv, compliant_document,
                                                       compliant_plot, compliant_text)
-    from flexlink.studies.life.compliant_cycle import compliant_cycle
-    from flexlink.studies.life.strip_life import STRENGTHS, strip_life
+    from flexlink.studies.life.compliant_cycle import compliant_cycle, strip_lives
+    from flexlink.studies.life.life import Conditions, check_strengths
     from ._progress import progress_bar
     from ._written import folder_and_scene, publish
 
+    conditions = Conditions(reliability=reliability)
     folder, scene = folder_and_scene(out_dir, scene_path)
+    if with_life and scene.options.prb is not None:
+        check_strengths(scene, [scene.options.prb.strip])  # before the study, not after it
     cycle = compliant_cycle(scene, angles, elements, progress_bar("compliant", as_json, "angle"))
-    lives = {}
-    if steel is not None:
-        section = {link.name: link.section for link in scene.links}[cycle.strip]
-        width = section.area / section.depth
-        for strength, end in zip(STRENGTHS[steel], ("low", "high")):
-            lives[f"FE, Sut {end} ({strength.Sut / 1e6:.0f} MPa)"] = strip_life(
-                cycle.stress.fibre_pairs(), strength, section.depth, width, reliability)
-            lives[f"PRB, Sut {end} ({strength.Sut / 1e6:.0f} MPa)"] = strip_life(
-                cycle.prb.clamp_stress, strength, section.depth, width, reliability)
-    document = compliant_document(scene, cycle, lives, required, reliability)
+    lives = strip_lives(scene, cycle, conditions) if with_life else ()
+    document = compliant_document(scene, cycle, lives, required, conditions)
     paths = [folder / "compliant.csv", folder / "compliant.png"]
     write_atomic(paths[0], compliant_csv(cycle))
     write_atomic(paths[1], compliant_plot(cycle, f"{scene.name}: strip '{cycle.strip}' over "

@@ -1,5 +1,6 @@
-"""flexlink compliant: one JSON document with its files, the life verdicts when the steel is
-given, and a one-line refusal (exit 2) for a scene without a [prb] table."""
+"""flexlink compliant: one JSON document with its files and the strip's life verdicts, and
+one-line refusals (exit 2) for a scene without a [prb] table or a strip without strength data
+(before any work, nothing written)."""
 
 import json
 
@@ -15,7 +16,7 @@ def run(*args):
 
 def test_compliant_json_and_files(tmp_path):
     result = run("compliant", SCENES_DIR / "compliant_wiper.toml", "-e", "6", "--angles", "36",
-                 "--steel", "aisi-1080-qt315", "--json", "--out", tmp_path)
+                 "--json", "--out", tmp_path)
     assert result.exit_code == 0, result.output
     doc = json.loads(result.stdout)
     folder = tmp_path / "compliant_wiper"
@@ -24,7 +25,9 @@ def test_compliant_json_and_files(tmp_path):
     assert all((folder / n).is_file() for n in ("compliant.csv", "compliant.png"))
     assert (folder / "compliant.csv").read_text().count("\n") == 1 + 36
     assert doc["fe"]["peak_stress_Pa"] > 1e8 and doc["prb"]["peak_stress_Pa"] > 1e8
-    assert len(doc["life"]["verdicts"]) == 4  # FE and PRB at both ends of Sut's range
+    assert [v["model"] for v in doc["life"]["verdicts"]] == ["FE", "PRB"]
+    fe = doc["life"]["verdicts"][0]
+    assert fe["material"] == "aisi_1080" and fe["at_arc_length_m"] < 1e-12  # at the clamp
 
 
 def test_scene_without_prb_is_refused_in_one_line(tmp_path):
@@ -32,3 +35,14 @@ def test_scene_without_prb_is_refused_in_one_line(tmp_path):
     assert result.exit_code == 2
     lines = [line for line in result.output.splitlines() if line.strip()]
     assert len(lines) == 1 and "case1.toml" in lines[0] and "prb" in lines[0], result.output
+
+
+def test_strip_without_strength_data_is_refused_before_the_study(tmp_path):
+    scene = tmp_path / "wiper_e_only.toml"
+    scene.write_text(f'base = "{(SCENES_DIR / "compliant_wiper.toml").as_posix()}"\n'
+                     '[links.strip.material]\nE = "210 GPa"\ndensity = "7850 kg/m^3"\n')
+    result = run("compliant", scene, "--out", tmp_path / "out")
+    assert result.exit_code == 2, result.output
+    lines = [line for line in result.output.splitlines() if line.strip()]
+    assert len(lines) == 1 and "strength" in lines[0], result.output
+    assert not any((tmp_path / "out").rglob("compliant.*"))

@@ -1,5 +1,5 @@
-"""Rendering of ``studies.life.compliant_cycle.CompliantCycle`` (with the interim strip life of
-``studies.life.strip_life``): the JSON document, the text summary, the CSV of the strip's
+"""Rendering of ``studies.life.compliant_cycle.CompliantCycle`` (with its ``StripLife``
+verdicts): the JSON document, the text summary, the CSV of the strip's
 stress and the driving torque over the turn, and the plot of both, FE against PRB (PNG bytes;
 the caller writes them)."""
 
@@ -19,22 +19,25 @@ MODEL = (
     "PRB: Howell's fixed-pinned segment (K = gamma K_Theta E I / l) on the rigid four-bar; its "
     "clamp stress from the statics of its rigid links",
 )
-LIFE_NOTE = ("life: interim S-N estimate (studies.life.strip_life, Shigley): one cycle per "
-             "turn at each point, Goodman, Se' = 0.5 Sut, sigma_f' = Sut + 345 MPa, machined "
-             "surface; the fatigue chain of 'flexlink life' replaces it when it lands")
+LIFE_NOTE = ("life: the fatigue chain of 'flexlink life' (rainflow over the turn, mean-stress "
+             "correction, the part's S-N line from the strip's material file with Marin "
+             "factors) on the FE stress at every node and the PRB stress at the clamp")
 
 
 def _at(angle) -> float:
     return float(math.degrees(angle) % 360.0)
 
 
-def _life(verdict) -> dict:
-    return {"Sut_Pa": verdict.strength.Sut, "Sy_Pa": verdict.strength.Sy,
-            "source": verdict.strength.source, "amplitude_Pa": verdict.amplitude,
-            "mean_Pa": verdict.mean, "goodman_equivalent_Pa": verdict.equivalent,
-            "endurance_limit_Pa": verdict.endurance, "marin": verdict.marin,
-            "cycles": None if math.isinf(verdict.cycles) else verdict.cycles,
-            "infinite_life": math.isinf(verdict.cycles), "yield_margin": verdict.yield_margin}
+def _life(verdict, required: float) -> dict:
+    f = verdict.fatigue
+    return {"model": verdict.model, "material": verdict.material,
+            "at_arc_length_m": verdict.arc_length, "fibre": verdict.fibre,
+            "life_turns": None if math.isinf(f.life) else f.life,
+            "infinite_life": math.isinf(f.life),
+            "meets_required": bool(f.life >= required), "safety_factor": f.safety,
+            "endurance_limit_Pa": verdict.endurance, "amplitude_Pa": f.amplitude,
+            "mean_Pa": f.mean, "equivalent_Pa": f.equivalent, "yield_safety": f.yield_safety,
+            "cycles_per_turn": f.cycles}
 
 
 def _variant_notes(scene) -> list[str]:
@@ -50,10 +53,10 @@ def _variant_notes(scene) -> list[str]:
     return notes
 
 
-def compliant_document(scene, cycle, lives: dict, required: float, reliability: float) -> dict:
-    """The JSON document (without its ``files``). ``lives``: label -> ``StripLife`` (FE and
-    PRB at each strength; empty: no steel given), at ``reliability``; ``required``
-    [cycles]."""
+def compliant_document(scene, cycle, lives, required: float, conditions) -> dict:
+    """The JSON document (without its ``files``). ``lives``: ``StripLife``s (FE and PRB;
+    empty: no life asked for) under ``conditions`` (``studies.life.life.Conditions``);
+    ``required`` [turns]."""
     fe_peak, k, j = cycle.stress.peak
     prb = cycle.prb
     prb_stress = np.abs(prb.clamp_stress).max(axis=1)
@@ -91,8 +94,9 @@ def compliant_document(scene, cycle, lives: dict, required: float, reliability: 
             "largest_clamp_point_gap_m": None if gap is None else float(gap.max()),
             "largest_clamp_point_gap_at_deg": None if gap is None
             else _at(cycle.crank_angles[int(np.argmax(gap))])},
-        "life": {"required_cycles": required, "reliability": reliability,
-                 "verdicts": {label: _life(v) for label, v in lives.items()}},
+        "life": {"required_turns": required, "reliability": conditions.reliability,
+                 "surface": str(conditions.surface), "mean_stress": str(conditions.mean_stress),
+                 "verdicts": [_life(v, required) for v in lives]},
         "model": list(MODEL) + [LIFE_NOTE] + _variant_notes(scene),
         "assumptions": [f"{a.field}: {a.note}" for a in scene.assumptions],
     }
@@ -118,14 +122,15 @@ def compliant_text(doc: dict) -> str:
                     f"mm at {gap['largest_clamp_point_gap_at_deg']:.0f} deg")
     life = doc["life"]
     if life["verdicts"]:
-        out.append(f"  life against {life['required_cycles']:.3g} cycles at reliability "
-                   f"{life['reliability']:g} (interim S-N estimate):")
-    for label, v in life["verdicts"].items():
-        cycles = "infinite" if v["infinite_life"] else f"{v['cycles']:.3g} cycles"
-        verdict = ("MET" if v["infinite_life"] or v["cycles"] >= life["required_cycles"]
-                   else "NOT MET")
-        out.append(f"    {label:<28} sigma_ar {v['goodman_equivalent_Pa'] / 1e6:6.1f} MPa, Se "
-                   f"{v['endurance_limit_Pa'] / 1e6:6.1f} MPa: {cycles} ({verdict})")
+        out.append(f"  life against {life['required_turns']:.3g} wipe cycles (reliability "
+                   f"{life['reliability']:g}, {life['surface']} surface, {life['mean_stress']}):")
+    for v in life["verdicts"]:
+        turns = "infinite" if v["infinite_life"] else f"{v['life_turns']:.3g} turns"
+        out.append(f"    {v['model']:<4} {v['material']}: equivalent amplitude "
+                   f"{v['equivalent_Pa'] / 1e6:.1f} MPa against Se {v['endurance_limit_Pa'] / 1e6:.1f}"
+                   f" MPa, safety {v['safety_factor']:.3f}, life {turns} "
+                   f"({'MET' if v['meets_required'] else 'NOT MET'}); yield safety "
+                   f"{v['yield_safety']:.2f}")
     return "\n".join(out)
 
 

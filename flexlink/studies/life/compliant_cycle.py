@@ -37,7 +37,7 @@ from flexlink.errors import InputError
 from flexlink.fe.assembly import rigid_elimination, spring_entries
 from flexlink.fe.corotational import chord_end_forces
 from flexlink.fe.model_at_pose import pose_model
-from flexlink.fe.stress import end_resultants, fibre_stress
+from flexlink.fe.stress import FIBRES, end_resultants, fibre_stress
 from flexlink.kinematics.linkage import crank_angles
 from flexlink.studies.array_shapes import check_shape
 
@@ -301,3 +301,41 @@ def compliant_cycle(scene, count: int = CRANK_ANGLES, elements: int | None = Non
         stress=stress, reaction=path.moment[:-1],
         energy_torque=_periodic_derivative(energy, 2 * math.pi / count), energy=energy,
         iterations=path.iterations[:-1], closure=closure, strip=p.strip, prb=prb)
+
+
+@dataclasses.dataclass(frozen=True)
+class StripLife:
+    """The fatigue verdict of the strip's worst point by one model ("FE" or "PRB"): the
+    ``fatigue`` (``analysis.fatigue.Fatigue``: life in turns, safety factor against the
+    endurance limit, the worst cycle's amplitude, mean and equivalent, yield factor), where
+    (``arc_length`` [m] from the strip's start joint, ``fibre`` +1 or -1 for y = +c or -c),
+    the part's endurance limit [Pa] and the strength data's source."""
+
+    model: str
+    fatigue: object
+    arc_length: float
+    fibre: float
+    endurance: float
+    material: str
+
+
+def strip_lives(scene, cycle: CompliantCycle, conditions=None) -> tuple[StripLife, ...]:
+    """The strip's life by the fatigue chain of ``studies.life.life`` (rainflow counting over
+    the turn, mean-stress correction, the part's S-N line from the strip's material file and
+    Marin factors) for the FE stress at every node and the PRB stress at the clamp; InputError
+    naming the file and key where the strip's material lacks strength data."""
+    from flexlink.studies.life.life import Conditions, check_strengths, fibre_pair_fatigue
+
+    conditions = conditions or Conditions()
+    check_strengths(scene, [cycle.strip])
+    material = scene.materials[cycle.strip].isotropic
+    section = {link.name: link.section for link in scene.links}[cycle.strip]
+    out = []
+    for model, histories, arcs in (("FE", cycle.stress.fibre_pairs(), cycle.stress.arc_length),
+                                   ("PRB", cycle.prb.clamp_stress, np.zeros(1))):
+        results, kinds, curves, _ = fibre_pair_fatigue(histories, material, section, conditions)
+        column = min(range(len(results)), key=lambda c: (results[c].safety, -results[c].damage))
+        out.append(StripLife(model, results[column], float(arcs[column // 2]),
+                             FIBRES[column % 2], curves[kinds[column]].endurance,
+                             material))
+    return tuple(out)
