@@ -19,9 +19,9 @@ from flexlink.commands._options import json_option, out_option
 @click.option("--life/--no-life", "with_life", default=True, show_default=True,
               help="The strip's fatigue life from its material file's strength data (refused, "
                    "naming the file and key, where a datum is missing).")
-@click.option("--reliability", default=0.5, show_default=True,
+@click.option("--reliability", default=0.99, show_default=True,
               type=click.FloatRange(0, 1, min_open=True, max_open=True),
-              help="Reliability of the endurance limit (Marin ke).")
+              help="Reliability of the endurance limit (Marin ke), as `flexlink life`.")
 @click.option("--cycles", "required", default=1e6, show_default=True,
               type=click.FloatRange(1, None), help="Required life [wipe cycles = crank turns].")
 @json_option
