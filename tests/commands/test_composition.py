@@ -50,6 +50,7 @@ COMMANDS = {
     "converge": lambda s: ["converge", s, "-n", "2", "--max-elements", "4", "--repeats", "1"],
     "report": lambda s: ["report", s, *SMALL, "--cycle-poses", "4"],
     "prb": lambda s: ["prb", s, *SMALL],
+    "compliant": lambda s: ["compliant", s, "-e", "2", "--angles", "12"],
     # one scene: the study cross-validates leaving one out, so it refuses (a full fit of two
     # scenes costs tens of seconds: tests/commands/test_calibrate_cli.py runs those)
     "calibrate": lambda s: ["calibrate", s, "--starts", "1", "--samples", "2", "-e", "2"],
@@ -73,7 +74,8 @@ def variant(tmp_path, beam: str, family: str, base) -> str:
 
 @pytest.mark.parametrize("beam, family, name", CELLS)
 def test_command_answers_or_refuses_in_one_line(tmp_path, beam, family, name):
-    base = SCENES_DIR / "compliant_wiper.toml" if name == "prb" else CASES_DIR / "case1.toml"
+    base = (SCENES_DIR / "compliant_wiper.toml" if name in ("prb", "compliant")
+            else CASES_DIR / "case1.toml")
     scene = variant(tmp_path, beam, family, base)
     result = CliRunner().invoke(main, COMMANDS[name](scene) + ["--json", "--out",
                                                                str(tmp_path / "out")])

@@ -26,6 +26,7 @@ CASE1, CASE2 = str(CASES_DIR / "case1.toml"), str(CASES_DIR / "case2.toml")
 ARGS = {
     "calibrate": [str(CASES_DIR), "--starts", "1", "--samples", "2", "-e", "2", "--family",
                   "planar", "--jobs", "1", "--free", "L1=100 mm:1 m"],
+    "compliant": [str(SCENES_DIR / "compliant_wiper.toml"), "-e", "2", "--angles", "12"],
     "campbell": [CASE1, "--speeds", "0:3000 rev/min", "--poses", "6", "-e", "2", "-n", "2"],
     "converge": [CASE1, "-n", "2", "--max-elements", "8", "--repeats", "1"],
     "correlate": [str(SCENES_DIR / "tests" / "case3_timoshenko.toml"),
@@ -33,6 +34,7 @@ ARGS = {
     "cycle": [CASE1, "--poses", "6", "-e", "2", "-n", "2"],
     "export": [CASE1, "--no-pictures", "-e", "2", "-n", "2", "--phases", "2"],
     "kinematics": [CASE1, "--poses", "8"],
+    "life": [CASE1, "--speed", "600 rev/min", "-n", "2", "--elements", "2", "--no-estimate"],
     "mac": [CASE1, CASE2, "-e", "2", "-n", "2"],
     "modes": [CASE1, "-e", "2", "-n", "2"],
     "prb": [str(SCENES_DIR / "compliant_wiper.toml"), "-e", "2", "-n", "2"],
