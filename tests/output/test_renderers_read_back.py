@@ -396,12 +396,54 @@ def _layout() -> Rendered:
                     rows={"frequency [Hz]": (plan.modes.frequencies, 9)})
 
 
+def _stress_field() -> Rendered:
+    from flexlink.output.life.life import field_csv
+
+    n, count = len(Q), 4
+    points = SimpleNamespace(links=("coupler", "rocker"), link=np.array([0, 0, 1, 1]),
+                             element=np.array([1, 2, 1, 3]), end=np.array([0, 1, 1, 0]),
+                             position=spread(count, low=0.001, high=0.2),
+                             fibre=np.array([0, 1, 1, 0]))
+    total, quasi = spread(n, count, low=-1e8, high=1e8), spread(n, count, low=-1e8, high=1e8)
+    field = SimpleNamespace(points=points, angles=Q, total=total, quasi_static=quasi,
+                            dynamic=total - quasi)
+    rows = [(i, k) for i in range(n) for k in range(count)]
+    return Rendered(csv=field_csv(SimpleNamespace(field=field)), columns={
+        "crank_deg": (np.array([(Q[i] * DEG) % 360 for i, _ in rows]), -4),
+        "element": (np.array([points.element[k] for _, k in rows]), 0),
+        "end": (np.array([points.end[k] for _, k in rows]), 0),
+        "position_m": (np.array([points.position[k] for _, k in rows]), 6),
+        "stress_Pa": (np.array([total[i, k] for i, k in rows]), 8),
+        "quasi_static_Pa": (np.array([quasi[i, k] for i, k in rows]), 8),
+        "dynamic_Pa": (np.array([total[i, k] - quasi[i, k] for i, k in rows]), 8)})
+
+
+def _compliant() -> Rendered:
+    from flexlink.output.life.compliant_cycle import compliant_csv
+
+    n = len(Q)
+    fibre = spread(n, 3, 2, low=-2e8, high=2e8)
+    prb = SimpleNamespace(clamp_stress=spread(n, 2, low=-2e8, high=2e8),
+                          drive_torque=spread(n, low=-1, high=1), Theta=spread(n, low=-0.3, high=0.3))
+    cycle = SimpleNamespace(crank_angles=Q, stress=SimpleNamespace(fibre_stress=fibre), prb=prb,
+                            reaction=spread(n, low=-1, high=1), energy_torque=spread(n, low=-1, high=1))
+    return Rendered(csv=compliant_csv(cycle), columns={
+        "crank_angle_deg": (Q * DEG, 10), "fe_clamp_stress_plus_Pa": (fibre[:, 0, 0], 10),
+        "fe_clamp_stress_minus_Pa": (fibre[:, 0, 1], 10),
+        "prb_clamp_stress_plus_Pa": (prb.clamp_stress[:, 0], 10),
+        "prb_clamp_stress_minus_Pa": (prb.clamp_stress[:, 1], 10),
+        "fe_strip_peak_Pa": (np.abs(fibre).max(axis=(1, 2)), 10),
+        "fe_torque_N_m": (cycle.reaction, 10), "fe_energy_torque_N_m": (cycle.energy_torque, 10),
+        "prb_torque_N_m": (prb.drive_torque, 10), "prb_Theta_deg": (prb.Theta * DEG, 10)})
+
+
 RENDERERS = {"modal map": _modal_map, "tracked map": _tracked, "critical speeds": _critical,
              "stability map": _stability, "response": _response, "response sweep": _sweep,
              "torque": _torque, "dynamic campbell": _dynamic, "rigid motion": _motion,
              "mac": _mac, "convergence": _convergence, "modes": _modes, "modes at speed": _at_speed,
              "test-model MAC": _mac_matrix, "test-model pairs": _pairs, "mode shapes": _shapes,
-             "sensor layout": _layout}
+             "sensor layout": _layout, "stress field": _stress_field,
+             "compliant cycle": _compliant}
 
 
 def _at(document, path):
@@ -462,5 +504,5 @@ def test_every_csv_renderer_of_output_is_read_back_here():
     covered = {"modal_map_csv", "tracked_csv", "critical_csv", "stability_csv", "response_csv",
                "sweep_csv", "torque_csv", "dynamic_csv", "motion_csv", "mac_csv",
                "convergence_csv", "comparison_csv", "operating_csv", "mac_matrix_csv",
-               "pairs_csv", "shapes_csv", "layout_csv"}
+               "pairs_csv", "shapes_csv", "layout_csv", "field_csv", "compliant_csv"}
     assert {name.rsplit(".", 1)[1] for name in found} <= covered, found
