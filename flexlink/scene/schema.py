@@ -365,11 +365,24 @@ class Minimax(Table):
 
 class ExtendedRocker(Table):
     method: Literal["extended-rocker"] = doc("Crank-rocker driven through an extended rocker.")
-    rocker: LENGTH = doc("Design rocker length L4.")
+    rocker: LENGTH | None = doc(
+        "Design rocker length L4 (without 'tip'): k then builds the rocker k L4 long, moving "
+        "the coupler pin along it (a different mechanism for every k).", default=None)
+    tip: LENGTH | None = doc(
+        "Extended arm L41 from the rocker pivot to the tip that carries the load (instead of "
+        "'rocker'): k = L41/L4 then sets the rocker L4 = L41/k and every link scales with it, "
+        "so swing, time ratio and the angular motion are the same for every k.", default=None)
     swing: OPEN_ANGLE = doc("Rocker swing angle.")
     coupler_ratio: number(1.0, 1e3) = doc("Coupler / crank ratio L3/L2.")
-    k: number(1e-3, 1e3, low_open=True) = doc("Built rocker / design rocker length L41/L4.",
-                                               default=1.0)
+    k: number(1e-3, 1e3, low_open=True) = doc(
+        "Rocker ratio: with 'tip', L41/L4; with 'rocker', built / design rocker length.",
+        default=1.0)
+
+    @model_validator(mode="after")
+    def _rocker_or_tip(self):
+        if (self.rocker is None) == (self.tip is None):
+            raise MissingKey("tip", "give tip (the paper's scaling) or rocker, exactly one")
+        return self
 
 
 Synthesis = Annotated[BrodellSoni | Minimax | ExtendedRocker, Field(discriminator="method")]
