@@ -11,7 +11,7 @@ from flexlink.fe.model_at_pose import in_plane_eigen_scale
 from flexlink.fe.assembly import assemble, rigid_elimination
 from flexlink.studies.cycle.modal_map import ModalMap, crossings, kinematic_cycle, modal_map, resonances, runs
 from flexlink.fe.model import JointSpec, LinkSpec, Section, Topology, build_model
-from flexlink.kinematics.motion import body_summary, limit_positions
+from flexlink.kinematics.motion import limit_positions
 from flexlink.studies.pose.prb import prb_frequency
 from flexlink.scene import load_scene
 from flexlink.analysis.solve import solve_modes
@@ -116,7 +116,7 @@ def test_extended_rocker_k_family_keeps_the_kinematics_as_the_paper_scales_it():
                      cycle.L[:, col] * omega**2, scene.linkage.body("rocker").length))
     base = seen[1]
     assert base[0] == pytest.approx(1.0, abs=1e-9) and base[1] == pytest.approx(30.0, abs=1e-9)
-    for ratio, swing, w, alpha, rocker in seen:
+    for ratio, swing, w, alpha, _ in seen:
         assert abs(ratio - base[0]) < 1e-9 and abs(swing - base[1]) < 1e-9
         np.testing.assert_allclose(w, base[2], rtol=0, atol=1e-9 * np.abs(base[2]).max())
         np.testing.assert_allclose(alpha, base[3], rtol=0, atol=1e-9 * np.abs(base[3]).max())

@@ -50,7 +50,7 @@ class DeadPoint:
 
 
 @dataclasses.dataclass(frozen=True)
-class Peak:
+class CurvePeak:
     """The largest |value| of one curve away from the dead points (``value`` signed, in the
     curve's unit, at ``at_deg``), and, if larger, the sampled value next to a dead point
     (``near_value`` at ``near_at_deg``, the dead point at ``dead_point_deg``): unbounded there,
@@ -139,8 +139,8 @@ class OutputCurve:
                     for key, f in self.forces.items()})
         return out
 
-    def peaks(self) -> tuple[Peak, ...]:
-        """The peak of every curve (see ``Peak`` and the module doc)."""
+    def peaks(self) -> tuple[CurvePeak, ...]:
+        """The peak of every curve (see ``CurvePeak`` and the module doc)."""
         deg = crank_deg(self.q)
         n = len(self.q)
         out = []
@@ -151,7 +151,7 @@ class OutputCurve:
                 continue
             i = int(np.flatnonzero(ok)[np.argmax(np.abs(values[ok]))])
             edge = not bounded and bool(self.near[(i - 1) % n] or self.near[(i + 1) % n])
-            peak = Peak(name, unit, float(values[i]), float(deg[i]), at_band_edge=edge)
+            peak = CurvePeak(name, unit, float(values[i]), float(deg[i]), at_band_edge=edge)
             close = self.near & finite
             if not bounded and close.any():
                 j = int(np.flatnonzero(close)[np.argmax(np.abs(values[close]))])
