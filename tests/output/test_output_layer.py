@@ -32,6 +32,7 @@ ARGS = {
     "export": [CASE1, "--no-pictures", "-e", "2", "-n", "2", "--phases", "2"],
     "kinematics": [CASE1, "--poses", "8"],
     "mac": [CASE1, CASE2, "-e", "2", "-n", "2"],
+    "outputs": [str(SCENES_DIR / "wiper.toml"), "--poses", "8"],
     "modes": [CASE1, "-e", "2", "-n", "2"],
     "prb": [str(SCENES_DIR / "compliant_wiper.toml"), "-e", "2", "-n", "2"],
     "report": [CASE1, "-e", "2", "-n", "2", "--cycle-poses", "0"],
@@ -40,6 +41,7 @@ ARGS = {
     "stability": [CASE1],
     "stability-map": [CASE1, "--speeds", "0:600 rev/min", "--count", "3", "-n", "2", "--poses", "13"],
     "torque": [CASE1, "--speed", "600 rev/min", "--poses", "8"],
+    "torque-family": [str(SCENES_DIR / "extended_rocker_torque.toml"), "--poses", "8"],
 }
 
 

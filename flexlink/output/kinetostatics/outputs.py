@@ -174,3 +174,27 @@ def outputs_plot(curve, size=(8.0, 7.0), dpi: int = 120) -> bytes:
     buffer = io.BytesIO()
     fig.savefig(buffer, format="png")
     return buffer.getvalue()
+
+
+def outputs_report_data(curve, unavailable: str | None = None) -> dict | None:
+    """What the HTML report shows of the output torques: the curves over the crank angle in
+    order (None next to a dead point), the dead points, the rows at ``QUOTED_DEG`` and the
+    peaks; None for a scene without an input torque, {"unavailable": reason} if it failed."""
+    if curve is None:
+        return {"unavailable": unavailable} if unavailable else None
+    doc = outputs_document(curve, [], [])
+    deg = crank_deg(curve.q)
+    order = np.argsort(deg)
+
+    def cut(values):
+        return [None if curve.near[i] or not math.isfinite(values[i]) else float(values[i])
+                for i in order]
+
+    return {"crank_deg": [round(float(d), 6) for d in deg[order]],
+            "input_torque_N_m": doc["input_torque_N_m"],
+            "torques_N_m": {o: cut(curve.torques[:, k]) for k, o in enumerate(curve.outputs)},
+            "ratios": {name: cut(r) for name, r in curve.ratios.items()},
+            "rev_per_min": doc["crank_speed_rev_per_min"], "sharing": doc["sharing"],
+            "friction_m": doc["friction_m"], "efficiency_eta": doc["efficiency_eta"],
+            "dead_points": doc["dead_points"], "rows": doc["at_crank_angles"],
+            "peaks": doc["peaks"]}
