@@ -7,8 +7,9 @@ dead points (the ratios are unbounded next to them and change sign with the outp
 so neither a peak nor a mean says what a factor does). A factor's plain effect size is the
 spread of that median over the factor's range relative to its value at the base case, in
 percent: a factor matters for a ratio where the spread reaches ``MATTERS`` percent. An input
-torque of 0 leaves every ratio undefined (0/0 at rest, inertia/0 at speed): such a level
-shows no ratio and is left out of the spread.
+torque of 0 leaves the ratios to the input undefined (0/0 at rest, inertia/0 at speed), and
+the ratio between two outputs then describes only the links' inertia, not a transmission:
+such a level shows no ratio and is left out of the spread.
 """
 
 from __future__ import annotations
@@ -99,7 +100,10 @@ def parametric_study(scene: Scene, speed: float = 0.0, poses: int = 120,
         if friction is not None:
             s = dataclasses.replace(s, losses=Losses(friction, spec.losses.efficiency,
                                                      spec.losses.source))
-        return _medians(output_study(scene, omega, spec=s, cycle=cycle, masses=masses))
+        medians = _medians(output_study(scene, omega, spec=s, cycle=cycle, masses=masses))
+        if torque == 0:  # no input: nothing is transmitted, so no ratio describes a transmission
+            medians = dict.fromkeys(medians, math.nan)
+        return medians
 
     base = run(speed)
     plan = [(Factor.SPEED, SPEEDS_RPM, lambda v: run(v * 2 * math.pi / 60)),
