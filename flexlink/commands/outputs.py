@@ -7,7 +7,7 @@ from __future__ import annotations
 import click
 
 from flexlink.commands._failures import names_scene
-from flexlink.commands._options import EnumChoice, json_option, out_option
+from flexlink.commands._options import EnumChoice, json_option, out_option, turn_poses_option
 from flexlink.kinematics.kinetostatics import Sharing
 
 WHERE = "command line"
@@ -31,10 +31,9 @@ WHERE = "command line"
               help="Bearing transmission efficiency eta, in (0, 1].")
 @click.option("--speed", default=None, help="Crank speed, e.g. '2000 rev/min' (default: the "
               "scene's operation.crank_speed, else 0: at rest).")
-@click.option("--poses", default=360, show_default=True, type=click.IntRange(3, 1000000),
-              help="Crank angles over one turn.")
+@turn_poses_option
 @click.option("--study", is_flag=True, help="Also the one-factor-at-a-time study over crank "
-              "speed (0-3000 rev/min), input torque (0-1000 N m) and m (0-0.9).")
+              "speed (0-3000 rev/min), input torque (0-1000 N m), m (0-0.9) and eta (0.6-1).")
 @json_option
 @out_option
 @names_scene("scene_path")

@@ -6,15 +6,14 @@ from __future__ import annotations
 import click
 
 from flexlink.commands._failures import names_scene
-from flexlink.commands._options import json_option, out_option
+from flexlink.commands._options import json_option, out_option, turn_poses_option
 
 
 @click.command("torque-family")
 @click.argument("scene_path", metavar="SCENE", type=click.Path())
 @click.option("--speed", default=None, help="Crank speed, e.g. '2000 rev/min' (default: the "
               "scene's operation.crank_speed).")
-@click.option("--poses", default=360, show_default=True, type=click.IntRange(3, 1000000),
-              help="Crank angles over one turn.")
+@turn_poses_option
 @json_option
 @out_option
 @names_scene("scene_path")

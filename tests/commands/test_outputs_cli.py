@@ -53,7 +53,10 @@ def test_outputs_study_writes_the_parametric_files(tmp_path):
     assert code == 0, err
     doc = json.loads(out)["parametric"]
     factors = {f["factor"]: f for f in doc["factors"]}
-    assert set(factors) == {"crank speed", "input torque", "friction m"}
+    assert set(factors) == {"crank speed", "input torque", "friction m", "efficiency eta"}
+    # eta enters T4 as eta^2 at rest: over 0.6..1 the spread is 1 - 0.36 of the base value
+    assert factors["efficiency eta"]["effect_percent"]["T[rocker2]/T_in"] == pytest.approx(
+        64, rel=1e-9)
     assert factors["crank speed"]["levels"][-1] == 3000
     # at rest the ratios do not depend on the input torque (linear statics): no effect
     assert factors["input torque"]["effect_percent"]["T[rocker2]/T_in"] < 1e-9

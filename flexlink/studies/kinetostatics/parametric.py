@@ -1,6 +1,7 @@
 """How crank speed, input torque and the contact-friction factor m change the transmission
 ratios, one factor at a time about the scene's own case (its input torque, m and eta, at rest
-unless the scene runs at a speed), as the wiper paper varies them.
+unless the scene runs at a speed), as the wiper paper varies them; and the bearing efficiency
+eta, to show its effect beside m's.
 
 Each ratio is summarised over the turn by its median |value| over the samples away from the
 dead points (the ratios are unbounded next to them and change sign with the outputs' sense,
@@ -32,15 +33,18 @@ MATTERS = 1.0  # [%] spread of a ratio's median over a factor's range that count
 SPEEDS_RPM = (0.0, 500.0, 1000.0, 1500.0, 2000.0, 2500.0, 3000.0)
 TORQUES_N_M = (0.0, 200.0, 400.0, 600.0, 800.0, 1000.0)
 FRICTIONS = (0.0, 0.15, 0.3, 0.45, 0.6, 0.75, 0.9)
+EFFICIENCIES = (0.6, 0.7, 0.8, 0.9, 1.0)  # not among the paper's factors: eta's effect shown
 
 
 class Factor(enum.StrEnum):
     SPEED = "crank speed"
     TORQUE = "input torque"
     FRICTION = "friction m"
+    EFFICIENCY = "efficiency eta"
 
 
-UNITS = {Factor.SPEED: "rev/min", Factor.TORQUE: "N m", Factor.FRICTION: "-"}
+UNITS = {Factor.SPEED: "rev/min", Factor.TORQUE: "N m", Factor.FRICTION: "-",
+         Factor.EFFICIENCY: "-"}
 
 
 @dataclasses.dataclass(frozen=True)
@@ -92,14 +96,16 @@ def parametric_study(scene: Scene, speed: float = 0.0, poses: int = 120,
     masses = scene_masses(scene)
     base_torque = float(np.mean(spec.input_torque.values))
 
-    def run(omega, torque=None, friction=None):
+    def run(omega, torque=None, friction=None, efficiency=None):
         s = spec
         if torque is not None:
             s = dataclasses.replace(s, input_torque=LoadSpec(
                 LoadKind.TORQUE, spec.input_torque.body, np.array([[torque]])))
-        if friction is not None:
-            s = dataclasses.replace(s, losses=Losses(friction, spec.losses.efficiency,
-                                                     spec.losses.source))
+        if friction is not None or efficiency is not None:
+            s = dataclasses.replace(s, losses=Losses(
+                spec.losses.friction if friction is None else friction,
+                spec.losses.efficiency if efficiency is None else efficiency,
+                spec.losses.source))
         medians = _medians(output_study(scene, omega, spec=s, cycle=cycle, masses=masses))
         if torque == 0:  # no input: nothing is transmitted, so no ratio describes a transmission
             medians = dict.fromkeys(medians, math.nan)
@@ -108,7 +114,8 @@ def parametric_study(scene: Scene, speed: float = 0.0, poses: int = 120,
     base = run(speed)
     plan = [(Factor.SPEED, SPEEDS_RPM, lambda v: run(v * 2 * math.pi / 60)),
             (Factor.TORQUE, TORQUES_N_M, lambda v: run(speed, torque=v)),
-            (Factor.FRICTION, FRICTIONS, lambda v: run(speed, friction=v))]
+            (Factor.FRICTION, FRICTIONS, lambda v: run(speed, friction=v)),
+            (Factor.EFFICIENCY, EFFICIENCIES, lambda v: run(speed, efficiency=v))]
     steps = [(f, v, fn) for f, levels, fn in plan for v in levels]
     results = {}
     for f, v, fn in (progress(steps) if progress else steps):
