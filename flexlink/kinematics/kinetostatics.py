@@ -120,7 +120,7 @@ class OutputState:
     load_power: float
 
 
-def _moment_row(system, linkage: Linkage, motion: RigidMotion, out: Output) -> np.ndarray:
+def _moment_row(system, motion: RigidMotion, out: Output) -> np.ndarray:
     """Coefficients of R (moment about the pivot of the force on the output at its feed)."""
     r = motion.points[out.feed] - motion.points[out.pivot]
     c = system.columns[(out.feed, out.body)]
@@ -154,7 +154,7 @@ def output_torques(linkage: Linkage, state: State, speed: float, masses: Sequenc
             w = transmission.shares[i] / K[i] if K[i] != 0 else np.inf
         weights[i] = w
         A[system.moment_rows[out.body], -1] -= w
-    R_rows = [_moment_row(system, linkage, motion, o) for o in outs]
+    R_rows = [_moment_row(system, motion, o) for o in outs]
     c = np.full(len(outs), 1.0 - losses.efficiency)
     c[0] += losses.friction * losses.efficiency
     n = A.shape[0]
