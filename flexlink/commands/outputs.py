@@ -18,6 +18,11 @@ WHERE = "command line"
 @click.option("--input-torque", default=None,
               help="Constant torque on the driver, e.g. '80 N m' (default: the scene's "
                    "kinetostatics.input_torque).")
+@click.option("--input-torque-csv", "torque_csv", default=None, type=click.Path(),
+              help="Instead: a CSV of the input torque over the crank angle (header row; crank "
+                   "angle [deg] evenly over one turn, then the torque in --unit).")
+@click.option("--unit", default="N*m", show_default=True,
+              help="Unit of --input-torque-csv's torques.")
 @click.option("--output", "outputs", multiple=True,
               help="An output body, in the order the torque flows (repeat for several; "
                    "default: the scene's kinetostatics.outputs).")
@@ -37,7 +42,7 @@ WHERE = "command line"
 @json_option
 @out_option
 @names_scene("scene_path")
-def command(scene_path, input_torque, outputs, sharing, share, friction, efficiency, speed,
+def command(scene_path, input_torque, torque_csv, unit, outputs, sharing, share, friction, efficiency, speed,
             poses, study, as_json, out_dir):
     """Output torque at each output body of SCENE for a given input torque at the driver,
     with the transmission ratios, pin and ground forces, dead points and the losses of
@@ -62,6 +67,15 @@ def command(scene_path, input_torque, outputs, sharing, share, friction, efficie
     if share is not None and not 0.0 <= share <= 1.0:
         raise InputError(f"got {share!r}", source=WHERE, field="--share", expected="[0, 1]")
     overrides = {}
+    if input_torque is not None and torque_csv is not None:
+        raise InputError("give --input-torque or --input-torque-csv, not both", source=WHERE,
+                         field="--input-torque-csv")
+    if torque_csv is not None:
+        from pathlib import Path
+
+        parse_quantity(f"1 {unit}", "torque", source=WHERE, field="--unit")
+        overrides.update({"kinetostatics.input_torque": None, "kinetostatics.unit": unit,
+                          "kinetostatics.csv": str(Path(torque_csv).resolve())})
     if input_torque is not None:
         parse_quantity(input_torque, "torque", source=WHERE, field="--input-torque")
         overrides.update({"kinetostatics.input_torque": input_torque, "kinetostatics.csv": None,

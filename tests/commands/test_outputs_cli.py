@@ -137,3 +137,19 @@ def test_a_family_whose_scaling_cannot_close_the_loop_names_its_entry(tmp_path):
         assert code == 2 and err.count("\n") == 1, err
         assert f"{path}: family[0].values[1]: linkage.synthesis.k = 0.3" in err, err
         assert not list((tmp_path / command).rglob("*.json"))
+
+
+def test_input_torque_csv_option_and_its_bad_file(tmp_path):
+    """--input-torque-csv reads the file as the scene's csv key would; a CSV with a gap in
+    its angles is refused naming the file and the field."""
+    rows = "".join(f"{a},80\n" for a in range(0, 360, 30))
+    (tmp_path / "t.csv").write_text("crank_angle_deg,torque\n" + rows)
+    code, out, err = run("outputs", WIPER, "--input-torque-csv", tmp_path / "t.csv", "--json",
+                         "--poses", "12", "--out", tmp_path / "out")
+    assert code == 0, err
+    assert json.loads(out)["input_torque_N_m"] == {"min": 80.0, "max": 80.0}
+    (tmp_path / "gap.csv").write_text("crank_angle_deg,torque\n" + rows.replace("90,80\n", ""))
+    code, _, err = run("outputs", WIPER, "--input-torque-csv", tmp_path / "gap.csv",
+                       "--out", tmp_path / "out")
+    assert code == 2 and err.count("\n") == 1, err
+    assert "gap.csv" in err and "kinetostatics.csv" in err and "missing crank angle" in err, err
