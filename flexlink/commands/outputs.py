@@ -35,7 +35,7 @@ WHERE = "command line"
 @click.option("--efficiency", default=None, type=float,
               help="Bearing transmission efficiency eta, in (0, 1].")
 @click.option("--speed", default=None, help="Crank speed, e.g. '2000 rev/min' (default: the "
-              "scene's operation.crank_speed, else 0: at rest).")
+              "scene's operation.crank_speed and crank_acceleration, else 0: at rest).")
 @turn_poses_option
 @click.option("--study", is_flag=True, help="Also the one-factor-at-a-time study over crank "
               "speed (0-3000 rev/min), input torque (0-1000 N m), m (0-0.9) and eta (0.6-1).")
@@ -89,9 +89,12 @@ def command(scene_path, input_torque, torque_csv, unit, outputs, sharing, share,
                                                       field="--speed")
     [folder] = scene_folders(prepare_out_dir(out_dir), [scene_path])
     scene = load_scene(scene_path, overrides)
-    if omega is None:
+    acceleration = 0.0
+    if omega is None:  # the scene's operating point, with its crank acceleration if any
         omega = scene.options.crank_speed or 0.0
-    curve = output_study(scene, omega, 0.0, poses, progress=progress_bar("outputs", as_json))
+        acceleration = scene.options.crank_acceleration or 0.0
+    curve = output_study(scene, omega, acceleration, poses,
+                         progress=progress_bar("outputs", as_json))
     files = [folder / "outputs.csv", folder / "outputs.png"]
     write_atomic(files[0], outputs_csv(curve))
     write_atomic(files[1], outputs_plot(curve))
