@@ -155,10 +155,12 @@ def steady_response_data(at: AtSpeed) -> dict:
                        for k, p in enumerate(at.forced.points)]}
 
 
-def scene_page(scene: ReportScene, files: dict, out: Path) -> dict:
+def scene_page(scene: ReportScene, files: dict, out: Path, correlation: dict | None = None
+               ) -> dict:
     """Everything the report shows for one scene (``studies.report_scene``), its modes drawn
     on the mesh they were solved on; ``files``: ``export.export_case``'s answer, linked
-    relative to ``out``."""
+    relative to ``out``; ``correlation``: a modal test's correlation with the scene
+    (``output.correlation.correlation.correlation_json``), or None."""
     def relative(paths):
         return [Path(p).relative_to(out).as_posix() for p in paths]
 
@@ -172,6 +174,7 @@ def scene_page(scene: ReportScene, files: dict, out: Path) -> dict:
             "at_speed": at_speed_data(scene.at_speed),
             "kinetostatics": outputs_report_data(scene.kinetostatics,
                                                  scene.kinetostatics_unavailable),
+            "correlation": correlation,
             "files": {"vtu": relative(files.get("vtu", [])),
                       "pvd": relative(files.get("pvd", []))}}
 
