@@ -26,6 +26,11 @@ out_option = click.option("--out", "out_dir", default="out", show_default=True,
                           type=click.Path(file_okay=False), help="Folder for result files.")
 
 
+turn_poses_option = click.option("--poses", default=360, show_default=True,
+                                 type=click.IntRange(3, 1000000),
+                                 help="Crank angles over one turn.")
+
+
 class FiniteFloatRange(click.FloatRange):
     """click's FloatRange that also refuses nan and inf (which compare false with any bound,
     so FloatRange lets nan through)."""

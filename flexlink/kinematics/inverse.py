@@ -135,9 +135,26 @@ def _attachments(linkage: Linkage) -> list[tuple[str, list[str]]]:
     return list(out.items())
 
 
-def inverse_dynamics(linkage: Linkage, motion: RigidMotion, masses: Sequence[BodyMass],
-                     loads: Sequence[Wrench] = ()) -> InverseDynamics:
-    """Driving torque and joint forces at the instant of ``motion`` (see the module doc)."""
+@dataclasses.dataclass(frozen=True)
+class NewtonEuler:
+    """The Newton-Euler equations of every moving body at one instant as a square linear
+    system ``matrix @ x = rhs``: x holds the force [N] on each body at each of its joints (at
+    ``columns[(joint, body)]``, x then y) and, last, the driving torque [N m]. ``moment_rows``
+    names each body's moment equation (an external torque tau on body b adds +tau to the
+    left side of row ``moment_rows[b]``). Kinetic energy [J] and the power of ``loads`` [W]
+    at that instant come with it."""
+
+    matrix: np.ndarray
+    rhs: np.ndarray
+    columns: dict[tuple[str, str], int]
+    moment_rows: dict[str, int]
+    kinetic_energy: float
+    load_power: float
+
+
+def newton_euler(linkage: Linkage, motion: RigidMotion, masses: Sequence[BodyMass],
+                 loads: Sequence[Wrench] = ()) -> NewtonEuler:
+    """The equations of the module doc at the instant of ``motion``."""
     names = [b.name for b in linkage.bodies]
     if [m.body for m in masses] != names:
         raise InputError("one BodyMass per body, in Linkage.bodies order", field="masses")
@@ -149,7 +166,7 @@ def inverse_dynamics(linkage: Linkage, motion: RigidMotion, masses: Sequence[Bod
     unknowns = [(j, b) for j, bodies in attach for b in bodies]
     col = {key: 2 * i for i, key in enumerate(unknowns)}
     n = 2 * len(unknowns) + 1  # the last unknown: the driving torque
-    rows, rhs = [], []
+    rows, rhs, moment_rows = [], [], {}
     centres = {m.body: centre_of_mass(linkage, motion, m) for m in masses}
     kinetic, load_power = 0.0, 0.0
     for i, (b, m) in enumerate(zip(linkage.bodies, masses)):
@@ -171,6 +188,7 @@ def inverse_dynamics(linkage: Linkage, motion: RigidMotion, masses: Sequence[Bod
             mz[c], mz[c + 1] = -r[1], r[0]
         if b.name == linkage.driver:
             mz[-1] = 1.0
+        moment_rows[b.name] = len(rows) + 2
         rows += [fx, fy, mz]
         rhs += [force[0], force[1], moment]
     for j, bodies in attach:
@@ -186,11 +204,18 @@ def inverse_dynamics(linkage: Linkage, motion: RigidMotion, masses: Sequence[Bod
     if A.shape != (n, n):
         raise KinematicsError(f"{A.shape[0]} equations for {n} unknown pin forces and torque: "
                               "the linkage is not a one-degree-of-freedom chain of pins")
+    return NewtonEuler(A, np.array(rhs), col, moment_rows, float(kinetic), float(load_power))
+
+
+def inverse_dynamics(linkage: Linkage, motion: RigidMotion, masses: Sequence[BodyMass],
+                     loads: Sequence[Wrench] = ()) -> InverseDynamics:
+    """Driving torque and joint forces at the instant of ``motion`` (see the module doc)."""
+    system = newton_euler(linkage, motion, masses, loads)
     try:
-        x = np.linalg.solve(A, np.array(rhs))
+        x = np.linalg.solve(system.matrix, system.rhs)
     except np.linalg.LinAlgError:
         raise KinematicsError(f"the pin forces are not determined at q = {np.degrees(motion.q):.4f}"
                               " deg (a dead centre)") from None
-    forces = {key: x[c:c + 2] for key, c in col.items()}
+    forces = {key: x[c:c + 2] for key, c in system.columns.items()}
     return InverseDynamics(q=motion.q, torque=float(x[-1]), forces=forces,
-                           kinetic_energy=float(kinetic), load_power=float(load_power))
+                           kinetic_energy=system.kinetic_energy, load_power=system.load_power)

@@ -16,6 +16,11 @@ Extended-rocker design (unit time ratio by construction): for swing Theta and ro
 crank pivot lies on the chord through the rocker's two extreme pin positions, so
     L2 = L4 sin(Theta/2),  L3 = c L2,  L1 = sqrt(L3^2 + (L4 cos(Theta/2))^2);
 the built rocker is then k L4 (k = 1 keeps the design; k != 1 moves the pin along the rocker).
+Scaled as the extended-rocker paper scales its family instead (``extended_rocker_tip``): the
+extended arm L41 (to the tip that carries the load) and the swing stay fixed, and k = L41/L4
+sets the rocker L4 = L41/k, every other link following from it by the design above. All links
+then scale by one factor, so the angular motion (swing, time ratio, K, L, and so omega and
+alpha at a crank speed) is the same for every k, and so is the tip's stroke L41 Theta.
 """
 
 from __future__ import annotations
@@ -69,3 +74,11 @@ def extended_rocker(rocker: float, swing: float, coupler_ratio: float, k: float 
     coupler = coupler_ratio * crank
     ground = math.hypot(coupler, rocker * math.cos(swing / 2))
     return FourBar(ground=ground, crank=crank, coupler=coupler, rocker=k * rocker)
+
+
+def extended_rocker_tip(tip: float, swing: float, coupler_ratio: float, k: float) -> FourBar:
+    """The extended-rocker design for tip arm ``tip`` L41 [m] and rocker ratio k = L41/L4
+    (see the module docstring): rocker L4 = L41/k, crank, coupler and ground from it."""
+    if not tip > 0 or not k > 0:
+        raise InputError("need tip > 0 and k > 0", field="tip/k")
+    return extended_rocker(tip / k, swing, coupler_ratio, 1.0)

@@ -342,6 +342,54 @@ def at_speed_section(page: dict, figures: list) -> str:
                  numeric_from=1))
 
 
+def kinetostatics_section(page: dict, figures: list) -> str:
+    """Output torques and transmission ratios over the turn for the input torque the scene
+    declares, its dead points and peaks; "" (no section) for a scene that declares none."""
+    k = page.get("kinetostatics")
+    if k is None:
+        return ""
+    if "unavailable" in k:
+        return f"<h3>Output torques</h3><p>Not available: {_e(k['unavailable'])}</p>"
+    t = k["input_torque_N_m"]
+    torque = (f"{t['min']:.4g} N m" if t["min"] == t["max"]
+              else f"{t['min']:.4g} to {t['max']:.4g} N m")
+    dead = "; ".join(f"{d['crank_deg']:.2f} deg ({', '.join(map(_e, d['outputs']))})"
+                     for d in k["dead_points"])
+    parts = [f"<h3>Output torques</h3><p>Input torque {torque} at the driver, crank speed "
+             f"{_number(k['rev_per_min'], 1)} rev/min, {_e(k['sharing'])} sharing, friction m = "
+             f"{k['friction_m']:g}, bearing efficiency eta = {k['efficiency_eta']:g}."
+             + (f" Dead points (torques and pin forces unbounded): {dead}." if dead else "")
+             + "</p>"]
+    for name, curves, title in (("outputs", k["torques_N_m"], "output torque [N m]"),
+                                ("ratios", k["ratios"], "transmission ratio [-]")):
+        data = [{"type": "scatter", "mode": "lines", "x": k["crank_deg"], "y": y, "name": n,
+                 "hovertemplate": "%{x:.1f} deg: %{y:.4g}<extra></extra>"}
+                for n, y in curves.items()]
+        layout = {"xaxis": {"title": {"text": "crank angle [deg]"}, "range": [0, 360],
+                            "dtick": 60}, "yaxis": {"title": {"text": title}},
+                  "legend": {"orientation": "h", "y": -0.25},
+                  "shapes": [{"type": "line", "x0": d["crank_deg"], "x1": d["crank_deg"],
+                              "yref": "paper", "y0": 0, "y1": 1,
+                              "line": {"color": "#c0392b", "width": 1}}
+                             for d in k["dead_points"]]}
+        parts.append(_figure(page, figures, f"kineto-{name}", data, layout))
+    names = list(k["ratios"])
+    rows = [[_number(r["crank_deg"], 1)]
+            + [_number(v, 1) for v in r["torques_N_m"].values()]
+            + [_number(r["ratios"][n], 4) for n in names]
+            + ["near a dead point" if r["near_dead_point"] else ""] for r in k["rows"]]
+    header = (["crank [deg]"] + [f"T[{_e(o)}] [N m]" for o in k["torques_N_m"]]
+              + [_e(n) for n in names] + [""])
+    peaks = "; ".join(
+        f"{_e(p['name'])} {p['peak']:.4g} {_e(p['unit'])} at {p['at_deg']:.0f} deg"
+        + (" (still rising towards a dead point)" if p["rises_towards_dead_point"] else "")
+        for p in k["peaks"])
+    return "".join(parts) + _table(header, rows, numeric_from=0) + (
+        '<p class="note">Gaps and red lines: next to a dead point every torque and pin force '
+        "grows without bound, so no sample there is a result. Peaks away from them: "
+        f"{peaks}.</p>")
+
+
 def _steady_response_part(page: dict, figures: list, response: dict | None) -> str:
     """Midspan bending strain over the turn at the operating speed, with each peak."""
     if response is None:
@@ -467,7 +515,8 @@ def _failures(messages) -> str:
 
 SECTIONS = (pose_section, frequency_section, assumptions_section, sensitivity_section,
             mesh_section, modes_section,
-            cycle_section, at_speed_section, life_section, correlation_section,
+            cycle_section, at_speed_section, life_section, kinetostatics_section,
+            correlation_section,
             files_section)
 
 

@@ -19,6 +19,7 @@ import numpy as np
 from flexlink.analysis.modal import CaseResult
 from flexlink.output.counts import counted
 from flexlink.output.export_vtk import ModeSet, mode_set
+from flexlink.output.kinetostatics.outputs import outputs_report_data
 from flexlink.output.pose.scene_summary import summary_document
 from flexlink.studies.cycle.modal_map import ModalMap
 from flexlink.studies.running.modes_at_speed import ASSUMPTIONS
@@ -197,6 +198,8 @@ def scene_page(scene: ReportScene, files: dict, out: Path, correlation: dict | N
             "cycle": cycle_data(scene.cycle, result.pose.crank_angle, scene.cycle_unavailable),
             "at_speed": at_speed_data(scene.at_speed),
             "life": life_data(scene),
+            "kinetostatics": outputs_report_data(scene.kinetostatics,
+                                                 scene.kinetostatics_unavailable),
             "correlation": correlation,
             "files": {"vtu": relative(files.get("vtu", [])),
                       "pvd": relative(files.get("pvd", []))}}

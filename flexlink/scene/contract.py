@@ -18,6 +18,7 @@ from flexlink.errors import InputError
 from flexlink.fe.model import DriveSpec, JointSpec, LinkSpec, Section, Topology
 from flexlink.fe.motions import ModelFamily
 from flexlink.kinematics import Branch, FourBar, Linkage, State
+from flexlink.kinematics.kinetostatics import Losses, Transmission
 from flexlink.materials.mixtures import ShearSource
 from flexlink.scene.source import Assumption, file_of
 
@@ -192,6 +193,16 @@ class LoadSpec:
 
 
 @dataclasses.dataclass(frozen=True)
+class KinetostaticsSpec:
+    """The scene's [kinetostatics]: the input torque on the driver (a torque ``LoadSpec`` on
+    it, constant or over the crank angle), the outputs and how they share it, and the losses."""
+
+    input_torque: LoadSpec
+    transmission: Transmission
+    losses: Losses
+
+
+@dataclasses.dataclass(frozen=True)
 class RigidPose:
     """A rigid pose: input (crank) angle [rad], joint positions [m], and the transmission angles
     [rad] of the scene's body pairs (``mu`` is the first, None if the scene names none)."""
@@ -236,6 +247,7 @@ class Scene:
     synthesis: dict | None = None  # method, inputs and the synthesised lengths [m]
     composite: Composite | None = None  # the shared material, where it is a composite
     loads: tuple[LoadSpec, ...] = ()  # external loads for the driving torque
+    kinetostatics: KinetostaticsSpec | None = None  # a declared input torque and its outputs
     loss_factors: dict[str, float] = dataclasses.field(default_factory=dict)  # link -> eta [-]
     materials: dict[str, LinkMaterial] = dataclasses.field(default_factory=dict)  # per link
     origin: dict[str, str] = dataclasses.field(default_factory=dict, repr=False, compare=False)

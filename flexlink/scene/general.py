@@ -20,7 +20,8 @@ import numpy as np
 from flexlink.errors import InputError, KinematicsError
 from flexlink.fe.model import LinkSpec
 from flexlink.kinematics import Body, FourBar, Linkage
-from flexlink.kinematics.synthesis import brodell_soni, extended_rocker, minimax
+from flexlink.kinematics.synthesis import (brodell_soni, extended_rocker, extended_rocker_tip,
+                                           minimax)
 from flexlink.scene import parts, schema
 from flexlink.meshes import DEFAULT_ELEMENTS
 from flexlink.scene.contract import Scene, SceneKind
@@ -39,9 +40,14 @@ def _synthesised(s) -> tuple[FourBar, dict]:
         inputs = {"theta4i_deg": math.degrees(s.theta4i), "delta_deg": math.degrees(s.delta)}
         fb = minimax(s.theta4i, s.delta, s.ground)
     else:
-        inputs = {"rocker_design_m": s.rocker, "swing_deg": math.degrees(s.swing),
-                  "coupler_ratio": s.coupler_ratio, "k": s.k}
-        fb = extended_rocker(s.rocker, s.swing, s.coupler_ratio, s.k)
+        inputs = {"swing_deg": math.degrees(s.swing), "coupler_ratio": s.coupler_ratio,
+                  "k": s.k}
+        if s.tip is not None:
+            inputs["tip_m"] = s.tip
+            fb = extended_rocker_tip(s.tip, s.swing, s.coupler_ratio, s.k)
+        else:
+            inputs["rocker_design_m"] = s.rocker
+            fb = extended_rocker(s.rocker, s.swing, s.coupler_ratio, s.k)
     lengths = dict(zip(("ground", "crank", "coupler", "rocker"), fb.lengths))
     inputs = {k: round(v, 9) for k, v in inputs.items()}  # for reading: 30, not 29.999999999999996
     return fb, {"method": s.method, "inputs": inputs, "lengths_m": lengths}

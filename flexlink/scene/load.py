@@ -16,6 +16,7 @@ from pydantic import BaseModel
 from flexlink.errors import InputError
 from flexlink.scene import fourbar, general, parts, schema
 from flexlink.scene.contract import Scene, SceneKind
+from flexlink.scene.kinetostatics import build_kinetostatics
 from flexlink.scene.loads import build_loads
 from flexlink.scene.plausibility import check_scene
 from flexlink.scene.source import SceneSource, overridden, read_scene_source
@@ -196,6 +197,9 @@ def load_overridden(src: SceneSource, overrides: dict | None = None) -> Scene:
     scene = BUILDERS[sf.linkage.type](src, sf)
     if sf.loads:
         scene = dataclasses.replace(scene, loads=build_loads(src, sf, scene.linkage))
+    if sf.kinetostatics is not None:
+        scene = dataclasses.replace(scene, kinetostatics=build_kinetostatics(
+            src, sf.kinetostatics, scene.linkage, scene.transmission, scene.loads))
     check_scene(scene)  # unit slips such as "300 m" for "300 mm" (plausibility.py)
     return scene
 

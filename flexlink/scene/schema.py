@@ -27,6 +27,7 @@ from flexlink.fe.beams import BeamTheory
 from flexlink.fe.model import Bending
 from flexlink.fe.motions import ModelFamily
 from flexlink.kinematics import Branch
+from flexlink.kinematics.kinetostatics import Sharing
 from flexlink.materials.mixtures import ShearSource
 from flexlink.scene.contract import LoadFrame, LoadKind, Plausibility, SceneKind
 from flexlink.units import UNITS, parse_quantity, quantity_pattern
@@ -364,11 +365,24 @@ class Minimax(Table):
 
 class ExtendedRocker(Table):
     method: Literal["extended-rocker"] = doc("Crank-rocker driven through an extended rocker.")
-    rocker: LENGTH = doc("Design rocker length L4.")
+    rocker: LENGTH | None = doc(
+        "Design rocker length L4 (without 'tip'): k then builds the rocker k L4 long, moving "
+        "the coupler pin along it (a different mechanism for every k).", default=None)
+    tip: LENGTH | None = doc(
+        "Extended arm L41 from the rocker pivot to the tip that carries the load (instead of "
+        "'rocker'): k = L41/L4 then sets the rocker L4 = L41/k and every link scales with it, "
+        "so swing, time ratio and the angular motion are the same for every k.", default=None)
     swing: OPEN_ANGLE = doc("Rocker swing angle.")
     coupler_ratio: number(1.0, 1e3) = doc("Coupler / crank ratio L3/L2.")
-    k: number(1e-3, 1e3, low_open=True) = doc("Built rocker / design rocker length L41/L4.",
-                                               default=1.0)
+    k: number(1e-3, 1e3, low_open=True) = doc(
+        "Rocker ratio: with 'tip', L41/L4; with 'rocker', built / design rocker length.",
+        default=1.0)
+
+    @model_validator(mode="after")
+    def _rocker_or_tip(self):
+        if (self.rocker is None) == (self.tip is None):
+            raise MissingKey("tip", "give tip (the paper's scaling) or rocker, exactly one")
+        return self
 
 
 Synthesis = Annotated[BrodellSoni | Minimax | ExtendedRocker, Field(discriminator="method")]
@@ -577,6 +591,46 @@ class LoadTable(Table):
         return self
 
 
+class KinetostaticsTable(Table):
+    """A declared input torque at the driver and the output bodies it drives, for the output
+    torques, transmission ratios and pin forces (``flexlink outputs``)."""
+
+    input_torque: quantity("torque", shown="any") | None = doc(
+        "Constant torque on the driver (counter-clockwise positive, the sense of its angle).",
+        default=None)
+    csv: str | None = doc(
+        "Instead of a constant: a CSV file (path relative to the scene file) with a header row, "
+        "the crank angle in degrees in its first column, evenly spaced over one full turn, and "
+        "the input torque in 'unit'; interpolated linearly and periodically.", default=None)
+    unit: str | None = doc("Unit of the CSV's torques, e.g. 'N*m'.", default=None)
+    outputs: list[str] = doc(
+        "Output bodies, each turning about a ground pivot, in the order the torque flows "
+        "(e.g. ['rocker1', 'rocker2']).", min_length=1)
+    sharing: choice(Sharing) = doc(
+        "How two or more outputs share the input: 'series' (only the last output is loaded; "
+        "each earlier one passes its torque on through the next loop) or 'split' (every output "
+        "loaded, taking 'share' of the input power at rest).", default=Sharing.SERIES)
+    share: number(0.0, 1.0) = doc(
+        "'split' with two outputs: the first output's share of the input power at rest.",
+        default=0.5)
+    friction: number(0.0, 1.0, high_open=True) = doc(
+        "Contact-friction factor m of the first output: a torque m T opposing its motion, T the "
+        "torque it is driven with (a wiper blade on the screen).", default=0.0)
+    efficiency: number(0.0, 1.0, low_open=True) = doc(
+        "Bearing transmission efficiency eta: every output's bearing passes eta of the torque "
+        "its input link puts on it, the rest opposing its motion.", default=1.0)
+
+    @model_validator(mode="after")
+    def _one_torque(self):
+        if (self.input_torque is None) == (self.csv is None):
+            raise MissingKey("input_torque", "give a constant torque or a csv file, exactly one")
+        if (self.csv is None) != (self.unit is None):
+            raise MissingKey("unit" if self.csv else "csv", "a csv file and its unit go together")
+        if len(set(self.outputs)) != len(self.outputs):
+            raise ValueError(f"outputs {self.outputs} name a body twice")
+        return self
+
+
 class PrbTable(Table):
     """Pseudo-rigid-body comparison of a compliant strip (``flexlink prb``)."""
 
@@ -661,6 +715,9 @@ class SceneFile(Table):
                                        "materials' loss factors).", default=None)
     loads: list[LoadTable] = doc("External loads on the bodies, for the driving torque "
                                  "(``flexlink torque``).", default=[])
+    kinetostatics: KinetostaticsTable | None = doc(
+        "An input torque at the driver and its output bodies (``flexlink outputs``).",
+        default=None)
     prb: PrbTable | None = doc("Pseudo-rigid-body comparison.", default=None)
     test: ModalTestTable = doc("How a modal test's geometry sits in the scene's frame.",
                                default=ModalTestTable())

@@ -13,6 +13,7 @@ from flexlink.errors import FlexlinkError
 from flexlink.scene import Scene
 from flexlink.studies.array_shapes import check_shape
 from flexlink.studies.cycle.modal_map import ModalMap, modal_map
+from flexlink.studies.kinetostatics.outputs import OutputCurve, output_study
 from flexlink.studies.life.life import LifeStudy, check_strengths, life_study
 from flexlink.studies.life.stress_field import stress_field, stress_model
 from flexlink.studies.running.modes_at_speed import OperatingPoint, operating_modes
@@ -22,6 +23,7 @@ from flexlink.studies.running.torque import TorqueCurve, torque_study
 
 SPEED_STEPS = 11  # crank speeds from rest to the operating speed in the frequency diagram
 TORQUE_POSES = 72
+OUTPUT_POSES = 360  # output torques over the turn: 1-degree steps, to show the dead points
 
 
 @dataclasses.dataclass(frozen=True)
@@ -90,7 +92,8 @@ class ReportScene:
     """One scene of the report: its ``summary`` (the planar modes, with a note for another
     family), its ``cycle`` map (None when none was asked for or it could not be made) and
     ``cycle_unavailable``, the reason it could not; ``at_speed``: the scene at its operating
-    speed, None when it declares none."""
+    speed, None when it declares none; ``kinetostatics``: the output torques for the input
+    torque the scene declares (None without one; ``kinetostatics_unavailable``: why not)."""
 
     summary: SceneSummary
     cycle: ModalMap | None
@@ -98,6 +101,8 @@ class ReportScene:
     at_speed: AtSpeed | None = None
     life: LifeStudy | None = None  # stress and life at the operating speed (``life_at_speed``)
     life_unavailable: str | None = None
+    kinetostatics: OutputCurve | None = None  # for a scene declaring an input torque
+    kinetostatics_unavailable: str | None = None
 
     def __post_init__(self):
         if self.cycle is not None and self.cycle_unavailable is not None:
@@ -119,8 +124,15 @@ def report_scene(path, n_modes: int, elements: int | None, tol: float | None, so
     except FlexlinkError as exc:
         unavailable = str(exc)
     life, life_unavailable = life_at_speed(scene, elements)
+    outputs, outputs_unavailable = None, None
+    if scene.kinetostatics is not None:
+        try:
+            outputs = output_study(scene, scene.options.crank_speed or 0.0, poses=OUTPUT_POSES)
+        except FlexlinkError as exc:
+            outputs_unavailable = str(exc)
     return ReportScene(summary, cycle, unavailable, at_speed(scene, n_modes, elements), life,
-                       life_unavailable)
+                       life_unavailable, kinetostatics=outputs,
+                       kinetostatics_unavailable=outputs_unavailable)
 
 
 def life_at_speed(scene: Scene, elements_per_link: int) -> tuple[LifeStudy | None, str | None]:

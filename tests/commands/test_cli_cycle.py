@@ -40,7 +40,7 @@ def test_kinematics_reports_synthesis_and_family(tmp_path):
     assert result.exit_code == 0, result.output
     doc = json.loads(result.stdout)
     assert doc["synthesis"]["lengths_m"]["rocker"] == 0.1  # the scene's "100 mm", parsed
-    assert len(doc["family"]) == 3 + 8
+    assert len(doc["family"]) == 3 + 15
     rocker = doc["bodies"]["rocker"]
     assert abs(rocker["swing_deg"] - 30) < 1e-9 and abs(rocker["time_ratio"] - 1) < 1e-9
     omega = 2000 * 2 * math.pi / 60

@@ -14,6 +14,7 @@ COMMANDS = {
     "modes": ["-e", "4"],
     "export": ["-e", "4", "--no-pictures", "--phases", "2"],
     "report": ["-e", "4", "--cycle-poses", "4"],
+    "outputs": ["--poses", "12"],
 }
 
 

@@ -36,6 +36,7 @@ ARGS = {
     "kinematics": [CASE1, "--poses", "8"],
     "life": [CASE1, "--speed", "600 rev/min", "-n", "2", "--elements", "2", "--no-estimate"],
     "mac": [CASE1, CASE2, "-e", "2", "-n", "2"],
+    "outputs": [str(SCENES_DIR / "wiper.toml"), "--poses", "8"],
     "modes": [CASE1, "-e", "2", "-n", "2"],
     "prb": [str(SCENES_DIR / "compliant_wiper.toml"), "-e", "2", "-n", "2"],
     "report": [CASE1, "-e", "2", "-n", "2", "--cycle-poses", "0"],
@@ -46,6 +47,7 @@ ARGS = {
     "stability": [CASE1],  # the old name of verify, kept for one release
     "stability-map": [CASE1, "--speeds", "0:600 rev/min", "--count", "3", "-n", "2", "--poses", "13"],
     "torque": [CASE1, "--speed", "600 rev/min", "--poses", "8"],
+    "torque-family": [str(SCENES_DIR / "extended_rocker_torque.toml"), "--poses", "8"],
 }
 
 

@@ -100,6 +100,7 @@ def test_shipped_scenes_load_unchanged():
     assert kinds == {"case1.toml": "four-bar", "case2.toml": "four-bar", "case3.toml": "four-bar",
                      "case4.toml": "four-bar", "compliant_wiper.toml": "general",
                      "extended_rocker.toml": "general", "kineto_aluminium.toml": "general",
+                     "extended_rocker_torque.toml": "general",
                      "rotor.toml": "general", "wiper.toml": "general",
                      "change_point.toml": "four-bar"}
 

@@ -596,6 +596,22 @@ RULES = {
         _rule("loads", ["loads", 0], {"kind": "torque", "torque": "1 N*m", "force": DELETE},
               "loads[0]", "belong to a force"),
     ],
+    ("KinetostaticsTable", "_one_torque"): [
+        _rule("wiper", ["kinetostatics"], {"input_torque": DELETE},
+              "kinetostatics.input_torque", "exactly one"),
+        _rule("wiper", ["kinetostatics"], {"csv": "t.csv"}, "kinetostatics.input_torque",
+              "exactly one"),
+        _rule("wiper", ["kinetostatics"], {"input_torque": DELETE, "csv": "t.csv"},
+              "kinetostatics.unit", "go together"),
+        _rule("wiper", ["kinetostatics"], {"outputs": ["rocker1", "rocker1"]},
+              "kinetostatics", "name a body twice"),
+    ],
+    ("ExtendedRocker", "_rocker_or_tip"): [
+        _rule("extended_rocker", ["linkage", "synthesis"], {"tip": DELETE},
+              "linkage.synthesis.tip", "exactly one"),
+        _rule("extended_rocker", ["linkage", "synthesis"], {"rocker": "100 mm"},
+              "linkage.synthesis.tip", "exactly one"),
+    ],
     ("SceneFile", "_kind_tables"): [
         _rule("case1", [], {"pose": DELETE}, "scene", "needs a [pose] table"),
         _rule("wiper", [], {"pose": {"crank_angle": "0 deg"}}, "scene",

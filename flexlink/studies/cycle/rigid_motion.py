@@ -4,9 +4,11 @@ ratio, transmission angles; and the same for every member of the scene's [[famil
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
 import math
 
+from flexlink.errors import FlexlinkError, InputError
 from flexlink.kinematics.linkage import Cycle
 from flexlink.kinematics.motion import (BodySummary, Extremes, LimitPosition, body_summary,
                                         extremes, limit_positions)
@@ -124,8 +126,29 @@ def motion_study(scene: Scene, poses: int, crank_speed: float | None,
 def variant_studies(scene_path, scene: Scene, poses: int,
                     crank_speed: float | None) -> tuple[VariantMotion, ...]:
     """``motion_study`` of every variant the scene's [[family]] tables declare (the scene file
-    reloaded with ``field = value``), with the variant's name, field and value."""
-    return tuple(VariantMotion(variant.name, variant.field, value, motion_study(
-                     load_scene(scene_path, overrides={variant.field: value}), poses,
-                     crank_speed))
-                 for variant in scene.options.variants for value in variant.values)
+    reloaded with ``field = value``), with the variant's name, field and value. A member whose
+    linkage cannot be built or cannot close its loop over the turn is refused naming the
+    family entry (``family_member``)."""
+    out = []
+    for i, variant in enumerate(scene.options.variants):
+        for j, value in enumerate(variant.values):
+            with family_member(scene, i, j):
+                study = motion_study(load_scene(scene_path, overrides={variant.field: value}),
+                                     poses, crank_speed)
+            out.append(VariantMotion(variant.name, variant.field, value, study))
+    return tuple(out)
+
+
+@contextlib.contextmanager
+def family_member(scene: Scene, i: int, j: int):
+    """Turns a flexlink error met while building or running member ``j`` of the scene's
+    ``i``-th [[family]] table into one InputError naming the file, ``family[i].values[j]``,
+    the key and the value."""
+    variant = scene.options.variants[i]
+    try:
+        yield
+    except FlexlinkError as exc:
+        raise InputError(f"{variant.field} = {variant.values[j]!r}: {exc}",
+                         source=scene.file_of("family"), field=f"family[{i}].values[{j}]",
+                         expected="a value whose linkage closes its loop over the whole turn"
+                         ) from None

@@ -1,0 +1,1 @@
+"""Rendering of ``studies.kinetostatics``: text, CSV, JSON and plots."""
