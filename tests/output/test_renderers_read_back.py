@@ -437,13 +437,65 @@ def _compliant() -> Rendered:
         "prb_torque_N_m": (prb.drive_torque, 10), "prb_Theta_deg": (prb.Theta * DEG, 10)})
 
 
+def _output_torques() -> Rendered:
+    from flexlink.output.kinetostatics.outputs import outputs_csv
+
+    n = len(Q)
+    curve = SimpleNamespace(
+        q=Q, outputs=("rocker1", "rocker2"), input_torque=spread(n, low=-90, high=90),
+        K=spread(n, 2, low=-2, high=2), torques=spread(n, 2, low=-500, high=500),
+        received=spread(n, 2, low=-500, high=500),
+        ratios={"TR1": spread(n, low=-9, high=9), "TR2": spread(n, low=-9, high=9)},
+        friction_torque=spread(n, low=0, high=5), loss_power=spread(n, low=0, high=50),
+        kinetic_energy=spread(n, low=0, high=3),
+        forces={"O2": spread(n, 2, low=-1e3, high=1e3)}, near=np.arange(n) % 2 == 0)
+    return Rendered(csv=outputs_csv(curve), columns={
+        "crank_angle_deg": (Q * DEG, 12), "input_torque_N_m": (curve.input_torque, 12),
+        "K_rocker1": (curve.K[:, 0], 12), "T_rocker1_N_m": (curve.torques[:, 0], 12),
+        "R_rocker1_N_m": (curve.received[:, 0], 12), "K_rocker2": (curve.K[:, 1], 12),
+        "T_rocker2_N_m": (curve.torques[:, 1], 12), "R_rocker2_N_m": (curve.received[:, 1], 12),
+        "ratio TR1": (curve.ratios["TR1"], 12), "ratio TR2": (curve.ratios["TR2"], 12),
+        "friction_torque_N_m": (curve.friction_torque, 12),
+        "loss_power_W": (curve.loss_power, 12), "kinetic_energy_J": (curve.kinetic_energy, 12),
+        "O2_Fx_N": (curve.forces["O2"][:, 0], 12), "O2_Fy_N": (curve.forces["O2"][:, 1], 12),
+        "O2_F_N": (np.hypot(*curve.forces["O2"].T), 12),
+        "near_dead_point": (curve.near.astype(float), 0)})
+
+
+def _parametric() -> Rendered:
+    from flexlink.output.kinetostatics.parametric import parametric_csv
+    from flexlink.studies.kinetostatics.parametric import Factor
+
+    levels = {Factor.SPEED: spread(3, low=0, high=3000), Factor.TORQUE: spread(3, low=0, high=1000)}
+    sweeps = [SimpleNamespace(factor=f, levels=v, medians={"TR1": spread(3), "TR2": spread(3)})
+              for f, v in levels.items()]
+    study = SimpleNamespace(base={"TR1": 1.0, "TR2": 2.0}, sweeps=sweeps)
+    return Rendered(csv=parametric_csv(study), columns={
+        "level": (np.concatenate(list(levels.values())), 6),
+        "median |TR1|": (np.concatenate([s.medians["TR1"] for s in sweeps]), 10),
+        "median |TR2|": (np.concatenate([s.medians["TR2"] for s in sweeps]), 10)})
+
+
+def _families() -> Rendered:
+    from flexlink.output.kinetostatics.families import families_csv
+
+    names = ("value", "peak_torque_N_m", "peak_torque_at_deg", "max_torque_N_m",
+             "min_torque_N_m", "rms_torque_N_m")
+    values = {name: spread(4, low=-50, high=50) for name in names}
+    members = [{"family": "k", "field": "linkage.synthesis.k",
+                **{name: float(values[name][i]) for name in names}} for i in range(4)]
+    return Rendered(csv=families_csv({"members": members}),
+                    columns={name: (values[name], 10) for name in names})
+
+
 RENDERERS = {"modal map": _modal_map, "tracked map": _tracked, "critical speeds": _critical,
              "stability map": _stability, "response": _response, "response sweep": _sweep,
              "torque": _torque, "dynamic campbell": _dynamic, "rigid motion": _motion,
              "mac": _mac, "convergence": _convergence, "modes": _modes, "modes at speed": _at_speed,
              "test-model MAC": _mac_matrix, "test-model pairs": _pairs, "mode shapes": _shapes,
              "sensor layout": _layout, "stress field": _stress_field,
-             "compliant cycle": _compliant}
+             "compliant cycle": _compliant, "output torques": _output_torques,
+             "parametric kinetostatics": _parametric, "family torques": _families}
 
 
 def _at(document, path):
@@ -504,5 +556,6 @@ def test_every_csv_renderer_of_output_is_read_back_here():
     covered = {"modal_map_csv", "tracked_csv", "critical_csv", "stability_csv", "response_csv",
                "sweep_csv", "torque_csv", "dynamic_csv", "motion_csv", "mac_csv",
                "convergence_csv", "comparison_csv", "operating_csv", "mac_matrix_csv",
-               "pairs_csv", "shapes_csv", "layout_csv", "field_csv", "compliant_csv"}
+               "pairs_csv", "shapes_csv", "layout_csv", "field_csv", "compliant_csv",
+               "outputs_csv", "parametric_csv", "families_csv"}
     assert {name.rsplit(".", 1)[1] for name in found} <= covered, found
