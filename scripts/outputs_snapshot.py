@@ -1,7 +1,7 @@
 """Run every command on every shipped scene with --json and keep the documents, or compare two
 such snapshots: a refactoring must leave every answer the same.
 
-    python scripts/outputs_snapshot.py run DIR        # one JSON file per (command, scene)
+    python scripts/outputs_snapshot.py run DIR [NAME...]  # one JSON file per (command, scene)
     python scripts/outputs_snapshot.py compare A B    # differences, timings left out
 
 Run from the checkout whose ``flexlink`` is to be judged (PYTHONPATH=$PWD). The options keep
@@ -31,6 +31,16 @@ RUNS = (
     ("kinematics", ["kinematics", "--poses", "36"], False),
     ("prb", ["prb"], True),
     ("report", ["report", "--cycle-poses", "4"], False),
+    # the running linkage
+    ("modes-at-speed", ["modes", "--speed", "600 rev/min"], False),
+    ("modes-at-speed-accelerating", ["modes", "--speed", "2000 rev/min", "--crank-angle",
+                                     "30 deg", "--crank-acceleration", "50 rad/s^2"], False),
+    ("stability-map", ["stability-map", "--speeds", "100:3000 rev/min", "--count", "6"], False),
+    ("response", ["response", "--speed", "600 rev/min"], False),
+    ("response-sweep", ["response", "--speeds", "0:1200 rev/min", "--count", "3"], False),
+    ("torque", ["torque", "--speed", "600 rev/min", "--poses", "36"], False),
+    ("campbell-dynamic", ["campbell", "--poses", "12", "--speeds", "0:3000 rev/min",
+                          "--dynamic", "--speed-steps", "4"], False),
 )
 # keys whose values are wall times, sizes or paths of this run
 VOLATILE = {"seconds", "elapsed", "out", "files", "file", "folder", "path", "report", "written",
@@ -44,11 +54,13 @@ def _command(args: list[str], scene: Path, out: Path) -> list[str]:
     return [sys.executable, "-m", "flexlink.cli", *args, str(scene), "--json", "--out", str(out)]
 
 
-def run(target: Path) -> None:
+def run(target: Path, names: list[str]) -> None:
+    """The runs named in ``names`` (all when empty) into ``target``."""
     target.mkdir(parents=True, exist_ok=True)
     jobs = [(name, args, scene) for name, args, prb in RUNS for scene in SCENES
-            if not prb or "[prb]" in scene.read_text()]
-    jobs.append(("stability", ["stability"], None))
+            if (not prb or "[prb]" in scene.read_text()) and (not names or name in names)]
+    if not names or "stability" in names:
+        jobs.append(("stability", ["stability"], None))
     for name, args, scene in jobs:
         with tempfile.TemporaryDirectory() as out:
             if scene is None:
@@ -111,8 +123,8 @@ def compare(first: Path, second: Path) -> int:
 
 
 if __name__ == "__main__":
-    if sys.argv[1:2] == ["run"] and len(sys.argv) == 3:
-        run(Path(sys.argv[2]))
+    if sys.argv[1:2] == ["run"] and len(sys.argv) >= 3:
+        run(Path(sys.argv[2]), sys.argv[3:])
     elif sys.argv[1:2] == ["compare"] and len(sys.argv) == 4:
         sys.exit(compare(Path(sys.argv[2]), Path(sys.argv[3])))
     else:

@@ -8,9 +8,10 @@ import pytest
 from click.testing import CliRunner
 
 from flexlink.cli import main
-from flexlink.commands._options import parse_speeds
+from flexlink.commands._speeds import parse_speeds
 from flexlink.errors import InputError
-from flexlink.studies.campbell import RPM, Band, bands, critical_speeds, nearest_margin
+from flexlink.studies.campbell import Band, bands, critical_speeds, nearest_margin
+from flexlink.units import RPM
 
 
 def test_critical_speeds_against_a_hand_computation():

@@ -7,7 +7,7 @@ from conftest import CASES_DIR
 
 from flexlink.analysis.floquet import monodromy
 from flexlink.scene import load_scene
-from flexlink.studies.stability_map import Integrator, periodic_model, speed_multipliers
+from flexlink.analysis.periodic import Integrator, periodic_model, speed_multipliers
 from flexlink.units import RPM
 
 

@@ -13,8 +13,9 @@ from flexlink.cli import main
 from flexlink.output.stability_map import stability_document, stability_lines
 from flexlink.output.steady_response import response_document, response_lines
 from flexlink.scene import load_scene
-from flexlink.studies.periodic_damping import DEFAULT_DAMPING_RATIO
-from flexlink.studies.stability_map import periodic_model, stability_map
+from flexlink.analysis.damping import DEFAULT_DAMPING_RATIO
+from flexlink.analysis.periodic import periodic_model
+from flexlink.studies.stability_map import stability_map
 from flexlink.studies.steady_response import forced_model, steady_response
 from flexlink.units import RPM
 
