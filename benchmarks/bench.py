@@ -204,7 +204,7 @@ def converged_cycle(repeats: int, every: int = 10) -> None:
     """The 4 cycle maps at the mesh ``convergence.mesh_for_tolerance`` picks (6 modes,
     relative tolerance DEFAULT_TOL), through the Craig-Bampton sweep; the full model is solved
     at every ``every``-th pose to measure the deviation (all 1440 would take a minute)."""
-    from flexlink.studies.convergence import DEFAULT_TOL, mesh_for_tolerance
+    from flexlink.studies.verification.convergence import DEFAULT_TOL, mesh_for_tolerance
 
     scenes = [load_scene(p) for p in CASES]
     rules = [mesh_for_tolerance(scene, N_MODES) for scene in scenes]
@@ -260,7 +260,7 @@ def scaling_point(spans: int) -> dict:
     from flexlink.fe.model import build_model
     from flexlink.analysis.eigensolver import EigenSolver
     from flexlink.analysis.solve import solve_modes
-    from flexlink.studies.stability import LONG_SPANS, graded_spans
+    from flexlink.studies.verification.self_checks import LONG_SPANS, graded_spans
 
     section = next(iter(load_scene(CASES[1]).sections.values()))
 
@@ -288,7 +288,7 @@ def scaling_point(spans: int) -> dict:
 
 
 def scaling() -> None:
-    from flexlink.studies.stability import SPAN_ELEMENTS
+    from flexlink.studies.verification.self_checks import SPAN_ELEMENTS
 
     sizes = [1e3, 3e3, 1e4, 3e4, 1e5]
     print("3. sparse path: a row of graded pinned spans (stability.graded_spans, "
@@ -357,7 +357,7 @@ SHIPPED = dict(starts=8, samples=200, elements=6)  # the shipped report: 3 famil
 
 def _study(families, n_jobs, **settings):
     from flexlink.scene import scene_files
-    from flexlink.studies.calibration_study import StudySettings, run_study
+    from flexlink.studies.calibration.calibration import StudySettings, run_study
 
     files = [str(f) for f in scene_files([ROOT / "cases"])]
     return [run_study(files, fam, None, StudySettings(n_jobs=n_jobs, **settings))
@@ -366,7 +366,7 @@ def _study(families, n_jobs, **settings):
 
 def _numbers(studies) -> str:
     """The studies' results without their settings (which name the worker count)."""
-    from flexlink.output.calibration_json import study_document
+    from flexlink.output.calibration.calibration import study_document
 
     return json.dumps([{k: v for k, v in study_document(st).items() if k != "settings"}
                        for st in studies])

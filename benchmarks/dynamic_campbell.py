@@ -3,7 +3,7 @@
 
     PYTHONPATH=. python benchmarks/dynamic_campbell.py [--repeats N]
 
-Times ``studies.dynamic_campbell.dynamic_campbell`` on the mesh `flexlink campbell` picks for
+Times ``studies.running.dynamic_campbell.dynamic_campbell`` on the mesh `flexlink campbell` picks for
 case 1 with 3 tracked modes (32 elements per link), 0 .. 2500 rev/min (below its divergence
 near 2755 rev/min, so every pose and speed is solved): the static modes and the
 reduced operating-point matrices at every pose, the small quadratic solve at every pose and
@@ -30,7 +30,7 @@ import numpy as np  # noqa: E402
 ROOT = Path(__file__).resolve().parent.parent
 
 from flexlink.scene import load_scene  # noqa: E402
-from flexlink.studies.dynamic_campbell import dynamic_campbell  # noqa: E402
+from flexlink.studies.running.dynamic_campbell import dynamic_campbell  # noqa: E402
 
 GOAL = 10.0  # [s]
 POSES, SPEEDS, ELEMENTS, TOP_RPM = 72, 50, 32, 2500.0

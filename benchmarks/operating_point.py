@@ -4,7 +4,7 @@ same model (target: at most 3x).
     PYTHONPATH=. python benchmarks/operating_point.py [--repeats N]
 
 "Static" is ``analysis.modal.analyze`` (what ``flexlink modes`` solves per scene); "at speed" is
-``studies.operating_point.operating_modes``, which includes that static solve (its modes are the
+``studies.running.modes_at_speed.operating_modes``, which includes that static solve (its modes are the
 ones each mode at speed is paired with), the preload, the geometric and rotating-frame matrices
 and the quadratic eigen solve. CPU time of this process with BLAS on one thread, medians over
 repeats, each run interleaved with its static twin so both see the same machine load.
@@ -28,7 +28,7 @@ ROOT = Path(__file__).resolve().parent.parent
 
 from flexlink.analysis.modal import analyze  # noqa: E402
 from flexlink.scene import load_scene  # noqa: E402
-from flexlink.studies.operating_point import operating_modes  # noqa: E402
+from flexlink.studies.running.modes_at_speed import operating_modes  # noqa: E402
 
 GOAL = 3.0
 RUNS = (  # scene, elements per link (the mesh `flexlink modes` picks or the scene pins), speed

@@ -25,7 +25,7 @@ import numpy as np  # noqa: E402
 
 from flexlink.scene import load_scene  # noqa: E402
 from flexlink.analysis.periodic import Integrator, periodic_model  # noqa: E402
-from flexlink.studies.stability_map import stability_map  # noqa: E402
+from flexlink.studies.running.stability_map import stability_map  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
 GOAL = 10.0  # s

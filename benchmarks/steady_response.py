@@ -22,7 +22,7 @@ from pathlib import Path  # noqa: E402
 
 from flexlink.scene import load_scene  # noqa: E402
 from flexlink.analysis.periodic import speed_multipliers  # noqa: E402
-from flexlink.studies.steady_response import (  # noqa: E402
+from flexlink.studies.running.steady_response import (  # noqa: E402
     forced_model,
     periodic_solution,
     steady_response,

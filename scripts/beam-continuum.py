@@ -1,5 +1,5 @@
 """Write the table in docs/beam-theories.md (between its table markers) and docs/beam-continuum.png: both beam theories
-against the plane-stress continuum reference (flexlink/studies/continuum.py) for L/h 2 to 100.
+against the plane-stress continuum reference (flexlink/studies/verification/continuum.py) for L/h 2 to 100.
 
 Run: PYTHONPATH=. python scripts/beam-continuum.py   (about a minute)
 """
@@ -9,7 +9,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from flexlink.materials.mixtures import load_constituent, woven_composite
-from flexlink.studies.continuum import compare
+from flexlink.studies.verification.continuum import compare
 
 ROOT = Path(__file__).resolve().parent.parent
 SLENDERNESS = (2, 3, 5, 10, 20, 50, 100)

@@ -33,7 +33,7 @@ import openseespy.opensees as ops  # noqa: E402
 
 from flexlink.fe.geometric import GeometricForm  # noqa: E402
 from flexlink.scene import load_scene  # noqa: E402
-from flexlink.studies.operating_point import Terms, operating_modes  # noqa: E402
+from flexlink.studies.running.modes_at_speed import Terms, operating_modes  # noqa: E402
 
 MESHES = (4, 8, 16, 32)  # elements per link
 N_MODES = 4

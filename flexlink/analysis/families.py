@@ -9,7 +9,7 @@ per part at this stage. Measured frequencies are paired with the lowest elastic 
 chosen family by mode order only.
 
 ``part_modes`` keeps each part's model and mode shapes, for callers that differentiate the
-frequencies (``studies.jacobian``): ``quadratic_forms`` gives s^T K s and s^T M s of shapes on a
+frequencies (``studies.calibration.jacobian``): ``quadratic_forms`` gives s^T K s and s^T M s of shapes on a
 part's model, from the same element, spring and mass entries the assembly sums.
 """
 

@@ -33,7 +33,7 @@ def settings_options(command):
 
 def study_settings(starts, seed, samples, vf_sd, thickness_sd, elements, jobs, show_progress):
     """The ``StudySettings`` of the options above (the thickness spread read with its unit)."""
-    from flexlink.studies.calibration_study import StudySettings
+    from flexlink.studies.calibration.calibration import StudySettings
     from flexlink.units import parse_quantity
 
     sd = parse_quantity(thickness_sd, "length", source="command line", field="--thickness-sd")

@@ -9,9 +9,9 @@ def run_operating(files, folders, n_modes, elements, tol, at, as_json) -> None:
     modes_at_speed.json and .csv to each file's folder in ``folders``."""
     import dataclasses
 
-    from flexlink.output.operating_report import operating_files, operating_text
+    from flexlink.output.running.modes_at_speed import operating_files, operating_text
     from flexlink.scene import load_scene
-    from flexlink.studies.operating_point import scene_operating_modes
+    from flexlink.studies.running.modes_at_speed import scene_operating_modes
 
     from ._analysed import each_scene
     from ._failures import finish

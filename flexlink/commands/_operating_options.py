@@ -41,7 +41,7 @@ def operating_request(speed, crank_angle, crank_acceleration, no_preload, no_cen
     from flexlink.errors import InputError
     from flexlink.commands._speeds import parse_acceleration, parse_speed
     from flexlink.fe.speed_terms import Terms
-    from flexlink.studies.operating_point import OperatingRequest
+    from flexlink.studies.running.modes_at_speed import OperatingRequest
     from flexlink.units import parse_quantity
 
     if speed is None:

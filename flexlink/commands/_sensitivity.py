@@ -38,8 +38,8 @@ def sensitivity_scheduler(sensitivity: bool, scheduler: str | None):
 
 
 def sensitivity_run(sensitivity: bool, samples: int, seed: int, jobs: int, quiet: bool):
-    """The ``studies.scene_summary.SensitivityRun`` the options ask for; None without
+    """The ``studies.pose.scene_summary.SensitivityRun`` the options ask for; None without
     --sensitivity. ``quiet``: no progress bar (with --json)."""
-    from flexlink.studies.scene_summary import SensitivityRun
+    from flexlink.studies.pose.scene_summary import SensitivityRun
 
     return SensitivityRun(samples, seed, jobs, not quiet) if sensitivity else None

@@ -33,12 +33,12 @@ def command(scenes, free_specs, families, scheduler, as_json, out_dir, **setting
     propagate Table I scatter by Monte Carlo; writes calibrate.json, report.md and PNG plots
     to OUT/<scene names>/ (e.g. OUT/cases/ for the folder cases/)."""
     from flexlink.fileio import prepare_out_dir, write_atomic
-    from flexlink.output.calibration_json import calibrate_document, study_document
-    from flexlink.output.calibration_report import report_files, summary_text
+    from flexlink.output.calibration.calibration import calibrate_document, study_document
+    from flexlink.output.calibration.calibration_report import report_files, summary_text
     from flexlink.parallel import use_scheduler
     from flexlink.scene import scene_files
-    from flexlink.studies.calibration import parse_free
-    from flexlink.studies.calibration_study import run_study, study_families
+    from flexlink.studies.calibration.fit import parse_free
+    from flexlink.studies.calibration.calibration import run_study, study_families
     from ._written import announce, run_folder
 
     out = run_folder(prepare_out_dir(out_dir), scenes)

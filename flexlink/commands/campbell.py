@@ -38,9 +38,9 @@ def command(scene_path, speeds, n_modes, poses, elements, tol, margin, harmonics
     speed, the harmonics n x speed, and the speed ranges where a harmonic comes within the
     margin of a band (or the nearest margin when none does). Writes campbell.png, .csv and
     .json to OUT/<scene>/; with --dynamic also campbell_at_speed.png and .csv."""
-    from flexlink.output.campbell_report import campbell_document, campbell_text, write_campbell
+    from flexlink.output.cycle.campbell import campbell_document, campbell_text, write_campbell
     from flexlink.parallel import use_scheduler
-    from flexlink.studies.campbell_study import campbell_study
+    from flexlink.studies.cycle.campbell import campbell_study
     from flexlink.errors import InputError
     from ._progress import progress_bar
     from ._speeds import parse_acceleration, parse_speeds

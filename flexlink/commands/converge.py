@@ -27,9 +27,9 @@ def command(scene_path, n_modes, max_elements, repeats, tol, as_json, out_dir):
     choice; report frequencies, their discretisation error against a Richardson-extrapolated
     reference, their model error against the scene's measured column, and wall times. Writes
     converge.json, converge.csv and converge.png (error against time) to OUT/<scene>/."""
-    from flexlink.output.convergence_report import (convergence_document, convergence_text,
+    from flexlink.output.verification.convergence import (convergence_document, convergence_text,
                                                    write_convergence)
-    from flexlink.studies.convergence import DEFAULT_TOL, convergence_study
+    from flexlink.studies.verification.convergence import DEFAULT_TOL, convergence_study
     from ._progress import progress_bar
     from ._written import folder_and_scene, publish
 

@@ -37,9 +37,9 @@ def command(scene_path, n_modes, poses, elements, tol, speed, margin, harmonics,
     --out), the poses where the transmission angle is 90 deg, and the crank harmonics that
     come within --margin of a natural frequency anywhere in the cycle. Writes cycle.csv,
     cycle.png and cycle.json to OUT/<scene>/."""
-    from flexlink.output.cycle_report import cycle_document, cycle_text, write_cycle
+    from flexlink.output.cycle.modal_map import cycle_document, cycle_text, write_cycle
     from flexlink.parallel import use_scheduler
-    from flexlink.studies.cycle_study import cycle_study
+    from flexlink.studies.cycle.cycle import cycle_study
     from flexlink.units import parse_quantity
     from ._progress import progress_bar
     from ._written import folder_and_scene, publish

@@ -28,7 +28,7 @@ def command(scenes, n_modes, elements, tol, solver, subdivide, phases, amplitude
     from flexlink.fileio import write_atomic
     from flexlink.output.export import (ExportSettings, export_case, export_document,
                                         export_entry, export_text)
-    from flexlink.studies.scene_summary import scene_summary
+    from flexlink.studies.pose.scene_summary import scene_summary
     from ._analysed import each_scene, scene_run
     from ._failures import finish
 

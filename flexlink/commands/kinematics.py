@@ -23,9 +23,9 @@ def command(scene_path, poses, speed, as_json, out_dir):
     L = dK/dq of every body of SCENE over one crank revolution: extremes and where they occur,
     limit positions, torque ratio 1/K; for a scene with [[family]] tables, every member too.
     Writes kinematics.csv and kinematics.json to OUT/<scene>/."""
-    from flexlink.output.kinematics_report import (kinematics_document, kinematics_text,
+    from flexlink.output.cycle.rigid_motion import (kinematics_document, kinematics_text,
                                                    write_kinematics_csv)
-    from flexlink.studies.kinematics import motion_study, variant_studies
+    from flexlink.studies.cycle.rigid_motion import motion_study, variant_studies
     from flexlink.units import parse_quantity
     from ._progress import progress_bar
     from ._written import folder_and_scene, publish

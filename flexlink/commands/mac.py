@@ -35,8 +35,8 @@ def command(scene_a, scene_b, n_modes, elements, elements_b, part, old_part, as_
     from flexlink.analysis.mesh import DEFAULT_TOL, choose_mesh
     from flexlink.fileio import prepare_out_dir, write_atomic
     from flexlink.scene import load_scene
-    from flexlink.output.mac import comparison_json, mac_csv, mac_text
-    from flexlink.studies.mac_comparison import compare_scenes, mac_part
+    from flexlink.output.pose.mac_comparison import comparison_json, mac_csv, mac_text
+    from flexlink.studies.pose.mac_comparison import compare_scenes, mac_part
     from ._written import publish, run_folder
 
     folder = run_folder(prepare_out_dir(out_dir), [scene_a, scene_b])

@@ -30,8 +30,8 @@ def command(scenes, n_modes, elements, solver, tol, sensitivity, samples, seed, 
     every scene when there are several. With --speed: the modes about the rigid motion at that
     crank speed beside the static ones, in OUT/<scene>/modes_at_speed.json and .csv."""
     from flexlink.analysis.eigensolver import DEFAULT_SOLVER
-    from flexlink.output.report import modes_files, modes_text
-    from flexlink.studies.scene_summary import scene_summary
+    from flexlink.output.pose.scene_summary import modes_files, modes_text
+    from flexlink.studies.pose.scene_summary import scene_summary
     from ._analysed import each_scene, scene_run
     from ._failures import finish
     from ._written import publish_files

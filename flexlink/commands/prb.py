@@ -22,8 +22,8 @@ def command(scene_path, n_modes, elements, as_json, out_dir):
     """Modes of SCENE (a scene with a [prb] table) at its start pose, where the compliant strip
     is unstressed, with the strip as a flexible beam (FE), and the first frequency of the
     pseudo-rigid-body model (rigid link + torsional spring K = gamma K_Theta E I / l)."""
-    from flexlink.output.prb_report import prb_document, prb_text
-    from flexlink.studies.prb import compare_prb
+    from flexlink.output.pose.prb import prb_document, prb_text
+    from flexlink.studies.pose.prb import compare_prb
     from ._written import folder_and_scene, publish
 
     folder, scene = folder_and_scene(out_dir, scene_path)

@@ -29,8 +29,8 @@ def command(scene_path, speed, speeds, count, n_modes, damping_ratio, elements, 
     import numpy as np
 
     from flexlink.errors import InputError
-    from flexlink.output.steady_response import response_lines, write_response
-    from flexlink.studies import steady_response as study
+    from flexlink.output.running.steady_response import response_lines, write_response
+    from flexlink.studies.running import steady_response as study
     from ._options import periodic_mesh
     from ._progress import progress_bar
     from ._speeds import operating_speed, parse_speed, parse_speeds
@@ -63,7 +63,7 @@ def parse_point(text: str, field: str = "--at"):
     """"LINK:DISTANCE" (e.g. "coupler:60 mm", the distance from the link's start joint) as a
     ``studies.steady_response.StrainPoint``."""
     from flexlink.errors import InputError
-    from flexlink.studies.steady_response import StrainPoint
+    from flexlink.studies.running.steady_response import StrainPoint
     from flexlink.units import parse_quantity
 
     link, sep, distance = str(text).partition(":")

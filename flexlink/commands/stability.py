@@ -26,7 +26,7 @@ def command(scene_path, slow, as_json, out_dir):
 
     from flexlink.fileio import prepare_out_dir, write_atomic
     from flexlink.scene import load_scene
-    from flexlink.studies.stability import run_checks
+    from flexlink.studies.verification.self_checks import run_checks
     from ._written import announce, scene_folders
 
     [folder] = scene_folders(prepare_out_dir(out_dir), [scene_path])

@@ -41,9 +41,9 @@ def command(scene_path, speeds, count, n_modes, damping_ratio, elements, tol, po
     import numpy as np
 
     from flexlink.analysis.periodic import periodic_model
-    from flexlink.output.stability_map import stability_document, stability_lines, write_stability
+    from flexlink.output.running.stability_map import stability_document, stability_lines, write_stability
     from flexlink.parallel import use_scheduler
-    from flexlink.studies.stability_map import stability_map
+    from flexlink.studies.running.stability_map import stability_map
     from ._options import periodic_mesh
     from ._progress import progress_bar
     from ._speeds import parse_speeds

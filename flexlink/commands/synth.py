@@ -15,8 +15,8 @@ def _quantity(text: str, kind: str, field: str) -> float:
 
 def _report(method: str, inputs: dict[str, str], first: float, second: float, ground: float,
             as_json: bool) -> None:
-    from flexlink.output.crank_rocker_report import crank_rocker_document, crank_rocker_text
-    from flexlink.studies.crank_rocker import crank_rocker
+    from flexlink.output.pose.crank_rocker import crank_rocker_document, crank_rocker_text
+    from flexlink.studies.pose.crank_rocker import crank_rocker
 
     document = crank_rocker_document(crank_rocker(method, inputs, first, second, ground))
     click.echo(dumps(document) if as_json else crank_rocker_text(document))

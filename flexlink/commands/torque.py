@@ -25,8 +25,8 @@ def command(scene_path, speed, acceleration, poses, as_json, out_dir):
     """Driving torque, drive power and joint forces of SCENE's rigid-body motion at a crank
     speed, from the links' mass and inertia and the scene's [[loads]]. Writes torque.csv,
     torque.png and torque.json to OUT/<scene>/."""
-    from flexlink.output.torque import torque_document, torque_text, write_torque
-    from flexlink.studies.torque import torque_study
+    from flexlink.output.running.torque import torque_document, torque_text, write_torque
+    from flexlink.studies.running.torque import torque_study
     from ._progress import progress_bar
     from ._speeds import operating_speed, parse_acceleration, parse_speed
     from ._written import folder_and_scene, publish

@@ -26,7 +26,7 @@ from flexlink.fileio import staged_folder, write_atomic
 from flexlink.output.counts import counted
 from flexlink.output.export_vtk import mode_set, modes_mesh, write_animation, write_vtu
 from flexlink.stopping import signals_deferred
-from flexlink.studies.scene_summary import SceneSummary
+from flexlink.studies.pose.scene_summary import SceneSummary
 
 
 @dataclasses.dataclass(frozen=True)
@@ -64,7 +64,7 @@ RECORD = "export.json"  # the scene folder's own list of what its export wrote
 
 def export_case(summary: SceneSummary, out: Path, settings: ExportSettings,
                 record: Callable[[dict], str] | None = None) -> dict:
-    """Write the files of one scene's summary (``studies.scene_summary``) into ``out/<stem>/``,
+    """Write the files of one scene's summary (``studies.pose.scene_summary``) into ``out/<stem>/``,
     replacing that folder as a whole. Returns {"folder": ..., kind: [paths]} with
     kinds vtu, pvd, frames, pictures, plot (paths as strings, in the final folder), and with
     ``record`` also "record": the folder's ``export.json``, holding ``record(those files)``, so

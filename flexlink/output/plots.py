@@ -10,7 +10,7 @@ import math
 
 import numpy as np
 
-from flexlink.studies.scene_summary import SceneSummary
+from flexlink.studies.pose.scene_summary import SceneSummary
 
 COLOURS = {"computed": "#1f77b4", "FE": "#ff7f0e", "Ex": "#2ca02c"}
 LABELS = {"computed": "computed (flexlink)", "FE": "paper FE", "Ex": "measured (Ex)"}
@@ -18,7 +18,7 @@ LABELS = {"computed": "computed (flexlink)", "FE": "paper FE", "Ex": "measured (
 
 def frequency_plot(summary: SceneSummary, size: tuple[float, float] = (8.0, 5.0),
                    dpi: int = 120) -> bytes:
-    """PNG of one scene's summary (``studies.scene_summary``): a point per mode and series, log
+    """PNG of one scene's summary (``studies.pose.scene_summary``): a point per mode and series, log
     frequency axis.
 
     ``size`` [in] and ``dpi`` give the picture size in pixels (size * dpi)."""

@@ -19,9 +19,9 @@ import numpy as np
 from flexlink.analysis.modal import CaseResult
 from flexlink.output.counts import counted
 from flexlink.output.export_vtk import ModeSet, mode_set
-from flexlink.output.report import summary_document
-from flexlink.studies.cycle import ModalMap
-from flexlink.studies.operating_point import ASSUMPTIONS
+from flexlink.output.pose.scene_summary import summary_document
+from flexlink.studies.cycle.modal_map import ModalMap
+from flexlink.studies.running.modes_at_speed import ASSUMPTIONS
 from flexlink.studies.report_scene import AtSpeed, ReportScene
 
 MM = 1e3  # m -> mm

@@ -12,11 +12,11 @@ import numpy as np
 from flexlink.errors import FlexlinkError
 from flexlink.scene import Scene
 from flexlink.studies.array_shapes import check_shape
-from flexlink.studies.cycle import ModalMap, modal_map
-from flexlink.studies.operating_point import OperatingPoint, operating_modes
-from flexlink.studies.scene_summary import SceneSummary, SensitivityRun, scene_summary
-from flexlink.studies.steady_response import ForcedModel, SteadyResponse, forced_model, steady_response
-from flexlink.studies.torque import TorqueCurve, torque_study
+from flexlink.studies.cycle.modal_map import ModalMap, modal_map
+from flexlink.studies.running.modes_at_speed import OperatingPoint, operating_modes
+from flexlink.studies.pose.scene_summary import SceneSummary, SensitivityRun, scene_summary
+from flexlink.studies.running.steady_response import ForcedModel, SteadyResponse, forced_model, steady_response
+from flexlink.studies.running.torque import TorqueCurve, torque_study
 
 SPEED_STEPS = 11  # crank speeds from rest to the operating speed in the frequency diagram
 TORQUE_POSES = 72

@@ -11,7 +11,7 @@ import scipy.linalg as la
 
 from flexlink.fe.assembly import assemble, rigid_elimination
 from flexlink.fe.model import JointSpec, LinkSpec, Topology, build_model
-from flexlink.output.report import identity_json
+from flexlink.output.pose.scene_summary import identity_json
 from flexlink.scene import load_scene
 
 from helpers import SECTION, modes_of, single_beam

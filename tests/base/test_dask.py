@@ -10,7 +10,7 @@ from pathlib import Path
 import numpy as np
 
 from flexlink.parallel import run_tasks, use_scheduler
-from flexlink.studies.uncertainty import monte_carlo, scene_inputs
+from flexlink.studies.calibration.uncertainty import monte_carlo, scene_inputs
 
 # distributed: imported by the dask_cluster fixture (which skips without it), not at collection
 

@@ -10,7 +10,7 @@ import numpy as np
 from click.testing import CliRunner
 
 from flexlink.cli import main
-from flexlink.studies.cycle import ModalMap, resonance_speed, resonances
+from flexlink.studies.cycle.modal_map import ModalMap, resonance_speed, resonances
 
 from conftest import ROOT
 COMMANDS = ROOT / "flexlink" / "commands"

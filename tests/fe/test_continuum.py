@@ -3,7 +3,7 @@ approaching it where they should."""
 
 import pytest
 
-from flexlink.studies.continuum import compare, plane_stress_first_bending
+from flexlink.studies.verification.continuum import compare, plane_stress_first_bending
 
 E, NU, RHO = 210e9, 0.3, 7850.0
 G = E / (2 * (1 + NU))

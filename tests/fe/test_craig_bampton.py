@@ -23,7 +23,7 @@ from flexlink.fe.assembly import assemble, rigid_elimination
 from flexlink.fe.craig_bampton import SERIES, CraigBamptonPlan, _families, reduce_link
 from flexlink.analysis.solve import solve_modes
 from flexlink.analysis.stacked import stacked_modes
-from flexlink.studies.cycle import kinematic_cycle
+from flexlink.studies.cycle.modal_map import kinematic_cycle
 from flexlink.fe.link import link_matrices
 from flexlink.fe.model import build_model, layout
 from flexlink.scene import load_scene

@@ -13,7 +13,7 @@ from flexlink.errors import InputError
 from flexlink.kinematics import FourBar
 from flexlink.kinematics.linkage import crank_angles, crossings, four_bar_linkage
 from flexlink.kinematics.motion import body_summary, limit_positions
-from flexlink.output.kinematics_report import motion_csv
+from flexlink.output.cycle.rigid_motion import motion_csv
 from flexlink.kinematics.synthesis import brodell_soni, minimax
 
 CASE1 = FourBar.from_ratios(0.267, 0.800, 0.667, ground=1.0)

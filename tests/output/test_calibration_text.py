@@ -9,8 +9,8 @@ from __future__ import annotations
 
 import pytest
 
-import flexlink.output.calibration_report as report
-from flexlink.output.calibration_report import family_section, summary_lines
+import flexlink.output.calibration.calibration_report as report
+from flexlink.output.calibration.calibration_report import family_section, summary_lines
 
 KEYS = ("assumed_inputs_vs_Ex", "calibrated_to_Ex_in_sample", "cross_validated_vs_Ex",
         "per_case_fit_in_sample", "calibrated_to_FE_vs_FE", "paper_FE_vs_Ex")

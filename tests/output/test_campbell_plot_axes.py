@@ -11,11 +11,11 @@ import math
 import numpy as np
 import pytest
 
-import flexlink.output.campbell_report as campbell_report
-import flexlink.output.convergence_report as convergence_report
-from flexlink.studies.campbell import Band, CriticalSpeed
-from flexlink.studies.convergence import CHOICES, Level
-from flexlink.studies.dynamic_campbell import DynamicCampbell
+import flexlink.output.cycle.campbell as campbell_report
+import flexlink.output.verification.convergence as convergence_report
+from flexlink.studies.cycle.bands import Band, CriticalSpeed
+from flexlink.studies.verification.convergence import CHOICES, Level
+from flexlink.studies.running.dynamic_campbell import DynamicCampbell
 
 RAD_S_PER_RPM = 2 * math.pi / 60
 HARMONICS = 3

@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 from matplotlib.figure import Figure
 
-from flexlink.output.cycle_report import plot_map
-from flexlink.studies.cycle import ModalMap
+from flexlink.output.cycle.modal_map import plot_map
+from flexlink.studies.cycle.modal_map import ModalMap
 
 
 def small_map() -> ModalMap:
@@ -51,11 +51,11 @@ def test_a_drawing_that_fails_half_way_keeps_the_old_picture(tmp_path, monkeypat
 def test_tracked_and_campbell_pictures_are_written_atomically(tmp_path, monkeypatch):
     """The Campbell diagram and the tracked map go through the same writer: a renderer dying
     half-way leaves the old picture and no temporary file."""
-    from flexlink.output.campbell_report import plot_campbell
-    from flexlink.output.tracking_report import plot_tracked
-    from flexlink.studies.campbell import Band
+    from flexlink.output.cycle.campbell import plot_campbell
+    from flexlink.output.cycle.tracking import plot_tracked
+    from flexlink.studies.cycle.bands import Band
     from flexlink.units import RPM
-    from flexlink.studies.tracking import TrackedMap, Tracks
+    from flexlink.studies.cycle.tracking import TrackedMap, Tracks
 
     q = small_map().q
     f = small_map().frequencies

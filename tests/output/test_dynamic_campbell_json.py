@@ -4,8 +4,8 @@ from the ends of the speed range did not move (cut: null); no range on one side:
 
 import pytest
 
-from flexlink.output.dynamic_campbell import shift_json
-from flexlink.studies.dynamic_campbell import CriticalShift
+from flexlink.output.running.dynamic_campbell import shift_json
+from flexlink.studies.running.dynamic_campbell import CriticalShift
 from flexlink.units import RPM
 
 

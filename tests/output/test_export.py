@@ -20,7 +20,7 @@ from flexlink.fileio import write_atomic_with
 from flexlink.fe.modeshape import sample_shapes
 from flexlink.analysis.mesh import COMMAND_LINE, MeshRule
 from flexlink.scene import load_scene
-from flexlink.studies.scene_summary import summary_of
+from flexlink.studies.pose.scene_summary import summary_of
 
 from helpers import single_beam
 

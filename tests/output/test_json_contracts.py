@@ -16,19 +16,19 @@ import pytest
 from conftest import CASES_DIR
 
 from flexlink.analysis.mesh import COMMAND_LINE, MeshRule
-from flexlink.output.campbell_report import campbell_document
-from flexlink.output.convergence_report import convergence_document
-from flexlink.output.dynamic_campbell import dynamic_json
-from flexlink.output.report import modes_files, summary_document
+from flexlink.output.cycle.campbell import campbell_document
+from flexlink.output.verification.convergence import convergence_document
+from flexlink.output.running.dynamic_campbell import dynamic_json
+from flexlink.output.pose.scene_summary import modes_files, summary_document
 from flexlink.output.report_data import _rounded, at_speed_data
-from flexlink.studies.campbell import Band, CriticalSpeed, NearestMargin
-from flexlink.studies.campbell_study import CampbellStudy
-from flexlink.studies.convergence import (CHOICES, ConvergenceStudy, Level, relative_errors,
+from flexlink.studies.cycle.bands import Band, CriticalSpeed, NearestMargin
+from flexlink.studies.cycle.campbell import CampbellStudy
+from flexlink.studies.verification.convergence import (CHOICES, ConvergenceStudy, Level, relative_errors,
                                           richardson)
-from flexlink.studies.dynamic_campbell import Divergence, DynamicCampbell
+from flexlink.studies.running.dynamic_campbell import Divergence, DynamicCampbell
 from flexlink.studies.report_scene import SPEED_STEPS, AtSpeed
-from flexlink.studies.scene_summary import scene_summary
-from flexlink.studies.tracking import TrackedMap, Tracks
+from flexlink.studies.pose.scene_summary import scene_summary
+from flexlink.studies.cycle.tracking import TrackedMap, Tracks
 
 RPM_PER_RAD_S = 60 / (2 * math.pi)  # 1 rad/s in rev/min, written out for the oracle
 POSES = 6

@@ -3,7 +3,7 @@ and the pairs, as the document states them."""
 
 import numpy as np
 
-from flexlink.output.mac import mac_text
+from flexlink.output.pose.mac_comparison import mac_text
 
 
 def test_text_shows_both_sides_the_matrix_and_the_pairs():

@@ -3,9 +3,9 @@ by one empty line: nothing between or around them."""
 
 from conftest import CASES_DIR
 
-from flexlink.output.operating_report import (format_operating, operating_summary,
+from flexlink.output.running.modes_at_speed import (format_operating, operating_summary,
                                               operating_text)
-from flexlink.studies.operating_point import OperatingRequest, scene_operating_modes
+from flexlink.studies.running.modes_at_speed import OperatingRequest, scene_operating_modes
 from flexlink.units import RPM
 
 

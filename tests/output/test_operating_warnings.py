@@ -6,8 +6,8 @@ import dataclasses
 
 from conftest import CASES_DIR
 
-from flexlink.output.operating_report import format_operating, operating_summary
-from flexlink.studies.operating_point import OperatingRequest, scene_operating_modes
+from flexlink.output.running.modes_at_speed import format_operating, operating_summary
+from flexlink.studies.running.modes_at_speed import OperatingRequest, scene_operating_modes
 from flexlink.units import RPM
 
 WARNINGS = ("link coupler: slenderness 4.2 below 10, shear matters (a warning for the test)",

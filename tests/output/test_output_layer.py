@@ -48,10 +48,10 @@ def studies_once():
     """The heavy studies (calibration, the stability checks, the periodic models with the
     stability map and the steady response computed on them) are computed once and reused by
     every run here: what is under test is how their results are written."""
-    import flexlink.studies.calibration_study
-    import flexlink.studies.stability
-    import flexlink.studies.stability_map
-    import flexlink.studies.steady_response
+    import flexlink.studies.calibration.calibration
+    import flexlink.studies.verification.self_checks
+    import flexlink.studies.running.stability_map
+    import flexlink.studies.running.steady_response
 
     def once(function, key):
         cache = {}
@@ -64,17 +64,17 @@ def studies_once():
         return cached
 
     with pytest.MonkeyPatch.context() as mp:
-        mp.setattr(flexlink.studies.calibration_study, "run_study", once(
-            flexlink.studies.calibration_study.run_study, lambda files, family, *a, **k: (
+        mp.setattr(flexlink.studies.calibration.calibration, "run_study", once(
+            flexlink.studies.calibration.calibration.run_study, lambda files, family, *a, **k: (
                 tuple(files), family)))
-        mp.setattr(flexlink.studies.stability, "run_checks", once(
-            flexlink.studies.stability.run_checks, lambda scene, **k: (scene.path,
+        mp.setattr(flexlink.studies.verification.self_checks, "run_checks", once(
+            flexlink.studies.verification.self_checks.run_checks, lambda scene, **k: (scene.path,
                                                                        k.get("slow"))))
         # a scene is loaded afresh by every run, a model is the cached one (kept alive by the
         # cache, so its id names it)
         for module, build, solve in (
-                (flexlink.studies.stability_map, "periodic_model", "stability_map"),
-                (flexlink.studies.steady_response, "forced_model", "steady_response")):
+                (flexlink.studies.running.stability_map, "periodic_model", "stability_map"),
+                (flexlink.studies.running.steady_response, "forced_model", "steady_response")):
             mp.setattr(module, build, once(getattr(module, build), lambda scene, *a, **k: (
                 scene.path, repr(a), repr(sorted(k.items())))))
             mp.setattr(module, solve, once(getattr(module, solve), lambda model, *a, **k: (

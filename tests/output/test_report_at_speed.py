@@ -69,9 +69,9 @@ def test_the_scene_crank_acceleration_reaches_torque_and_modes(tmp_path):
     # modes at speed are those of `torque` and `modes --speed` with it, not at constant speed
     from flexlink.output.report_data import at_speed_data
     from flexlink.scene import load_scene
-    from flexlink.studies.operating_point import operating_modes
+    from flexlink.studies.running.modes_at_speed import operating_modes
     from flexlink.studies.report_scene import at_speed
-    from flexlink.studies.torque import torque_study
+    from flexlink.studies.running.torque import torque_study
 
     text = (CASES_DIR / "case3.toml").read_text().replace(
         'base = "_table2.toml"', f'base = "{(CASES_DIR / "_table2.toml").as_posix()}"')

@@ -24,11 +24,11 @@ from flexlink.analysis.modal import analyze
 from flexlink.output.html_report import render_page
 from flexlink.output.report_data import scene_page
 from flexlink.scene import load_scene
-from flexlink.studies.cycle import modal_map
-from flexlink.studies.operating_point import operating_modes
+from flexlink.studies.cycle.modal_map import modal_map
+from flexlink.studies.running.modes_at_speed import operating_modes
 from flexlink.studies.report_scene import SPEED_STEPS, AtSpeed, ReportScene
-from flexlink.studies.scene_summary import summary_of
-from flexlink.studies.torque import torque_study
+from flexlink.studies.pose.scene_summary import summary_of
+from flexlink.studies.running.torque import torque_study
 
 CASE1 = CASES_DIR / "case1.toml"
 ELEMENTS, MODES = 2, 3

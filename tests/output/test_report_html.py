@@ -18,11 +18,11 @@ from flexlink.cli import main
 from flexlink.output.export_vtk import mode_set
 from flexlink.output.html_report import render_page
 from flexlink.analysis.mesh import COMMAND_LINE, MeshRule
-from flexlink.output.report import comparison_rows
+from flexlink.output.pose.scene_summary import comparison_rows
 from flexlink.output.report_data import mode_shapes, scene_page
 from flexlink.scene import load_scene
 from flexlink.studies.report_scene import ReportScene
-from flexlink.studies.scene_summary import summary_of
+from flexlink.studies.pose.scene_summary import summary_of
 
 from conftest import ROOT
 CASE1 = ROOT / "cases" / "case1.toml"
@@ -116,7 +116,7 @@ def test_page_has_each_section_it_has_data_for_and_escapes_text(case1):
 
 
 def test_cycle_section_shows_the_map_or_why_there_is_none(case1):
-    from flexlink.studies.cycle import modal_map
+    from flexlink.studies.cycle.modal_map import modal_map
 
     cycle = modal_map(case1.scene, 12, 3, 8)
     page = render_page([_page(case1, cycle)], FAKE_JS)

@@ -13,9 +13,9 @@ import numpy as np
 import pytest
 
 import flexlink.output.figures
-from flexlink.output.steady_response import (response_lines, sweep_csv, sweep_document,
+from flexlink.output.running.steady_response import (response_lines, sweep_csv, sweep_document,
                                              write_response)
-from flexlink.studies.steady_response import ResponseSweep, SteadyResponse, StrainPoint
+from flexlink.studies.running.steady_response import ResponseSweep, SteadyResponse, StrainPoint
 from flexlink.units import RPM
 
 POINTS = (StrainPoint("coupler", 0.06), StrainPoint("rocker", 0.1))
@@ -114,7 +114,7 @@ def test_sweep_marks_unstable_speeds_and_draws_every_campbell_line_in_range(tmp_
 
 def test_report_page_shows_the_documents_curves_and_peaks_in_its_units():
     from flexlink.output.html_report import _steady_response_part
-    from flexlink.output.steady_response import response_document
+    from flexlink.output.running.steady_response import response_document
 
     # strains 10 x the others' (up to 3000 microstrain): the table's 3 decimals then show
     # a factor off by 1e-6

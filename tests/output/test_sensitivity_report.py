@@ -7,10 +7,10 @@ v_39 exactly (numpy's linear quantile puts q at index q (n - 1) = 1 and 39)."""
 import numpy as np
 import pytest
 
-from flexlink.output.sensitivity_report import (alternative_document, alternative_line,
+from flexlink.output.calibration.sensitivity import (alternative_document, alternative_line,
                                                 format_sensitivity, sensitivity_document)
-from flexlink.studies.alternatives import Alternative
-from flexlink.studies.sensitivity import EndPoints, Interval, SceneSensitivity, Span
+from flexlink.studies.pose.alternatives import Alternative
+from flexlink.studies.calibration.sensitivity import EndPoints, Interval, SceneSensitivity, Span
 
 SPANS = (Span("section.width", "20 mm", "19 mm", "21 mm", "printing tolerance"),
          Span("joints.Kr", "rigid", "50 N m/rad", "rigid", "pin friction unknown"))

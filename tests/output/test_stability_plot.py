@@ -10,7 +10,7 @@ import pytest
 from matplotlib.colors import to_rgba
 
 import flexlink.output.figures
-from flexlink.output.stability_map import plot_stability
+from flexlink.output.running.stability_map import plot_stability
 from flexlink.units import RPM
 
 

@@ -6,8 +6,8 @@ import math
 
 import pytest
 
-from flexlink.output.crank_rocker_report import crank_rocker_document, crank_rocker_text
-from flexlink.studies.crank_rocker import crank_rocker
+from flexlink.output.pose.crank_rocker import crank_rocker_document, crank_rocker_text
+from flexlink.studies.pose.crank_rocker import crank_rocker
 
 
 def test_document_limits_and_ratios_follow_from_its_lengths():

@@ -7,8 +7,8 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-import flexlink.output.tracking_report as tracking_report
-from flexlink.studies.tracking import Event
+import flexlink.output.cycle.tracking as tracking_report
+from flexlink.studies.cycle.tracking import Event
 
 
 def test_events_are_marked_between_their_lines_at_their_pose(tmp_path, monkeypatch):

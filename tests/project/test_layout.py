@@ -248,3 +248,22 @@ def test_pyproject_lists_every_package():
     packages = {module_name(p) for p in PACKAGE_DIR.rglob("__init__.py")}
     assert set(config["packages"]) == packages | {"flexlink.materials.data"}
     assert config["package-dir"] == {"flexlink.materials.data": "materials"}
+
+
+# Renderers with no study module of their own name: the calibration study's Markdown report
+# beside its JSON document, and the line a synthesised scene prints above any result.
+RENDERERS_WITHOUT_A_NAMESAKE = {"calibration.calibration_report", "pose.synthesis_text"}
+
+
+def test_output_mirrors_studies_question_for_question():
+    """``output/<question>/<module>.py`` renders ``studies/<question>/<module>.py``: every
+    renderer grouped under a question has a study of the same name there, so the one that
+    renders a study is found by its path."""
+    studies = PACKAGE_DIR / "studies"
+    output = PACKAGE_DIR / "output"
+    questions = sorted(p.name for p in output.iterdir() if (p / "__init__.py").exists())
+    assert questions, "output/ has no question sub-packages"
+    orphans = [f"{q}.{p.stem}" for q in questions for p in sorted((output / q).glob("*.py"))
+               if p.stem != "__init__" and not (studies / q / p.name).exists()
+               and f"{q}.{p.stem}" not in RENDERERS_WITHOUT_A_NAMESAKE]
+    assert orphans == [], f"renderers with no study of their name: {orphans}"

@@ -11,7 +11,7 @@
   most 8^-2 = 1/64 of the actual one.
 - The residuals and backward errors the solver reports, against a recomputation from K and M
   assembled here and the returned eigenpairs.
-- The Monte Carlo 95 % interval (``studies.uncertainty``) against a case whose frequency
+- The Monte Carlo 95 % interval (``studies.calibration.uncertainty``) against a case whose frequency
   distribution is known in closed form: only the fibre modulus scatters (normal), the joints
   are rigid or free and the drive rigid, so every stiffness is proportional to the laminate
   modulus E_lam and f = f0 sqrt(E_lam(E_f) / E_lam(E_f0)), increasing in E_f. Checked: the
@@ -39,7 +39,7 @@ from flexlink.cli import main
 from flexlink.fe.assembly import assemble, rigid_elimination
 from flexlink.materials.mixtures import load_constituent, woven_composite
 from flexlink.scene import load_scene
-from flexlink.studies.uncertainty import Inputs, evaluate, monte_carlo, scene_inputs
+from flexlink.studies.calibration.uncertainty import Inputs, evaluate, monte_carlo, scene_inputs
 
 N_MODES = 3
 REFINE = 8  # the reference mesh: 8 x the chosen one

@@ -38,8 +38,8 @@ from flexlink.analysis.modal import Mass, analyze
 from flexlink.fe.assembly import assemble, rigid_elimination
 from flexlink.fe.energy import lumped_mass
 from flexlink.analysis.mesh import COMMAND_LINE, MeshRule
-from flexlink.output.report import comparison_rows
-from flexlink.studies.scene_summary import summary_of
+from flexlink.output.pose.scene_summary import comparison_rows
+from flexlink.studies.pose.scene_summary import summary_of
 
 N_MODES = 3
 # Fractions are ratios of energies that each carry round-off of about eps times the largest

@@ -6,7 +6,7 @@ import dataclasses
 import numpy as np
 import pytest
 
-from flexlink.studies.calibration import (FreeParameter, Problem, cross_validation, fit_many,
+from flexlink.studies.calibration.fit import (FreeParameter, Problem, cross_validation, fit_many,
                                   leave_one_out_problems, log_residuals, parse_free, predict)
 from flexlink.errors import InputError
 

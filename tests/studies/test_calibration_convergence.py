@@ -1,7 +1,7 @@
 """A fit whose starts stopped at the least-squares evaluation limit says so in the report, and
 says whether the reported (best) start is one of them."""
 
-from flexlink.output.calibration_report import _convergence_text
+from flexlink.output.calibration.calibration_report import _convergence_text
 
 
 def test_every_start_converged():

@@ -8,10 +8,10 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 
-import flexlink.studies.calibration as calibration
+import flexlink.studies.calibration.fit as calibration
 from flexlink.cli import main
 from flexlink.errors import NumericalError
-from flexlink.output.calibration_json import fit_document
+from flexlink.output.calibration.calibration import fit_document
 
 from conftest import CASES_DIR as CASES
 FORCED = "forced failure for the test"

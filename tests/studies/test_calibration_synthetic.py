@@ -16,14 +16,14 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-import flexlink.studies.calibration as calibration
-import flexlink.studies.uncertainty as uncertainty
-from flexlink.studies.calibration import (FreeParameter, Problem, cross_validation, fit_many,
+import flexlink.studies.calibration.fit as calibration
+import flexlink.studies.calibration.uncertainty as uncertainty
+from flexlink.studies.calibration.fit import (FreeParameter, Problem, cross_validation, fit_many,
                                           leave_one_out_problems)
-from flexlink.studies.calibration_study import StudySettings, run_study
-from flexlink.output.calibration_json import study_document
-from flexlink.output.calibration_report import report_markdown, summary_text
-from flexlink.studies.jacobian import CaseModes
+from flexlink.studies.calibration.calibration import StudySettings, run_study
+from flexlink.output.calibration.calibration import study_document
+from flexlink.output.calibration.calibration_report import report_markdown, summary_text
+from flexlink.studies.calibration.jacobian import CaseModes
 
 from conftest import CASES_DIR as CASES
 A = {"s1": np.array([3.0, 8.0, 24.0, 60.0]), "s2": np.array([4.5, 12.0, 30.0, 70.0])}  # [Hz m^2]
@@ -44,12 +44,12 @@ def law(scene, n_modes, elements=None, solver=None):
 
 
 def law_case(scene, n_modes, elements=None):
-    """Stand-in for studies.jacobian.case_modes: the law's frequencies, no model parts."""
+    """Stand-in for studies.calibration.jacobian.case_modes: the law's frequencies, no model parts."""
     return CaseModes(law(scene, n_modes)[0], (), tuple((0, k) for k in range(n_modes)))
 
 
 def law_sensitivities(load, values, names, cases, n_modes, elements, cache, upper=None):
-    """Stand-in for studies.jacobian.log_frequency_sensitivities: d ln f / d ln L1 = -2."""
+    """Stand-in for studies.calibration.jacobian.log_frequency_sensitivities: d ln f / d ln L1 = -2."""
     D = np.zeros((len(cases), n_modes, len(names)))
     D[..., list(names).index("L1")] = -2.0
     return D

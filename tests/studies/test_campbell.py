@@ -10,7 +10,7 @@ from click.testing import CliRunner
 from flexlink.cli import main
 from flexlink.commands._speeds import parse_speeds
 from flexlink.errors import InputError
-from flexlink.studies.campbell import Band, bands, critical_speeds, nearest_margin
+from flexlink.studies.cycle.bands import Band, bands, critical_speeds, nearest_margin
 from flexlink.units import RPM
 
 

@@ -6,7 +6,7 @@ import math
 from conftest import CASES_DIR
 
 from flexlink.scene import load_scene
-from flexlink.studies.campbell_study import campbell_study
+from flexlink.studies.cycle.campbell import campbell_study
 
 RPM = 2 * math.pi / 60
 

@@ -12,15 +12,15 @@ import numpy as np
 import pytest
 
 from flexlink.analysis.mesh import COMMAND_LINE, MeshRule
-from flexlink.studies.campbell import bands, critical_speeds, nearest_margin
-from flexlink.studies.campbell_study import CampbellStudy
-from flexlink.studies.convergence import (CHOICES, ConvergenceStudy, Level, relative_errors,
+from flexlink.studies.cycle.bands import bands, critical_speeds, nearest_margin
+from flexlink.studies.cycle.campbell import CampbellStudy
+from flexlink.studies.verification.convergence import (CHOICES, ConvergenceStudy, Level, relative_errors,
                                           richardson)
-from flexlink.studies.crank_rocker import crank_rocker
-from flexlink.studies.cycle import ModalMap, Resonance
-from flexlink.studies.cycle_study import CycleStudy
-from flexlink.studies.prb import PRBResult, PrbComparison
-from flexlink.studies.tracking import TrackedMap, Tracks
+from flexlink.studies.pose.crank_rocker import crank_rocker
+from flexlink.studies.cycle.modal_map import ModalMap, Resonance
+from flexlink.studies.cycle.cycle import CycleStudy
+from flexlink.studies.pose.prb import PRBResult, PrbComparison
+from flexlink.studies.cycle.tracking import TrackedMap, Tracks
 
 POSES, LINES = 6, 2
 Q = np.linspace(0.0, 2 * math.pi, POSES, endpoint=False)

@@ -11,7 +11,7 @@ from click.testing import CliRunner
 from flexlink import analyze, load_scene
 from flexlink.analysis.eigensolver import EigenSolver
 from flexlink.analysis.mesh import SPARSE_SOLVER as SPARSE
-from flexlink.studies import convergence as cv
+from flexlink.studies.verification import convergence as cv
 from flexlink.fe.assembly import assemble
 from flexlink.cli import main
 from flexlink.fe.energy import lumped_mass, twice_strain_energy

@@ -9,10 +9,10 @@ import pytest
 from flexlink.analysis.modal import analyze
 from flexlink.fe.model_at_pose import in_plane_eigen_scale
 from flexlink.fe.assembly import assemble, rigid_elimination
-from flexlink.studies.cycle import ModalMap, crossings, kinematic_cycle, modal_map, resonances, runs
+from flexlink.studies.cycle.modal_map import ModalMap, crossings, kinematic_cycle, modal_map, resonances, runs
 from flexlink.fe.model import JointSpec, LinkSpec, Section, Topology, build_model
 from flexlink.kinematics.motion import body_summary, limit_positions
-from flexlink.studies.prb import prb_frequency
+from flexlink.studies.pose.prb import prb_frequency
 from flexlink.scene import load_scene
 from flexlink.analysis.solve import solve_modes
 

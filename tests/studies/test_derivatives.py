@@ -1,4 +1,4 @@
-"""The difference formulas of studies/derivatives.py against closed forms: a power law
+"""The difference formulas of studies/calibration/derivatives.py against closed forms: a power law
 f = C p^a has d ln f / d ln p = a exactly, so any difference (forward or central, any step)
 must return a to round-off; the first-order sd of independent inputs adds in quadrature."""
 
@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from flexlink.studies.derivatives import (REL_STEP, central_log_slopes, central_points,
+from flexlink.studies.calibration.derivatives import (REL_STEP, central_log_slopes, central_points,
                                           first_order_sd, log_slope)
 
 EXPONENTS = {"E": 0.5, "density": -0.5, "thickness": 1.0, "vf": 0.37}  # a per input

@@ -9,11 +9,11 @@ import pytest
 
 from conftest import CASES_DIR
 from flexlink.scene import load_scene
-from flexlink.studies.campbell import bands
-from flexlink.studies.cycle import kinematic_cycle
-from flexlink.studies.dynamic_campbell import dynamic_campbell, dynamic_critical, project_pose
-from flexlink.studies.operating_point import operating_modes
-from flexlink.studies.tracking import tracked_map
+from flexlink.studies.cycle.bands import bands
+from flexlink.studies.cycle.modal_map import kinematic_cycle
+from flexlink.studies.running.dynamic_campbell import dynamic_campbell, dynamic_critical, project_pose
+from flexlink.studies.running.modes_at_speed import operating_modes
+from flexlink.studies.cycle.tracking import tracked_map
 
 RPM = 2 * math.pi / 60
 
@@ -129,7 +129,7 @@ def test_lines_cross_where_their_modes_cross_in_speed(case1, monkeypatch):
     # frequency order would swap the lines at the crossing.
     import dataclasses
 
-    from flexlink.studies import dynamic_campbell as studied
+    from flexlink.studies.running import dynamic_campbell as studied
 
     real, top, slope = studied.project_pose, 100.0, {}
 

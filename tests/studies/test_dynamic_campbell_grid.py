@@ -9,7 +9,7 @@ from conftest import CASES_DIR
 
 from flexlink.errors import InputError
 from flexlink.scene import load_scene
-from flexlink.studies.dynamic_campbell import dynamic_campbell
+from flexlink.studies.running.dynamic_campbell import dynamic_campbell
 
 RPM = 2 * math.pi / 60
 

@@ -1,4 +1,4 @@
-"""The calibration's Jacobian from eigenvalue sensitivities (studies/jacobian.py) against central
+"""The calibration's Jacobian from eigenvalue sensitivities (studies/calibration/jacobian.py) against central
 finite differences of the residuals on full evaluations, for every free input of each model
 family, both residual kinds, and a joint that keeps a bearing stiffness of its own (so it must
 not follow the global Kt)."""
@@ -7,8 +7,8 @@ not follow the global Kt)."""
 import numpy as np
 import pytest
 
-from flexlink.studies import calibration as cal
-from flexlink.studies.calibration_study import default_free
+from flexlink.studies.calibration import fit as cal
+from flexlink.studies.calibration.calibration import default_free
 
 from conftest import CASES_DIR as CASES
 SCENES = tuple(str(CASES / f"case{i}.toml") for i in (1, 3))
@@ -70,7 +70,7 @@ def test_followers_probe_downwards_where_the_upward_probe_fails():
     """At the top of a range the scaled-up load fails: the probe goes down instead and finds
     the same springs."""
     from flexlink.errors import InputError
-    from flexlink.studies.jacobian import followers
+    from flexlink.studies.calibration.jacobian import followers
 
     problem = cal.Problem(scenes=SCENES[:1], parameters=default_free("planar"), elements=4,
                           fixed=(("model.family", "planar"),))

@@ -1,5 +1,5 @@
 """The steady response of the linkage equals a long damped time integration from rest, run
-until the start-up transient has died out (``studies.steady_response``).
+until the start-up transient has died out (``studies.running.steady_response``).
 
 The equations are the model's own samples (M^-1 C, M^-1 G1, M^-1 K, M^-1 K2, M^-1 f at the
 poses), interpolated between poses by their Fourier series written out here and integrated by
@@ -22,7 +22,7 @@ from helpers import written_out_equations
 from scipy.integrate import solve_ivp
 
 from flexlink.scene import load_scene
-from flexlink.studies.steady_response import forced_model, steady_response
+from flexlink.studies.running.steady_response import forced_model, steady_response
 from flexlink.units import RPM
 
 TRANSIENT = 1e-7  # |mu|_max^N left of the start-up transient at the turn compared

@@ -15,7 +15,7 @@ from flexlink.errors import InputError
 from flexlink.fe.motions import Part
 from flexlink.fe.strip import StripProperties
 from flexlink.scene import load_scene
-from flexlink.studies.mac_comparison import mac_part
+from flexlink.studies.pose.mac_comparison import mac_part
 
 from helpers import single_beam
 

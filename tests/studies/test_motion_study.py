@@ -8,9 +8,9 @@ import math
 import pytest
 
 from flexlink.kinematics.motion import Extremes
-from flexlink.output.kinematics_report import kinematics_document
+from flexlink.output.cycle.rigid_motion import kinematics_document
 from flexlink.scene import load_scene
-from flexlink.studies.kinematics import BodyMotion, motion_study
+from flexlink.studies.cycle.rigid_motion import BodyMotion, motion_study
 
 from conftest import CASES_DIR
 

@@ -17,7 +17,7 @@ import pytest
 from conftest import ROOT
 from flexlink.fe.geometric import GeometricForm
 from flexlink.scene import load_scene
-from flexlink.studies.operating_point import Terms, operating_modes
+from flexlink.studies.running.modes_at_speed import Terms, operating_modes
 
 RECORD = json.loads((ROOT / "tests" / "data" / "operating_opensees.json").read_text())
 PRELOAD = dict(centrifugal=False, coriolis=False, acceleration=False)

@@ -12,7 +12,7 @@ from conftest import CASES_DIR, SCENES_DIR
 from flexlink.analysis.modal import analyze
 from flexlink.fe.model import Section
 from flexlink.scene import load_scene
-from flexlink.studies.operating_point import Terms, operating_modes
+from flexlink.studies.running.modes_at_speed import Terms, operating_modes
 
 ROTOR = SCENES_DIR / "rotor.toml"
 # In-plane (lead-lag) bending of a rotating cantilever without hub, Coriolis coupling left out:

@@ -10,13 +10,13 @@ from conftest import CASES_DIR
 from flexlink.analysis.damping import damping_ratios
 from flexlink.analysis.modal import analyze
 from flexlink.cli import main
-from flexlink.output.stability_map import stability_document, stability_lines
-from flexlink.output.steady_response import response_document, response_lines
+from flexlink.output.running.stability_map import stability_document, stability_lines
+from flexlink.output.running.steady_response import response_document, response_lines
 from flexlink.scene import load_scene
 from flexlink.analysis.damping import DEFAULT_DAMPING_RATIO
 from flexlink.analysis.periodic import periodic_model
-from flexlink.studies.stability_map import stability_map
-from flexlink.studies.steady_response import forced_model, steady_response
+from flexlink.studies.running.stability_map import stability_map
+from flexlink.studies.running.steady_response import forced_model, steady_response
 from flexlink.units import RPM
 
 CASE = CASES_DIR / "case1.toml"

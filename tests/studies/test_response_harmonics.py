@@ -1,4 +1,4 @@
-"""Harmonic balance's error estimate on a linkage (``studies.steady_response``): it bounds the
+"""Harmonic balance's error estimate on a linkage (``studies.running.steady_response``): it bounds the
 true error, measured against a solve with many more harmonics, and not by more than a stated
 factor.
 
@@ -13,7 +13,7 @@ import pytest
 from conftest import CASES_DIR
 
 from flexlink.scene import load_scene
-from flexlink.studies.steady_response import forced_model, periodic_solution
+from flexlink.studies.running.steady_response import forced_model, periodic_solution
 from flexlink.units import RPM
 
 

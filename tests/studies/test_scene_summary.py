@@ -11,8 +11,8 @@ from flexlink.analysis.identity import ModeIdentity
 from flexlink.analysis.mesh import COMMAND_LINE, MeshRule
 from flexlink.analysis.modal import analyze
 from flexlink.scene import load_scene
-from flexlink.studies.alternatives import Alternative
-from flexlink.studies.scene_summary import overall_mean_abs_error, scene_summary, summary_of
+from flexlink.studies.pose.alternatives import Alternative
+from flexlink.studies.pose.scene_summary import overall_mean_abs_error, scene_summary, summary_of
 
 from conftest import CASES_DIR
 

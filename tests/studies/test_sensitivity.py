@@ -7,7 +7,7 @@ import pytest
 
 from flexlink.errors import InputError
 from flexlink.scene import load_scene
-from flexlink.studies.sensitivity import Span, draws, end_points, interval, spans
+from flexlink.studies.calibration.sensitivity import Span, draws, end_points, interval, spans
 
 from conftest import CASES_DIR as CASES
 CASE2 = CASES / "case2.toml"

@@ -1,4 +1,4 @@
-"""The fast stability checks (``flexlink stability``, flexlink/studies/stability.py) judged here
+"""The fast stability checks (``flexlink stability``, flexlink/studies/verification/self_checks.py) judged here
 against closed forms and tolerances of the tests' own: each check reports the numbers it
 measured (``Check.details``), and these tests compare them with what physics demands. The
 product's own PASS/FAIL is for users; it is asserted only where the command's exit code is.
@@ -21,7 +21,7 @@ from flexlink.analysis.eigensolver import EigenSolver, Method
 from flexlink.analysis.modal import pose_modes
 from flexlink.cli import main
 from flexlink.scene.plausibility import SHEAR_WARN, SLENDER_LIMIT
-from flexlink.studies import stability as st
+from flexlink.studies.verification import self_checks as st
 
 CASE1 = CASES_DIR / "case1.toml"
 EPS = np.finfo(float).eps

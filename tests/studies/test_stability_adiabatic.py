@@ -3,16 +3,16 @@ import numpy as np
 import pytest
 from conftest import CASES_DIR
 
-from flexlink.output.stability_map import stability_document, stability_lines
+from flexlink.output.running.stability_map import stability_document, stability_lines
 from flexlink.scene import load_scene
-from flexlink.studies.stability_convergence import map_convergence
+from stability_convergence import map_convergence
 from flexlink.analysis.periodic import (
     ADIABATIC_STEPS,
     Integrator,
     periodic_model,
     speed_multipliers,
 )
-from flexlink.studies.stability_map import stability_map
+from flexlink.studies.running.stability_map import stability_map
 from flexlink.units import RPM
 
 

@@ -4,7 +4,7 @@ import pytest
 from conftest import CASES_DIR
 
 from flexlink.scene import load_scene
-from flexlink.studies.stability_convergence import map_convergence
+from stability_convergence import map_convergence
 from flexlink.analysis.periodic import Integrator
 
 SPEEDS = np.array([1500.0, 2200.0, 3000.0]) * np.pi / 30.0  # rad/s

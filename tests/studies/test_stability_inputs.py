@@ -6,7 +6,7 @@ from conftest import SCENES_DIR
 
 from flexlink import load_scene
 from flexlink.errors import InputError
-from flexlink.studies import stability as st
+from flexlink.studies.verification import self_checks as st
 
 
 def test_a_four_bar_given_by_lengths_becomes_the_change_point_one(tmp_path):

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 from conftest import CASES_DIR
 
-import flexlink.studies.stability as stability
+import flexlink.studies.verification.self_checks as stability
 from flexlink.scene import load_scene
 
 CASE1 = CASES_DIR / "case1.toml"

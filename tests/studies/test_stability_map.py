@@ -7,7 +7,7 @@ from conftest import CASES_DIR
 from flexlink.errors import InputError
 from flexlink.scene import load_scene
 from flexlink.analysis.periodic import PeriodicModel, periodic_model
-from flexlink.studies.stability_map import _nearest, stability_map
+from flexlink.studies.running.stability_map import _nearest, stability_map
 
 
 @pytest.fixture(scope="module")
@@ -65,7 +65,7 @@ def test_backwards_or_empty_speed_range_is_a_one_line_error(tmp_path, speeds, ex
 
 
 def test_document_lists_instability_ranges(model):
-    from flexlink.output.stability_map import stability_csv, stability_document
+    from flexlink.output.running.stability_map import stability_csv, stability_document
     result = stability_map(model, np.array([0.0, 2 * np.pi]))
     document = stability_document("case 1", result, model)
     assert document["instability_ranges"] == []

@@ -14,7 +14,7 @@ from conftest import CASES_DIR
 
 from flexlink.fe.model_at_pose import pose_model
 from flexlink.scene import load_scene
-from flexlink.studies import stability as st
+from flexlink.studies.verification import self_checks as st
 from flexlink.units import parse_quantity
 
 SHIFT = 2e-4  # relative, on eigenvalues: 1e-4 on frequencies, 100 x the promised 1e-6

@@ -24,7 +24,7 @@ from flexlink.scene import load_scene
 from flexlink.analysis.frame_motion import link_motion
 from flexlink.analysis.periodic import PeriodicModel
 from flexlink.commands.response import parse_point
-from flexlink.studies.steady_response import (
+from flexlink.studies.running.steady_response import (
     ForcedModel,
     StrainPoint,
     forced_model,

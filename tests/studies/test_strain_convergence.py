@@ -7,7 +7,7 @@ from conftest import CASES_DIR
 from flexlink.fe.assembly import reduced_columns, rigid_elimination
 from flexlink.fe.model_at_pose import pose_model
 from flexlink.scene import load_scene
-from flexlink.studies.strain_convergence import strain_convergence
+from strain_convergence import strain_convergence
 from flexlink.units import RPM
 
 

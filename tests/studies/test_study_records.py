@@ -5,9 +5,9 @@ import numpy as np
 import pytest
 from conftest import CASES_DIR
 
-from flexlink.studies.calibration import FitResult, Problem, parse_free
-from flexlink.studies.calibration_study import UncertaintySummary
-from flexlink.studies.uncertainty import Inputs, MonteCarlo, Sensitivities
+from flexlink.studies.calibration.fit import FitResult, Problem, parse_free
+from flexlink.studies.calibration.calibration import UncertaintySummary
+from flexlink.studies.calibration.uncertainty import Inputs, MonteCarlo, Sensitivities
 
 CASE2 = str(CASES_DIR / "case2.toml")
 

@@ -9,8 +9,8 @@ import pytest
 from conftest import CASES_DIR
 
 from flexlink.errors import InputError
-from flexlink.studies.calibration import Problem, measured, parse_free
-from flexlink.studies.uncertainty import evaluate, scene_inputs
+from flexlink.studies.calibration.fit import Problem, measured, parse_free
+from flexlink.studies.calibration.uncertainty import evaluate, scene_inputs
 
 CASE2 = str(CASES_DIR / "case2.toml")
 
@@ -25,10 +25,10 @@ def test_a_free_parameter_not_read_is_quoted(spec):
 def test_a_failing_sample_is_nan_and_logged_with_its_file_and_values(caplog):
     inputs = scene_inputs(CASE2, {}, vf_sd=0.05, thickness_sd=0.15e-3)
     bad = {"linkage.ground": "-1 mm"}  # a negative length: the scene refuses to load
-    with caplog.at_level(logging.INFO, logger="flexlink.studies.uncertainty"):
+    with caplog.at_level(logging.INFO, logger="flexlink.studies.calibration.uncertainty"):
         out = evaluate([CASE2], bad, inputs, inputs.nominal, 2, 4)
     assert out.shape == (1, 2) and np.isnan(out).all()
-    messages = [r.getMessage() for r in caplog.records if r.name == "flexlink.studies.uncertainty"]
+    messages = [r.getMessage() for r in caplog.records if r.name == "flexlink.studies.calibration.uncertainty"]
     assert len(messages) == 1
     assert messages[0].startswith(f"{CASE2} at {inputs.nominal}: ") and "linkage.ground" in messages[0]
 

@@ -14,7 +14,7 @@ from flexlink.cli import main
 from flexlink.errors import InputError
 from flexlink.scene import load_scene
 from flexlink.commands._speeds import operating_speed
-from flexlink.studies.torque import torque_study
+from flexlink.studies.running.torque import torque_study
 
 SHIPPED = sorted(CASES_DIR.glob("case*.toml")) + sorted(SCENES_DIR.glob("*.toml"))
 CASE3 = CASES_DIR / "case3.toml"

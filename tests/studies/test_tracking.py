@@ -1,5 +1,5 @@
 """MAC (analysis/mac.py) and modes tracked by shape through a sequence of poses
-(studies/tracking.py)."""
+(studies/cycle/tracking.py)."""
 
 import numpy as np
 import pytest
@@ -9,7 +9,7 @@ from flexlink.analysis.mac import (compare_models, link_frame, link_frame_mass, 
                                    pair_modes)
 from flexlink.analysis.modal import pose_modes
 from flexlink.scene import load_scene
-from flexlink.studies.tracking import track, tracked_map
+from flexlink.studies.cycle.tracking import track, tracked_map
 
 
 def _case1_modes(elements, n=5, crank=None):

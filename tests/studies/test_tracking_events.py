@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from flexlink.studies.tracking import PAIR_MAC, periodicity, track
+from flexlink.studies.cycle.tracking import PAIR_MAC, periodicity, track
 
 
 def test_lines_equal_at_the_first_pose_cross_only_where_their_order_changes():

@@ -1,4 +1,4 @@
-"""Tracking through singular poses (studies/tracking.py): the change-point four-bar of
+"""Tracking through singular poses (studies/cycle/tracking.py): the change-point four-bar of
 scenes/change_point.toml passes a flat pose at crank 180 deg, where a mechanism mode appears
 and the assembly branch can change. Properties that hold for any linkage: the tracked lines
 hold, at every pose, the same frequencies as the sorted map (so the lowest mode is never
@@ -13,9 +13,9 @@ from conftest import CASES_DIR, SCENES_DIR
 
 from flexlink.cli import main
 from flexlink.scene import load_scene
-from flexlink.studies.campbell import bands
-from flexlink.studies.cycle import modal_map
-from flexlink.studies.tracking import track, tracked_map
+from flexlink.studies.cycle.bands import bands
+from flexlink.studies.cycle.modal_map import modal_map
+from flexlink.studies.cycle.tracking import track, tracked_map
 
 CHANGE_POINT = SCENES_DIR / "change_point.toml"
 ELEMENTS = 4  # the properties are about tracking, not the mesh: a coarse one is enough
@@ -143,7 +143,7 @@ def test_cycle_command_reports_reseeds_and_periodicity(tmp_path):
 def test_the_mode_that_turns_into_a_mechanism_reaches_zero_hz_in_the_bands(maps):
     tracked, _ = maps
     from flexlink.analysis.modal import pose_modes
-    from flexlink.studies.tracking import vanishing_lines
+    from flexlink.studies.cycle.tracking import vanishing_lines
 
     scene = load_scene(CHANGE_POINT)
     # the claim checked by a solve between the samples: 0.01 deg before the flat pose the

@@ -6,7 +6,7 @@ import pytest
 
 from flexlink.analysis.families import elastic_modes
 from flexlink.scene import load_scene
-from flexlink.studies.uncertainty import (MonteCarlo, draw_samples, monte_carlo, scene_inputs,
+from flexlink.studies.calibration.uncertainty import (MonteCarlo, draw_samples, monte_carlo, scene_inputs,
                                           sensitivities)
 
 from conftest import CASES_DIR as CASES

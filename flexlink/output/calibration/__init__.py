@@ -1,0 +1,1 @@
+"""Renderings of the calibration studies (module for module as ``studies.calibration.fit``)."""

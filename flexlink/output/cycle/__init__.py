@@ -1,0 +1,1 @@
+"""Renderings of the cycle studies (module for module as ``studies.cycle.modal_map``)."""

@@ -1,0 +1,1 @@
+"""Renderings of the pose studies (module for module as ``studies.pose``)."""

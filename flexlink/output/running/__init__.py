@@ -1,0 +1,1 @@
+"""Renderings of the running-linkage studies (module for module as ``studies.running``)."""

@@ -1,0 +1,1 @@
+"""Renderings of the verification studies (module for module as ``studies.verification``)."""
