@@ -59,8 +59,8 @@ class Integrator(enum.StrEnum):
     omega_max <= step_phase), as accurate and many times slower below a few thousand rev/min
     (docs/critical-speeds.md, "Speed")."""
 
-    MAGNUS = "magnus"
     ADIABATIC = "adiabatic"
+    MAGNUS = "magnus"
 
 
 @dataclasses.dataclass(frozen=True)

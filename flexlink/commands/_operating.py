@@ -4,7 +4,7 @@ from __future__ import annotations
 
 
 def run_operating(files, folders, n_modes, elements, tol, at, as_json) -> None:
-    """Modes at the operating point ``at`` (a ``studies.operating_point.OperatingRequest``) of
+    """Modes at the operating point ``at`` (a ``studies.running.modes_at_speed.OperatingRequest``) of
     each scene file, on ``elements`` per link or the mesh rule at ``tol``; writes
     modes_at_speed.json and .csv to each file's folder in ``folders``."""
     import dataclasses

@@ -1,5 +1,5 @@
 """The at-speed options of ``flexlink modes`` (--speed and the options that need it), read into
-the operating point the study is asked for (``studies.operating_point.OperatingRequest``)."""
+the operating point the study is asked for (``studies.running.modes_at_speed.OperatingRequest``)."""
 
 from __future__ import annotations
 
@@ -35,7 +35,7 @@ operating_options = stacked(_OPTIONS)  # the at-speed options of ``modes``, as k
 
 def operating_request(speed, crank_angle, crank_acceleration, no_preload, no_centrifugal,
                       no_coriolis, geometric, static_only: bool = False):
-    """The operating point the options ask for (a ``studies.operating_point.OperatingRequest``),
+    """The operating point the options ask for (a ``studies.running.modes_at_speed.OperatingRequest``),
     or None for the static modes. The at-speed options without --speed are an error, and so are
     options of the static run (``static_only``: --sensitivity or --method given) with it."""
     from flexlink.errors import InputError

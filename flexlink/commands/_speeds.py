@@ -43,7 +43,8 @@ def checked_speed(speed: float, field: str = "--speed") -> float:
     """``speed`` [rad/s] if finite and >= 0 (the crank turns counter-clockwise), else
     InputError naming ``field``."""
     if not (math.isfinite(speed) and speed >= 0):
-        raise InputError(f"got {speed!r} rad/s", source=WHERE, field=field,
+        raise InputError(f"crank speed {rev_per_min(speed):.6g} rev/min ({speed:.6g} rad/s)",
+                         source=WHERE, field=field,
                          expected="a finite speed >= 0 (the crank turns counter-clockwise)")
     return float(speed)
 

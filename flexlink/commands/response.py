@@ -61,7 +61,7 @@ def command(scene_path, speed, speeds, count, n_modes, damping_ratio, elements, 
 
 def parse_point(text: str, field: str = "--at"):
     """"LINK:DISTANCE" (e.g. "coupler:60 mm", the distance from the link's start joint) as a
-    ``studies.steady_response.StrainPoint``."""
+    ``studies.running.steady_response.StrainPoint``."""
     from flexlink.errors import InputError
     from flexlink.studies.running.steady_response import StrainPoint
     from flexlink.units import parse_quantity

@@ -1,4 +1,4 @@
-"""Rendering of the speed-dependent Campbell diagram (``studies.dynamic_campbell``): JSON, CSV,
+"""Rendering of the speed-dependent Campbell diagram (``studies.running.dynamic_campbell``): JSON, CSV,
 text lines and the plot of each mode's band at each speed against the crank harmonics, beside
 the frozen-pose bands."""
 

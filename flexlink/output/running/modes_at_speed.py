@@ -1,4 +1,4 @@
-"""Modes at an operating point (``studies.operating_point``) as JSON, a text table and CSV:
+"""Modes at an operating point (``studies.running.modes_at_speed``) as JSON, a text table and CSV:
 each mode beside its paired static mode, the change at speed, its growth rate, and the
 preload's largest axial force. ``operating_summary`` declares the JSON's field names; the text
 and the CSV show its values."""

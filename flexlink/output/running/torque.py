@@ -1,4 +1,4 @@
-"""Rendering of ``studies.torque.TorqueCurve``: CSV (one row per crank angle), the JSON
+"""Rendering of ``studies.running.torque.TorqueCurve``: CSV (one row per crank angle), the JSON
 document, the text summary and the torque plot (``write_torque`` writes the CSV and the PNG)."""
 
 from __future__ import annotations

@@ -1,5 +1,5 @@
 """Speed-dependent Campbell diagram: each tracked mode's band over the crank cycle at each crank
-speed, from the operating-point modes (``studies.operating_point``) at every pose, against the
+speed, from the operating-point modes (``studies.running.modes_at_speed``) at every pose, against the
 frozen-pose (static) bands.
 
 At crank speed Omega and crank angular acceleration qddot every operating-point term of a pose
