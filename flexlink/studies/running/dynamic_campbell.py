@@ -45,6 +45,7 @@ import scipy.linalg as la
 import scipy.sparse as sp
 
 from flexlink.analysis.frame_motion import pose_speed_terms
+from flexlink.analysis.runs import true_runs
 from flexlink.analysis.mac import link_frame, link_frame_mass, mac_matrix, pair_modes
 from flexlink.analysis.modal import pose_modes
 from flexlink.analysis.solve import MECHANISM
@@ -330,19 +331,11 @@ def dynamic_critical(result: DynamicCampbell, margin: float = 0.05,
             f_n = n * w / (2 * math.pi)
             # <= 0 inside the band with its margin: the larger of the two edge excesses
             c = np.maximum(low[:, j] * (1 - margin) - f_n, f_n - high[:, j] * (1 + margin))
-            inside = c <= 0
-            k = 0
-            while k < len(w):
-                if not inside[k]:
-                    k += 1
-                    continue
-                start = k
-                while k + 1 < len(w) and inside[k + 1]:
-                    k += 1
+            for start, stop in true_runs(c <= 0):
+                k = stop - 1
                 a = w[start] if start == 0 else _root(w, c, start - 1)
                 b = w[k] if k == len(w) - 1 else _root(w, c, k)
                 out.append(CriticalSpeed(j + 1, n, float(a), float(b)))
-                k += 1
     return out
 
 

@@ -12,6 +12,7 @@ import numpy as np
 
 from flexlink.analysis.periodic import (ADIABATIC_STEPS, STEP_PHASE, Integrator, PeriodicModel,
                                         multipliers_by)
+from flexlink.analysis.runs import true_runs
 from flexlink.parallel import on_cluster, run_tasks, workers
 from flexlink.studies.array_shapes import check_shape
 
@@ -117,11 +118,8 @@ def _speed_chunk(model: PeriodicModel, speeds: np.ndarray, steps: int, step_phas
 def _ranges(model, speeds, modulus, rate, floor, harmonics):
     """Runs of unstable speeds, each labelled with the nearest parametric resonance, or as a
     "divergence" (no modes, harmonic 0) when the stiffness is indefinite somewhere in it."""
-    unstable = np.concatenate([[False], modulus > 1.0, [False]])
-    starts, ends = np.flatnonzero(np.diff(unstable.astype(int)) == 1), \
-        np.flatnonzero(np.diff(unstable.astype(int)) == -1)
     out = []
-    for a, b in zip(starts, ends):
+    for a, b in true_runs(modulus > 1.0):
         low, high = speeds[a], speeds[b - 1]
         middle = 0.5 * (low + high) / (2.0 * np.pi)  # rev/s
         modes, k, kind = _nearest(model.checked, middle, harmonics)
