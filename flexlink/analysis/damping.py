@@ -22,6 +22,7 @@ import dataclasses
 from collections.abc import Mapping
 
 import numpy as np
+import scipy.linalg
 
 from flexlink.analysis.identity import energy_parts
 from flexlink.errors import InputError
@@ -131,3 +132,28 @@ def basis_damping(scene: Scene, given: float | None, omegas: np.ndarray,
                         f"default {DEFAULT_DAMPING_RATIO:g} for every basis vector (the scene "
                         "declares no damping; light structural damping of a bolted metal "
                         "frame, plausible 0.002 to 0.05)")
+
+
+def deformation_damping(scene: Scene, given: float | None, mass: np.ndarray,
+                        stiffness: np.ndarray, models, shapes: np.ndarray) -> np.ndarray:
+    """C (poses, n, n) of a basis sampled over the turn, each pose's from that pose's own
+    modes in the basis: C = M Phi diag(2 zeta_i omega_i) Phi^T M with K Phi = M Phi omega^2,
+    Phi^T M Phi = I, and zeta_i by ``basis_damping``'s rule over the pose's own modes (a given
+    ratio, the scene's [damping] table over their frequencies, or the loss factors weighted by
+    their strain energy in the pose's frame model). So the damping acts on the rate of the
+    pose's own elastic deformation: Rayleigh damping is alpha M + beta K of the pose (exactly,
+    the modes spanning the basis), and a motion that strains nothing at the pose (the turning
+    of the links' frames carrying the pins' translations, which the scene pose's modes would
+    read as a stretch of the pin springs) is not damped.
+
+    mass, stiffness (poses, n, n): M and the elastic K (no speed terms) in the basis;
+    ``models``: the frame model at each pose; ``shapes`` (poses, n_dofs, n): the basis in each
+    pose's global DOFs."""
+    out = np.empty_like(np.asarray(mass, dtype=float))
+    for p, (M, K) in enumerate(zip(mass, stiffness)):
+        values, Phi = scipy.linalg.eigh(K, M)  # M-orthonormal modes of the pose, lowest first
+        omegas = np.sqrt(np.maximum(values, 0.0))
+        ratios = basis_damping(scene, given, omegas, models[p], shapes[p] @ Phi).ratios
+        MPhi = M @ Phi
+        out[p] = (MPhi * (2.0 * ratios * omegas)) @ MPhi.T
+    return out

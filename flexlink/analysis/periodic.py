@@ -13,9 +13,15 @@ per unit speed (``analysis.frame_motion.pose_speed_terms``), and interpolated in
 Fourier series (``analysis.fourier``: exact for a trigonometric polynomial of degree below
 poses/2), in co-rotating node coordinates (``fe.co_rotating``). They are projected on the basis
 of ``analysis.pose_basis`` (the static modes of the poses over the turn, compressed by SVD and
-checked against every pose's own lowest frequencies), given as the scene pose's Ritz vectors,
-in which the damping is modal: C = diag(2 zeta_i omega_i), a ratio per vector
-(``analysis.damping.basis_damping``). The period is one revolution, T = 2 pi / Omega.
+checked against every pose's own lowest frequencies), given as the scene pose's Ritz vectors.
+The damping C(theta) is each pose's own (``analysis.damping.deformation_damping``): modal over
+the pose's modes in the basis, so it acts on the rate of the elastic deformation at that pose.
+A damping fixed in the basis, diag(2 zeta_i omega_i) of the scene pose's Ritz vectors at every
+pose, would instead act on the basis's own motion: the links' co-rotating frames turn against
+each other over the turn, so the pins' translations carried with them read, in the scene
+pose's terms, as stretches of the stiff pin springs, and the stiff vectors' damping (large
+under Rayleigh's beta K) resists the quasi-static response itself. The period is one
+revolution, T = 2 pi / Omega.
 """
 
 from __future__ import annotations
@@ -28,7 +34,7 @@ import logging
 import numpy as np
 
 from flexlink.analysis import adiabatic
-from flexlink.analysis.damping import basis_damping, checked_ratio
+from flexlink.analysis.damping import basis_damping, checked_ratio, deformation_damping
 from flexlink.analysis.eigensolver import AUTO_DENSE_MAX
 from flexlink.analysis.floquet import FloquetResult, floquet, monodromy
 from flexlink.analysis.fourier import fourier_coefficients, fourier_series
@@ -69,8 +75,10 @@ class PeriodicModel:
 
     mass, coriolis (per rad/s), stiffness (at Omega = 0), speed_stiffness (per (rad/s)^2):
     (poses, n, n); frequencies (n,): the basis vectors' Ritz frequencies at the scene's pose
-    [Hz], which set the modal damping C = diag(2 zeta_i omega_i); damping_ratio (n,) [-]: zeta_i
-    per basis vector (a single number is taken for every vector); basis: how the basis was
+    [Hz]; damping_ratio (n,) [-]: zeta_i per basis vector at the scene's pose (a single number
+    is taken for every vector); damping_samples (poses, n, n): C at each pose (None: the modal
+    C = diag(2 zeta_i omega_i) of equations given directly in modal coordinates, the same at
+    every pose); basis: how the basis was
     built and its check (``analysis.pose_basis``), None for equations given directly; then the
     first ``checked`` frequencies are those the check covers (all of them without a basis);
     damping_source: where the ratios came from, for the outputs. The forcing, None for free
@@ -92,10 +100,13 @@ class PeriodicModel:
     external_forcing: np.ndarray | None = None
     pose_models: tuple = ()
     pose_shapes: np.ndarray | None = None
+    damping_samples: np.ndarray | None = None
 
     def __post_init__(self):
         poses, n = len(self.angles), len(self.frequencies)
-        for name in ("mass", "coriolis", "stiffness", "speed_stiffness"):
+        for name in ("mass", "coriolis", "stiffness", "speed_stiffness", "damping_samples"):
+            if name == "damping_samples" and self.damping_samples is None:
+                continue
             if np.shape(getattr(self, name)) != (poses, n, n):
                 raise ValueError(f"PeriodicModel.{name} has shape "
                                  f"{np.shape(getattr(self, name))}, expected ({poses}, {n}, {n})")
@@ -126,7 +137,10 @@ class PeriodicModel:
 
     @property
     def damping(self) -> np.ndarray:
-        """C (poses, n, n) at each sampled pose: the modal damping diag(2 zeta_i omega_i)."""
+        """C (poses, n, n) at each sampled pose: ``damping_samples``, else the modal damping
+        diag(2 zeta_i omega_i) at every pose."""
+        if self.damping_samples is not None:
+            return self.damping_samples
         diagonal = np.diag(2.0 * self.damping_ratio * 2.0 * np.pi * self.frequencies)
         return np.broadcast_to(diagonal, self.mass.shape)
 
@@ -192,14 +206,22 @@ class PeriodicModel:
 
     @functools.cached_property
     def energy_scale(self) -> np.ndarray:
-        """R (n, n) [rad/s]: the symmetric square root of the turn's mean M^-1 K at rest
-        (positive definite: the model refuses an indefinite stiffness at rest). In the
+        """R (n, n) [rad/s]: the symmetric square root of the turn's mean of
+        L^-1 sym(K) L^-T at rest, M = L L^T (positive definite at every pose: the model
+        refuses an indefinite stiffness at rest; the symmetric part of M^-1 K itself need not
+        be, where M varies over the turn and K is stiff, as with rigid pins). In the
         coordinates (R q, q') the stiffness and velocity parts of the state weigh alike, so
         A's norm is near its spectral radius there (in (q, q') it is up to 65 times larger
         on Table II case 1, and each doubling is one more squaring in every step's
         exponential)."""
-        mean = self.per_mass[:, 2].mean(axis=0)
+        L = np.linalg.cholesky(self.mass)
+        K = 0.5 * (self.stiffness + np.swapaxes(self.stiffness, -1, -2))
+        weighted = np.linalg.solve(L, np.swapaxes(np.linalg.solve(L, K), -1, -2))
+        mean = weighted.mean(axis=0)
         values, vectors = np.linalg.eigh(0.5 * (mean + mean.T))
+        if values[0] <= 0.0:
+            raise NumericalError(f"the mean stiffness over the turn is indefinite (lowest "
+                                 f"eigenvalue {values[0]:.3g} (rad/s)^2)")
         return (vectors * np.sqrt(values)) @ vectors.T
 
     @property
@@ -308,7 +330,9 @@ def periodic_model(scene: Scene, n_modes: int = 6, poses: int = 37,
                           damping_ratio=damping.ratios, basis=basis,
                           damping_source=damping.source, inertia_forcing=loads[0] @ V,
                           external_forcing=loads[1] @ V, pose_models=tuple(models),
-                          pose_shapes=shapes)
+                          pose_shapes=shapes,
+                          damping_samples=deformation_damping(scene, damping_ratio, M, K, models,
+                                                              shapes))
     floor = model.stiffness_floor(0.0)
     if floor <= 0.0:
         raise NumericalError(
