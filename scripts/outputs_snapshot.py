@@ -60,8 +60,8 @@ def run(target: Path, names: list[str]) -> None:
     target.mkdir(parents=True, exist_ok=True)
     jobs = [(name, args, scene) for name, args, prb in RUNS for scene in SCENES
             if (not prb or "[prb]" in scene.read_text()) and (not names or name in names)]
-    if not names or "stability" in names:
-        jobs.append(("stability", ["stability"], None))
+    if not names or "verify" in names:
+        jobs.append(("verify", ["verify"], None))
     for name, args, scene in jobs:
         with tempfile.TemporaryDirectory() as out:
             if scene is None:

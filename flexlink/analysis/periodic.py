@@ -78,7 +78,8 @@ class PeriodicModel:
     [Hz]; damping_ratio (n,) [-]: zeta_i per basis vector at the scene's pose (a single number
     is taken for every vector); damping_samples (poses, n, n): C at each pose (None: the modal
     C = diag(2 zeta_i omega_i) of equations given directly in modal coordinates, the same at
-    every pose); basis: how the basis was
+    every pose); elastic_stiffness (poses, n, n): K alone, without the external loads'
+    preload (None: not given); basis: how the basis was
     built and its check (``analysis.pose_basis``), None for equations given directly; then the
     first ``checked`` frequencies are those the check covers (all of them without a basis);
     damping_source: where the ratios came from, for the outputs. The forcing, None for free
@@ -101,11 +102,13 @@ class PeriodicModel:
     pose_models: tuple = ()
     pose_shapes: np.ndarray | None = None
     damping_samples: np.ndarray | None = None
+    elastic_stiffness: np.ndarray | None = None
 
     def __post_init__(self):
         poses, n = len(self.angles), len(self.frequencies)
-        for name in ("mass", "coriolis", "stiffness", "speed_stiffness", "damping_samples"):
-            if name == "damping_samples" and self.damping_samples is None:
+        for name in ("mass", "coriolis", "stiffness", "speed_stiffness", "damping_samples",
+                     "elastic_stiffness"):
+            if name in ("damping_samples", "elastic_stiffness") and getattr(self, name) is None:
                 continue
             if np.shape(getattr(self, name)) != (poses, n, n):
                 raise ValueError(f"PeriodicModel.{name} has shape "
@@ -206,22 +209,15 @@ class PeriodicModel:
 
     @functools.cached_property
     def energy_scale(self) -> np.ndarray:
-        """R (n, n) [rad/s]: the symmetric square root of the turn's mean of
-        L^-1 sym(K) L^-T at rest, M = L L^T (positive definite at every pose: the model
-        refuses an indefinite stiffness at rest; the symmetric part of M^-1 K itself need not
-        be, where M varies over the turn and K is stiff, as with rigid pins). In the
+        """R (n, n) [rad/s]: the symmetric square root of the turn's mean mass-weighted
+        stiffness at rest, L sym(K) L^T (L L^T = M^-1, ``_floor_pencil``: positive definite
+        at every point, as the model refuses it otherwise; the symmetric part of M^-1 K need
+        not be, where M varies over the turn and K is stiff: the wiper, rigid pins). In the
         coordinates (R q, q') the stiffness and velocity parts of the state weigh alike, so
         A's norm is near its spectral radius there (in (q, q') it is up to 65 times larger
         on Table II case 1, and each doubling is one more squaring in every step's
         exponential)."""
-        L = np.linalg.cholesky(self.mass)
-        K = 0.5 * (self.stiffness + np.swapaxes(self.stiffness, -1, -2))
-        weighted = np.linalg.solve(L, np.swapaxes(np.linalg.solve(L, K), -1, -2))
-        mean = weighted.mean(axis=0)
-        values, vectors = np.linalg.eigh(0.5 * (mean + mean.T))
-        if values[0] <= 0.0:
-            raise NumericalError(f"the mean stiffness over the turn is indefinite (lowest "
-                                 f"eigenvalue {values[0]:.3g} (rad/s)^2)")
+        values, vectors = np.linalg.eigh(self._floor_pencil[0].mean(axis=0))
         return (vectors * np.sqrt(values)) @ vectors.T
 
     @property
@@ -330,7 +326,7 @@ def periodic_model(scene: Scene, n_modes: int = 6, poses: int = 37,
                           damping_ratio=damping.ratios, basis=basis,
                           damping_source=damping.source, inertia_forcing=loads[0] @ V,
                           external_forcing=loads[1] @ V, pose_models=tuple(models),
-                          pose_shapes=shapes,
+                          pose_shapes=shapes, elastic_stiffness=K,
                           damping_samples=deformation_damping(scene, damping_ratio, M, K, models,
                                                               shapes))
     floor = model.stiffness_floor(0.0)

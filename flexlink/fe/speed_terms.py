@@ -84,7 +84,8 @@ class SpeedTerms:
     ``start_preload`` (None when the motion had no start terms); ``external_preload``
     (K_g of the constant external loads). The full-size nodal loads (n_dofs,) [N, N m] and
     their axial forces (per link (elements,) [N]) per unit: ``inertia_loads``,
-    ``start_loads``, ``external_loads``; ``*_forces`` likewise."""
+    ``start_loads``, ``external_loads``; ``*_forces`` likewise, and ``*_displacement`` the
+    frame's static answer (n_dofs,) [m, rad] to each, held by its drive."""
 
     centrifugal: object
     circulatory: object
@@ -95,10 +96,13 @@ class SpeedTerms:
     external_loads: np.ndarray
     inertia_forces: tuple[np.ndarray, ...]
     external_forces: tuple[np.ndarray, ...]
+    inertia_displacement: np.ndarray | None = None
+    external_displacement: np.ndarray | None = None
     start_circulatory: object = None
     start_preload: object = None
     start_loads: np.ndarray | None = None
     start_forces: tuple[np.ndarray, ...] | None = None
+    start_displacement: np.ndarray | None = None
 
     def __post_init__(self):
         n = np.shape(self.centrifugal)
@@ -208,10 +212,12 @@ def speed_terms(model: FrameModel, stiffness, T, assemble, motion: UnitMotion,
         s_rows, s_cols, s_rot = rotating_entries(model, np.zeros_like(motion.start_alpha),
                                                  motion.start_alpha)
         start = dict(start_circulatory=assemble(s_rows, s_cols, s_rot[2]),
-                     start_preload=preload(2), start_loads=loads[2], start_forces=forces[2])
+                     start_preload=preload(2), start_loads=loads[2], start_forces=forces[2],
+                     start_displacement=u[:, 2])
     return SpeedTerms(centrifugal=assemble(rows, cols, rot[0]),
                       circulatory=assemble(rows, cols, rot[2]),
                       coriolis=assemble(rows, cols, rot[1]), preload=preload(0),
                       external_preload=preload(1), inertia_loads=loads[0],
                       external_loads=loads[1], inertia_forces=forces[0],
-                      external_forces=forces[1], **start)
+                      external_forces=forces[1], inertia_displacement=u[:, 0],
+                      external_displacement=u[:, 1], **start)

@@ -365,6 +365,89 @@ def _steady_response_part(page: dict, figures: list, response: dict | None) -> s
                      numeric_from=1))
 
 
+def life_section(page: dict, figures: list) -> str:
+    """Stress and life at the operating speed (``flexlink life`` with its default conditions),
+    for a scene that declares a speed and whose materials give strengths; "" otherwise."""
+    life = page.get("life")
+    if life is None:
+        return ""
+    if "unavailable" in life:
+        return f"<h3>Stress and life</h3><p>Not available: {_e(life['unavailable'])}</p>"
+    data = [{"type": "scatter", "mode": "lines", "x": life["crank_deg"], "y": c["stress_MPa"],
+             "name": c["link"], "hovertemplate": "%{x:.1f} deg: %{y:.4g} MPa<extra></extra>"}
+            for c in life["curves"]]
+    layout = {"xaxis": {"title": {"text": "crank angle [deg]"}, "range": [0, 360], "dtick": 60},
+              "yaxis": {"title": {"text": "stress at the link's peak point [MPa]"}},
+              "legend": {"orientation": "h", "y": -0.25}}
+    rows = []
+    for link in life["links"]:
+        p = link["peak"]
+        if link["kind"] == "metal":
+            margin = _number(link["safety_factor"], 3) if link["safety_factor"] else "inf"
+            hours = ("unlimited" if link["unlimited_life"]
+                     else _number(link["life_hours"], 3))
+        else:
+            margin = _number(min(link["max_stress_ratio"], link["tsai_wu_ratio"]), 3) + "*"
+            hours = "none*"
+        rows.append([_e(link["link"]), _number(p["stress_MPa"], 4),
+                     f"{_number(p['position_m'] * 1e3, 4)} mm, {_e(p['fibre'])}, "
+                     f"{_number(p['crank_deg'], 1)} deg",
+                     _number(link["range"]["stress_MPa"], 4), _number(link["range_mean_MPa"], 4),
+                     margin, hours])
+    c = life["conditions"]
+    composite = any(link["kind"] == "composite" for link in life["links"])
+    return ("<h3>Stress and life</h3>"
+            + f"<p>At {_number(life['speed_rev_per_min'], 1)} rev/min. Included: "
+              f"{_e(life['included'])}. Assumed: {_e(life['assumptions'])}. Parts: "
+              f"{_e(c['surface'])} surface, {_number(c['temperature_C'], 1)} C, reliability "
+              f"{_number(c['reliability'], 3)}, {_e(c['mean_stress'])} mean-stress correction "
+              "(docs/life.md).</p>"
+            + _figure(page, figures, "life", data, layout)
+            + _table(["link (worst first)", "peak [MPa]", "where, when", "range [MPa]",
+                      "mean [MPa]", "safety factor", "life [h]"], rows, numeric_from=1)
+            + (f'<p class="note">* composite: the smaller ply strength ratio (maximum stress, '
+               f"Tsai-Wu); {_e(next(k['note'] for k in life['links'] if k['kind'] == 'composite'))}</p>"
+               if composite else ""))
+
+
+def correlation_section(page: dict, figures: list) -> str:
+    """A modal test correlated with the scene (``flexlink report --test``): the MAC heat map,
+    the pairs with their frequency errors, the unpaired modes and aliasing warnings; "" (no
+    section) without a test."""
+    c = page.get("correlation")
+    if c is None:
+        return ""
+    mac = c["mac"]
+    data = [{"type": "heatmap", "z": mac, "zmin": 0, "zmax": 1, "colorscale": "Viridis",
+             "x": [f"model {m['mode']} ({m['Hz']:.0f} Hz)" for m in c["model"]["modes"]],
+             "y": [f"test {m['mode']} ({m['Hz']:.0f} Hz)" for m in c["test"]["modes"]],
+             "hovertemplate": "%{y} / %{x}: MAC %{z:.3f}<extra></extra>"}]
+    layout = {"yaxis": {"autorange": "reversed"}, "height": 120 + 28 * len(mac),
+              "margin": {"l": 130, "r": 15, "t": 20, "b": 110}}
+    rows = [[str(p["test"]), _number(p["test_Hz"]), str(p["model"]), _number(p["model_Hz"]),
+             f"{p['error_pct']:+.2f}", f"{p['mac']:.3f}", _e(p["quality"]),
+             "-" if p["test_damping"] is None else _number(100 * p["test_damping"]),
+             _e(p["model_label"])] for p in c["pairs"]]
+    notes = [f"Unpaired test mode {u['mode']} ({_number(u['Hz'])} Hz): best MAC "
+             f"{u['best_mac']:.3f} with model mode {u['best_model']}." for u in c["unpaired_test"]]
+    if c["unpaired_model"]:
+        notes.append("Model modes not paired: " + ", ".join(
+            f"{u['mode']} ({_number(u['Hz'])} Hz, {_e(u['label'])})" for u in c["unpaired_model"])
+            + ".")
+    notes += [f"Warning: test modes {a['a']} and {a['b']} have autoMAC {a['auto_mac']:.3f}: the "
+              "sensors cannot tell them apart (spatial aliasing)." for a in c["aliased"]]
+    t = c["thresholds"]
+    return ("<h3>Test correlation</h3>"
+            f"<p>Test {_e(c['test']['file'])}: {c['test']['sensors']} sensors, "
+            f"{c['test']['channels']} channels. Modes paired by shape (MAC, optimal "
+            f"assignment): &ge; {t['good']} good, {t['doubtful']}-{t['good']} doubtful, below "
+            "not paired.</p>"
+            + _figure(page, figures, "mac", data, layout)
+            + _table(["test", "test Hz", "model", "model Hz", "error %", "MAC", "quality",
+                      "damping %", "model mode"], rows, 0)
+            + "".join(f'<p class="note">{n}</p>' for n in notes))
+
+
 def files_section(page: dict, figures: list) -> str:
     files = page["files"]
     links = [f'<li><a href="{_e(p)}">{_e(p)}</a></li>' for p in files["vtu"] + files["pvd"]]
@@ -384,7 +467,8 @@ def _failures(messages) -> str:
 
 SECTIONS = (pose_section, frequency_section, assumptions_section, sensitivity_section,
             mesh_section, modes_section,
-            cycle_section, at_speed_section, files_section)
+            cycle_section, at_speed_section, life_section, correlation_section,
+            files_section)
 
 
 def render_page(pages: list[dict], plotly_js: str, title: str = "flexlink report",
