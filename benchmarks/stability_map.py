@@ -24,11 +24,8 @@ from pathlib import Path  # noqa: E402
 import numpy as np  # noqa: E402
 
 from flexlink.scene import load_scene  # noqa: E402
-from flexlink.studies.running.stability_map import (  # noqa: E402
-    Integrator,
-    periodic_model,
-    stability_map,
-)
+from flexlink.analysis.periodic import Integrator, periodic_model  # noqa: E402
+from flexlink.studies.running.stability_map import stability_map  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
 GOAL = 10.0  # s

@@ -39,7 +39,7 @@ import numpy as np  # noqa: E402
 
 from flexlink.analysis.harmonic_balance import harmonic_balance  # noqa: E402
 from flexlink.scene import load_scene  # noqa: E402
-from flexlink.studies.running.stability_map import speed_multipliers  # noqa: E402
+from flexlink.analysis.periodic import speed_multipliers  # noqa: E402
 from flexlink.studies.running.steady_response import (  # noqa: E402
     TOLERANCE,
     forced_model,

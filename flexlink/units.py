@@ -12,6 +12,8 @@ import re
 
 from flexlink.errors import InputError
 
+RPM = 2 * math.pi / 60.0  # [rad/s] per rev/min: the one definition of the factor
+
 # dimension -> {unit spelling: factor to SI}
 UNITS: dict[str, dict[str, float]] = {
     "length": {"m": 1.0, "cm": 1e-2, "mm": 1e-3, "um": 1e-6, "in": 0.0254},
@@ -26,7 +28,7 @@ UNITS: dict[str, dict[str, float]] = {
     "area": {"m^2": 1.0, "mm^2": 1e-6, "cm^2": 1e-4},
     "second moment": {"m^4": 1.0, "mm^4": 1e-12, "cm^4": 1e-8},
     "frequency": {"Hz": 1.0, "kHz": 1e3},
-    "angular speed": {"rad/s": 1.0, "rev/min": 2 * math.pi / 60.0, "rpm": 2 * math.pi / 60.0,
+    "angular speed": {"rad/s": 1.0, "rev/min": RPM, "rpm": RPM,
                       "rev/s": 2 * math.pi, "Hz": 2 * math.pi},  # Hz: turns per second
     "angular acceleration": {"rad/s^2": 1.0, "rev/s^2": 2 * math.pi},
     "torque": {"N*m": 1.0, "N m": 1.0, "Nm": 1.0, "N*mm": 1e-3},
@@ -85,9 +87,6 @@ def parse_range(text: object, dimension: str, *, source: str | None = None,
         low = f"{low} {high_read.group(2)}"
     return (parse_quantity(low, dimension, source=source, field=field),
             parse_quantity(high, dimension, source=source, field=field))
-
-
-RPM = UNITS["angular speed"]["rev/min"]  # [rad/s] per rev/min
 
 
 def rev_per_min(omega: float) -> float:

@@ -1,8 +1,9 @@
 """Run every command on every shipped scene with --json and keep the documents, or compare two
 such snapshots: a refactoring must leave every answer the same.
 
-    python scripts/outputs_snapshot.py run DIR        # one JSON file per (command, scene)
-    python scripts/outputs_snapshot.py compare A B    # differences, timings left out
+    python scripts/outputs_snapshot.py run DIR [NAME...]  # one JSON file per (command, scene)
+    python scripts/outputs_snapshot.py compare A B [RTOL]  # differences, timings left out;
+                                                           # numbers within RTOL relative
 
 Run from the checkout whose ``flexlink`` is to be judged (PYTHONPATH=$PWD). The options keep
 the whole run to a few minutes on a shared machine (few poses, no pictures, short fits).
@@ -31,6 +32,16 @@ RUNS = (
     ("kinematics", ["kinematics", "--poses", "36"], False),
     ("prb", ["prb"], True),
     ("report", ["report", "--cycle-poses", "4"], False),
+    # the running linkage
+    ("modes-at-speed", ["modes", "--speed", "600 rev/min"], False),
+    ("modes-at-speed-accelerating", ["modes", "--speed", "2000 rev/min", "--crank-angle",
+                                     "30 deg", "--crank-acceleration", "50 rad/s^2"], False),
+    ("stability-map", ["stability-map", "--speeds", "100:3000 rev/min", "--count", "6"], False),
+    ("response", ["response", "--speed", "600 rev/min"], False),
+    ("response-sweep", ["response", "--speeds", "0:1200 rev/min", "--count", "3"], False),
+    ("torque", ["torque", "--speed", "600 rev/min", "--poses", "36"], False),
+    ("campbell-dynamic", ["campbell", "--poses", "12", "--speeds", "0:3000 rev/min",
+                          "--dynamic", "--speed-steps", "4"], False),
 )
 # keys whose values are wall times, sizes or paths of this run
 VOLATILE = {"seconds", "elapsed", "out", "files", "file", "folder", "path", "report", "written",
@@ -44,11 +55,13 @@ def _command(args: list[str], scene: Path, out: Path) -> list[str]:
     return [sys.executable, "-m", "flexlink.cli", *args, str(scene), "--json", "--out", str(out)]
 
 
-def run(target: Path) -> None:
+def run(target: Path, names: list[str]) -> None:
+    """The runs named in ``names`` (all when empty) into ``target``."""
     target.mkdir(parents=True, exist_ok=True)
     jobs = [(name, args, scene) for name, args, prb in RUNS for scene in SCENES
-            if not prb or "[prb]" in scene.read_text()]
-    jobs.append(("verify", ["verify"], None))
+            if (not prb or "[prb]" in scene.read_text()) and (not names or name in names)]
+    if not names or "verify" in names:
+        jobs.append(("verify", ["verify"], None))
     for name, args, scene in jobs:
         with tempfile.TemporaryDirectory() as out:
             if scene is None:
@@ -74,7 +87,10 @@ def _volatile(key: str) -> bool:
     return key in VOLATILE or key.endswith(("_seconds", "_s", "_time"))
 
 
-def differences(a, b, where: str = "") -> list[str]:
+def differences(a, b, where: str = "", rtol: float = 0.0, scale: float = 0.0) -> list[str]:
+    """Where documents ``a`` and ``b`` differ: numbers by more than ``rtol`` of the larger of
+    the two or of ``scale`` (the largest magnitude in the list they sit in: a curve's round-off
+    is judged against its peak), anything else when not equal."""
     if isinstance(a, dict) and isinstance(b, dict):
         out = []
         for key in sorted(set(a) | set(b)):
@@ -83,16 +99,26 @@ def differences(a, b, where: str = "") -> list[str]:
             if key not in a or key not in b:
                 out.append(f"{where}/{key}: only in {'A' if key in a else 'B'}")
             else:
-                out += differences(a[key], b[key], f"{where}/{key}")
+                out += differences(a[key], b[key], f"{where}/{key}", rtol)
         return out
     if isinstance(a, list) and isinstance(b, list):
         if len(a) != len(b):
             return [f"{where}: length {len(a)} vs {len(b)}"]
-        return [d for i, (x, y) in enumerate(zip(a, b)) for d in differences(x, y, f"{where}[{i}]")]
+        numbers = [abs(x) for x in a + b if _number(x)]
+        peak = max(numbers, default=0.0)
+        return [d for i, (x, y) in enumerate(zip(a, b))
+                for d in differences(x, y, f"{where}[{i}]", rtol, peak)]
+    if _number(a) and _number(b):
+        same = a == b or abs(a - b) <= rtol * max(abs(a), abs(b), scale)
+        return [] if same else [f"{where}: {a!r} vs {b!r}"]
     return [] if a == b else [f"{where}: {a!r} vs {b!r}"[:300]]
 
 
-def compare(first: Path, second: Path) -> int:
+def _number(x) -> bool:
+    return isinstance(x, (int, float)) and not isinstance(x, bool)
+
+
+def compare(first: Path, second: Path, rtol: float = 0.0) -> int:
     bad = 0
     for path in sorted(first.glob("*.json")):
         other = second / path.name
@@ -100,7 +126,8 @@ def compare(first: Path, second: Path) -> int:
             print(f"{path.name}: missing in {second}")
             bad += 1
             continue
-        found = differences(json.loads(path.read_text()), json.loads(other.read_text()))
+        found = differences(json.loads(path.read_text()), json.loads(other.read_text()),
+                            rtol=rtol)
         if found:
             bad += 1
             print(f"{path.name}: {len(found)} differences")
@@ -111,9 +138,10 @@ def compare(first: Path, second: Path) -> int:
 
 
 if __name__ == "__main__":
-    if sys.argv[1:2] == ["run"] and len(sys.argv) == 3:
-        run(Path(sys.argv[2]))
-    elif sys.argv[1:2] == ["compare"] and len(sys.argv) == 4:
-        sys.exit(compare(Path(sys.argv[2]), Path(sys.argv[3])))
+    if sys.argv[1:2] == ["run"] and len(sys.argv) >= 3:
+        run(Path(sys.argv[2]), sys.argv[3:])
+    elif sys.argv[1:2] == ["compare"] and len(sys.argv) in (4, 5):
+        sys.exit(compare(Path(sys.argv[2]), Path(sys.argv[3]),
+                         float(sys.argv[4]) if len(sys.argv) == 5 else 0.0))
     else:
         sys.exit(__doc__)

@@ -67,7 +67,7 @@ def main() -> None:
                     float(max(abs(op.frequencies / f - 1))),
                 "largest_axial_force_N": op.largest_axial.value,
                 "largest_axial_force_link": op.largest_axial.link}
-        cases[path] = {"speed_rev_min": rpm, "meshes": meshes}
+        cases[path] = {"speed_rev_per_min": rpm, "meshes": meshes}
     record = {
         "what": "lowest natural frequencies [Hz] under the inertia preload at a crank speed "
                 "(preload only: no centrifugal, Coriolis or angular-acceleration terms), "

@@ -66,12 +66,12 @@ def written_out_equations(model, speed):
     between poses by their Fourier series, independently of the study's own integrator."""
     p = model.periodic
     n, N = len(p.frequencies), len(p.angles)
-    damping = np.diag(2 * p.damping_ratio * 2 * np.pi * p.frequencies)
+    damping = p.damping
     k = np.fft.fftfreq(N, 1.0 / N)
     c, g, k0, k2 = (np.linalg.solve(p.mass, a) for a in (
-        np.broadcast_to(damping, p.mass.shape), p.coriolis, p.stiffness, p.speed_stiffness))
+        damping, p.coriolis, p.stiffness, p.speed_stiffness))
     f2, fe = (np.linalg.solve(p.mass, f[..., None])[..., 0]
-              for f in (model.inertia_forcing, model.external_forcing))
+              for f in (p.inertia_forcing, p.external_forcing))
     # at one speed the equations are linear in the samples: q'' = forcing - [K | D] (q, q'),
     # and the Fourier series of that sum is the sum of the series, so one series of n (2n + 1)
     # entries is summed a call (the integrator calls this tens of thousands of times)

@@ -15,8 +15,8 @@ from collections.abc import Iterable
 import numpy as np
 
 from flexlink.scene import Scene
-from flexlink.studies.running.stability_map import (ADIABATIC_STEPS, STEP_PHASE, InstabilityRange,
-                                            Integrator, periodic_model, stability_map)
+from flexlink.analysis.periodic import ADIABATIC_STEPS, STEP_PHASE, Integrator, periodic_model
+from flexlink.studies.running.stability_map import InstabilityRange, stability_map
 
 
 @dataclasses.dataclass(frozen=True)

@@ -57,6 +57,7 @@ from scipy.fft import irfft, next_fast_len, rfft
 from scipy.linalg import lapack
 from scipy.sparse.linalg import LinearOperator, gmres
 
+from flexlink.analysis.fourier import fourier_values
 from flexlink.errors import NumericalError
 
 log = logging.getLogger(__name__)
@@ -86,11 +87,7 @@ class HarmonicSolution:
 
     def at(self, theta, derivative: int = 0) -> np.ndarray:
         """d^j q / dtheta^j (m, n) at angles theta (m,) [rad], j = ``derivative``."""
-        k = np.arange(self.harmonics + 1)
-        weights = np.full(k.shape, 2.0)
-        weights[0] = 1.0
-        scaled = (weights * (1j * k) ** derivative)[:, None] * self.coefficients
-        return (np.exp(1j * np.outer(np.asarray(theta, dtype=float), k)) @ scaled).real
+        return fourier_values(self.coefficients, np.ravel(theta), derivative)
 
 
 def harmonic_balance(stiffness: np.ndarray, damping: np.ndarray, forcing: np.ndarray,

@@ -164,3 +164,12 @@ def compare_models(model_a: FrameModel, shapes_a: np.ndarray, model_b: FrameMode
                          f"{', '.join(names_b)}): MAC compares shapes link by link",
                          field="links", expected="the same link names in the same order")
     return mac_matrix(va, vb, sp.diags(wa))
+
+
+def complex_mac(static_shapes: np.ndarray, shapes: np.ndarray, M) -> np.ndarray:
+    """(k_static, k) MAC of real static shapes against complex ones, mass weighted:
+    |phi^T M x|^2 / ((phi^T M phi)(x^H M x))."""
+    MP, MX = M @ static_shapes, M @ shapes
+    cross = np.abs(static_shapes.T @ MX) ** 2
+    return cross / np.outer(np.einsum("ij,ij->j", static_shapes, MP),
+                            np.einsum("ij,ij->j", shapes.conj(), MX).real)

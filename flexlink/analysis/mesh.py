@@ -31,6 +31,7 @@ DEFAULT_TOL = 1e-6  # relative frequency tolerance of the default mesh rule
 # the energy-refined frequencies do not depend on the eigen solver, so the fast one serves
 SPARSE_SOLVER = EigenSolver(Method.SPARSE)
 COMMAND_LINE, SCENE, TOLERANCE = "command line (-e)", "scene (mesh.elements_per_link)", "tolerance"
+FIXED = "fixed"  # a command's own default mesh, with the reason and the error estimate it has
 
 
 @dataclasses.dataclass(frozen=True)
@@ -44,6 +45,7 @@ class MeshRule:
     tol: float | None = None
     estimate: float | None = None
     history: tuple[tuple[int, float], ...] = ()
+    reason: str | None = None  # why a FIXED mesh is enough
 
     def as_dict(self) -> dict:
         """For a command's JSON output."""
@@ -51,10 +53,18 @@ class MeshRule:
         if self.rule == TOLERANCE:
             out.update(tolerance=self.tol, estimated_relative_error=self.estimate,
                        richardson_order=ORDER)
+        if self.rule == FIXED:
+            out.update(reason=self.reason, estimated_relative_error=self.estimate,
+                       richardson_order=ORDER)
         return out
 
     def describe(self) -> str:
         """One line for a command's text output."""
+        if self.rule == FIXED:
+            error = ("not estimated" if self.estimate is None
+                     else f"estimated discretisation error {self.estimate:.1e}")
+            return (f"mesh: {self.elements} elements/link, fixed ({error}, order-{ORDER} "
+                    f"Richardson estimate): {self.reason}")
         if self.rule != TOLERANCE:
             return (f"mesh: {self.elements} elements/link from the {self.rule}; discretisation "
                     "error not estimated (omit it to use --tol)")
@@ -86,17 +96,8 @@ def mesh_for_tolerance(scene, n_modes: int, tol: float = DEFAULT_TOL,
     sparse one serves for the estimate whatever solver the final answer uses. A tolerance
     below what double precision reaches for this model is refused (NumericalError) with the
     best estimate reached."""
-    points = scene.rigid_pose().joints
-
     def frequencies(elements):
-        topology = scene.topology(elements)
-        if roundoff_ratio(topology, points) > LOST_LIMIT:
-            return None
-        try:
-            modes = pose_modes(topology, points, n_modes, solver)[1]
-        except NumericalError:  # past the precision limit: the solver's own check refused it
-            return None
-        return modes.elastic_frequencies[:n_modes]
+        return _frequencies(scene, n_modes, elements, solver)
 
     previous = frequencies(start)
     elements, history = start, []
@@ -120,3 +121,29 @@ def mesh_for_tolerance(scene, n_modes: int, tol: float = DEFAULT_TOL,
     raise NumericalError(f"no mesh up to {max_elements} elements per link meets the relative "
                          f"frequency tolerance {tol:g} (best estimate {best[1]:.2g} at {best[0]} "
                          "elements/link)")
+
+
+def _frequencies(scene, n_modes: int, elements: int, solver: EigenSolver = SPARSE_SOLVER):
+    """The lowest ``n_modes`` elastic frequencies [Hz] at the scene's pose on ``elements`` per
+    link, None past what double precision holds."""
+    points = scene.rigid_pose().joints
+    topology = scene.topology(elements)
+    if roundoff_ratio(topology, points) > LOST_LIMIT:
+        return None
+    try:
+        modes = pose_modes(topology, points, n_modes, solver)[1]
+    except NumericalError:  # past the precision limit: the solver's own check refused it
+        return None
+    return modes.elastic_frequencies[:n_modes]
+
+
+def fixed_mesh(scene, n_modes: int, elements: int, reason: str) -> MeshRule:
+    """A command's own default of ``elements`` per link, with the ``reason`` it is enough and
+    the Richardson estimate of its relative frequency error (from ``elements`` / 2 to
+    ``elements``, None where either cannot be solved)."""
+    coarse = _frequencies(scene, n_modes, max(1, elements // 2)) if elements > 1 else None
+    fine = _frequencies(scene, n_modes, elements)
+    estimate = None
+    if coarse is not None and fine is not None:
+        estimate = float((np.abs(fine - coarse) / (2**ORDER - 1) / fine).max())
+    return MeshRule(elements, FIXED, estimate=estimate, reason=reason)

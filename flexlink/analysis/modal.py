@@ -10,6 +10,7 @@ import time
 from collections.abc import Mapping
 
 import numpy as np
+import scipy.sparse as sp
 
 from flexlink.analysis.precision import refuse_too_fine
 from flexlink.choices import parse_choice
@@ -62,6 +63,16 @@ class PoseSystem:
     T: object
     eliminated: bool
     seconds: dict[str, float]
+
+    def eliminated_pair(self) -> tuple:
+        """(T^T K T, T^T M T), the rigid constraints eliminated: as the solve had them when it
+        eliminated them (dense), else from its full sparse K and M."""
+        if self.eliminated:
+            return self.K, self.M
+        if self.T is None:
+            return sp.csr_matrix(self.K), sp.csr_matrix(self.M)
+        T = sp.csr_matrix(self.T)
+        return (T.T @ self.K @ T).tocsr(), (T.T @ self.M @ T).tocsr()
 
 
 def pose_modes(topology: Topology, points: Mapping[str, tuple[float, float]], n_modes: int,

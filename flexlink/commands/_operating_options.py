@@ -39,7 +39,9 @@ def operating_request(speed, crank_angle, crank_acceleration, no_preload, no_cen
     or None for the static modes. The at-speed options without --speed are an error, and so are
     options of the static run (``static_only``: --sensitivity or --method given) with it."""
     from flexlink.errors import InputError
-    from flexlink.studies.running.modes_at_speed import OperatingRequest, Terms
+    from flexlink.commands._speeds import parse_acceleration, parse_speed
+    from flexlink.fe.speed_terms import Terms
+    from flexlink.studies.running.modes_at_speed import OperatingRequest
     from flexlink.units import parse_quantity
 
     if speed is None:
@@ -55,13 +57,10 @@ def operating_request(speed, crank_angle, crank_acceleration, no_preload, no_cen
                          source="command line", field="--speed",
                          expected="--speed without --sensitivity and --method")
 
-    def given(text, kind, field):
-        return None if text is None else parse_quantity(text, kind, source="command line",
-                                                        field=field)
     return OperatingRequest(
-        speed=given(speed, "angular speed", "--speed"),
-        crank_angle=given(crank_angle, "angle", "--crank-angle"),
-        crank_acceleration=given(crank_acceleration, "angular acceleration",
-                                 "--crank-acceleration"),
+        speed=parse_speed(speed),
+        crank_angle=None if crank_angle is None else parse_quantity(
+            crank_angle, "angle", source="command line", field="--crank-angle"),
+        crank_acceleration=parse_acceleration(crank_acceleration),
         terms=Terms(preload=not no_preload, centrifugal=not no_centrifugal,
                     coriolis=not no_coriolis, geometric=geometric))

@@ -124,41 +124,6 @@ def map_parallel_options(sorted_map: bool):
     return stacked(options)
 
 
-def speeds_option(help_text: str = "Crank speed range, e.g. '0:3000 rev/min'."):
-    """--speeds LOW:HIGH UNIT, parsed by ``parse_speeds``."""
-    return click.option("--speeds", required=True, help=help_text)
-
-
-def parse_speeds(text: str) -> tuple[float, float]:
-    """"LOW:HIGH UNIT" (or "LOW UNIT:HIGH UNIT") -> (low, high) [rad/s] (``units.parse_range``)."""
-    from flexlink.units import parse_range
-
-    return parse_range(text, "angular speed", source="command line", field="--speeds")
-
-
-def crank_acceleration_option(command):
-    """--crank-acceleration of the bands at speed (``campbell --dynamic``)."""
-    return click.option(
-        "--crank-acceleration", "acceleration", default=None, metavar="ACCELERATION",
-        help="With --dynamic: the crank's angular acceleration at every speed, e.g. "
-             "'50 rad/s^2' [default: 0, constant speed].")(command)
-
-
-def parse_crank_acceleration(text: str | None, dynamic: bool) -> float:
-    """--crank-acceleration [rad/s^2] (0 when not given); it needs --dynamic."""
-    from flexlink.errors import InputError
-    from flexlink.units import parse_quantity
-
-    if text is None:
-        return 0.0
-    if not dynamic:
-        raise InputError("a crank acceleration is for the bands at speed: give --dynamic too",
-                         source="command line", field="--crank-acceleration",
-                         expected="--dynamic with --crank-acceleration")
-    return parse_quantity(text, "angular acceleration", source="command line",
-                          field="--crank-acceleration")
-
-
 def odd_count(ctx, param, value: int) -> int:
     """Click callback: the option's count must be odd (every harmonic sampled with its pair)."""
     if value % 2 == 0:
@@ -177,18 +142,58 @@ def deprecated_for(new: str):
     return note
 
 
+def _damping_ratio(ctx, param, value):
+    """Click callback: a damping ratio in [0, 1), refused as flexlink refuses bad input."""
+    from flexlink.errors import InputError
+
+    if value is not None and not (math.isfinite(value) and 0.0 <= value < 1.0):
+        raise InputError(f"damping ratio {value} is outside [0, 1)", source="command line",
+                         field="--damping-ratio", expected="a ratio in [0, 1)")
+    return value
+
+
 def periodic_basis_options(command):
-    """-n/--modes and --damping-ratio of the commands on the periodic equations at speed
-    (``stability-map``, ``response``): the static modes the reduced basis must reproduce and
-    the modal damping in it (None when not given: ``studies.running.periodic_damping`` picks)."""
+    """-n/--modes, --damping-ratio and the mesh options of the commands on the periodic
+    equations at speed (``stability-map``, ``response``): the static modes the basis must
+    reproduce, the modal damping in it (None when not given: ``analysis.damping`` picks), and
+    -e/--tol (``periodic_mesh``)."""
     options = (
         click.option("-n", "--modes", "n_modes", default=6, show_default=True,
-                     type=click.IntRange(1, 50), help="Static modes of the reduced basis."),
-        click.option("--damping-ratio", default=None, type=float,
+                     type=click.IntRange(1, 50), help="Static modes of the basis."),
+        click.option("--damping-ratio", default=None, type=float, callback=_damping_ratio,
                      help="Modal damping ratio in [0, 1) for every basis vector [default: the "
                           "scene's [damping] table, else the loss factors its materials "
-                          "write, else 0.01]."))
+                          "write, else 0.01]."),
+        click.option("-e", "--elements", default=None, type=click.IntRange(1, 100000),
+                     help="Elements per link (default: the scene's mesh.elements_per_link if "
+                          "it pins one, else the mesh rule with --tol, else each link's own "
+                          "mesh, with its error estimate in the output)."),
+        click.option("--tol", default=None, type=TOLERANCE,
+                     help="Relative frequency tolerance: the coarsest of 8, 16, 32, ... "
+                          "elements/link whose Richardson error estimate meets it."))
     return stacked(options)(command)
+
+
+PERIODIC_MESH_REASON = (
+    "the periodic equations keep five dense matrices of the whole frame per sampled pose, so "
+    "the default tolerance's mesh (128 elements/link on Table II's cases) would cost about 64 "
+    "times the memory and time; the results are read from a basis of the lowest modes, whose "
+    "frequency error this estimate bounds; -e or --tol choose the mesh")
+
+
+def periodic_mesh(scene, n_modes: int, elements: int | None, tol: float | None):
+    """(elements per link for the periodic equations, None: each link's own mesh; the
+    ``analysis.mesh.MeshRule`` saying why): -e, else the scene's pinned mesh, else the mesh
+    rule at ``tol`` when given, else each link's own mesh (``analysis.mesh.fixed_mesh``)."""
+    from flexlink.analysis.mesh import choose_mesh, fixed_mesh
+
+    if elements is not None or scene.elements_per_link is not None or tol is not None:
+        rule = choose_mesh(scene, n_modes, elements, tol)
+        return rule.elements, rule
+    counts = {link.elements for link in scene.topology().links}
+    return None, fixed_mesh(scene, n_modes, max(counts), PERIODIC_MESH_REASON
+                            + ("" if len(counts) == 1 else
+                               f"; the links' own meshes differ: {sorted(counts)}"))
 
 
 harmonics_option = click.option(

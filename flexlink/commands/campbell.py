@@ -5,9 +5,9 @@ from __future__ import annotations
 import click
 
 from flexlink.commands._failures import names_scene
-from flexlink.commands._options import (crank_acceleration_option, harmonics_option, json_option,
-                                       map_parallel_options, mesh_options, out_option,
-                                       parse_crank_acceleration, parse_speeds, speeds_option)
+from flexlink.commands._options import (harmonics_option, json_option, map_parallel_options,
+                                       mesh_options, out_option)
+from flexlink.commands._speeds import crank_acceleration_option, speeds_option
 
 
 @click.command("campbell")
@@ -26,7 +26,8 @@ from flexlink.commands._options import (crank_acceleration_option, harmonics_opt
                    "centrifugal, Coriolis), and how they move the critical speed ranges.")
 @click.option("--speed-steps", default=50, show_default=True, type=click.IntRange(2, 100000),
               help="Crank speeds across the range for --dynamic.")
-@crank_acceleration_option
+@crank_acceleration_option("With --dynamic: the crank's angular acceleration at every speed, "
+                           "e.g. '50 rad/s^2' [default: 0, constant speed].", "acceleration")
 @map_parallel_options(sorted_map=False)
 @json_option
 @out_option
@@ -40,10 +41,16 @@ def command(scene_path, speeds, n_modes, poses, elements, tol, margin, harmonics
     from flexlink.output.cycle.campbell import campbell_document, campbell_text, write_campbell
     from flexlink.parallel import use_scheduler
     from flexlink.studies.cycle.campbell import campbell_study
+    from flexlink.errors import InputError
     from ._progress import progress_bar
+    from ._speeds import parse_acceleration, parse_speeds
     from ._written import folder_and_scene, publish
 
-    window, qdd = parse_speeds(speeds), parse_crank_acceleration(acceleration, dynamic)
+    if acceleration is not None and not dynamic:
+        raise InputError("a crank acceleration is for the bands at speed: give --dynamic too",
+                         source="command line", field="--crank-acceleration",
+                         expected="--dynamic with --crank-acceleration")
+    window, qdd = parse_speeds(speeds), parse_acceleration(acceleration) or 0.0
     folder, scene = folder_and_scene(out_dir, scene_path)
     with use_scheduler(scheduler):
         study = campbell_study(scene, window, n_modes, poses, elements, tol, margin, harmonics,

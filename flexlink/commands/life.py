@@ -7,7 +7,7 @@ import click
 
 from flexlink.analysis.fatigue import MeanStress
 from flexlink.commands._failures import names_scene
-from flexlink.commands._options import EnumChoice, json_option, out_option, parse_speeds
+from flexlink.commands._options import EnumChoice, json_option, out_option
 from flexlink.materials.fatigue import Surface
 
 
@@ -56,14 +56,12 @@ def command(scene_path, speed, speeds, count, hours, reliability, surface, tempe
     from flexlink.errors import InputError
     from flexlink.fileio import write_atomic
     from flexlink.output.life import life as render
-    from flexlink.studies.cycle.bands import _check_speeds
     from flexlink.studies.life.convergence import peak_error
     from flexlink.studies.life.life import (Conditions, check_strengths, life_study,
                                            safety_sweep)
     from flexlink.studies.life.stress_field import stress_field, stress_model
-    from flexlink.studies.running.modes_at_speed import crank_speed
-    from flexlink.units import parse_quantity
     from ._progress import progress_bar
+    from ._speeds import operating_speed, parse_speed, parse_speeds
     from ._written import folder_and_scene, publish
 
     if speed is not None and speeds is not None:
@@ -71,10 +69,8 @@ def command(scene_path, speed, speeds, count, hours, reliability, surface, tempe
                          field="--speeds")
     conditions = Conditions(surface=surface, temperature=temperature, reliability=reliability,
                             mean_stress=mean_stress, hours=hours)
-    sweep = None if speeds is None else np.linspace(*_check_speeds(parse_speeds(speeds)),
-                                                     count)
-    one = speed and parse_quantity(speed, "angular speed", source="command line",
-                                   field="--speed")
+    sweep = None if speeds is None else np.linspace(*parse_speeds(speeds), count)
+    one = parse_speed(speed)
     folder, scene = folder_and_scene(out_dir, scene_path)
     check_strengths(scene)
     model = stress_model(scene, n_modes, damping_ratio=damping_ratio,
@@ -88,7 +84,7 @@ def command(scene_path, speed, speeds, count, hours, reliability, surface, tempe
         publish(folder / "life_speeds.json", document, [path],
                 "\n".join(render.margin_lines(document)), as_json)
         return
-    field = stress_field(model, crank_speed(scene, one))
+    field = stress_field(model, operating_speed(scene, one)[0])
     study = life_study(scene, model, field, conditions)
     error = (peak_error(scene, field, model.elements[0], n_modes, damping_ratio=damping_ratio)
              if estimate else None)

@@ -5,14 +5,14 @@ from __future__ import annotations
 import click
 
 from flexlink.commands._failures import names_scene
-from flexlink.commands._options import (json_option, out_option, parse_speeds,
-                                       periodic_basis_options)
+from flexlink.commands._options import json_option, out_option, periodic_basis_options
+from flexlink.commands._speeds import speed_option, speeds_option
 
 
 @click.command("response")
 @click.argument("scene_path", metavar="SCENE", type=click.Path())
-@click.option("--speed", help="One crank speed, e.g. '600 rev/min' (default: the scene's).")
-@click.option("--speeds", help="A sweep of crank speeds instead, e.g. '60:3000 rev/min'.")
+@speed_option("One crank speed, e.g. '600 rev/min' (default: the scene's).")
+@speeds_option("A sweep of crank speeds instead, e.g. '60:3000 rev/min'.", required=False)
 @click.option("--count", default=100, show_default=True, type=click.IntRange(2, 100000),
               help="Speeds over the --speeds range.")
 @periodic_basis_options
@@ -22,7 +22,8 @@ from flexlink.commands._options import (json_option, out_option, parse_speeds,
 @json_option
 @out_option
 @names_scene("scene_path")
-def command(scene_path, speed, speeds, count, n_modes, damping_ratio, points, as_json, out_dir):
+def command(scene_path, speed, speeds, count, n_modes, damping_ratio, elements, tol, points,
+            as_json, out_dir):
     """Steady bending strain and deflection of SCENE's links over one crank turn at a speed,
     or their peaks against speed. Writes response.png, .csv and .json to OUT/<scene>/."""
     import numpy as np
@@ -30,23 +31,44 @@ def command(scene_path, speed, speeds, count, n_modes, damping_ratio, points, as
     from flexlink.errors import InputError
     from flexlink.output.running.steady_response import response_lines, write_response
     from flexlink.studies.running import steady_response as study
-    from flexlink.studies.cycle.bands import _check_speeds
-    from flexlink.studies.running.modes_at_speed import crank_speed
-    from flexlink.units import parse_quantity
+    from ._options import periodic_mesh
     from ._progress import progress_bar
+    from ._speeds import operating_speed, parse_speed, parse_speeds
     from ._written import folder_and_scene, publish
 
     if speed is not None and speeds is not None:
-        raise InputError("give --speed or --speeds, not both", field="--speeds")
-    sweep = None if speeds is None else np.linspace(*_check_speeds(parse_speeds(speeds)), count)
-    one = speed and parse_quantity(speed, "angular speed", source="command line", field="--speed")
-    at = tuple(study.parse_point(p) for p in points) or None
+        raise InputError("give --speed or --speeds, not both", source="command line",
+                         field="--speeds")
+    sweep = None if speeds is None else np.linspace(*parse_speeds(speeds), count)
+    one = parse_speed(speed)
+    at = tuple(parse_point(p) for p in points) or None
     folder, scene = folder_and_scene(out_dir, scene_path)
-    model = study.forced_model(scene, n_modes, damping_ratio=damping_ratio, points=at)
+    if at is not None:
+        study.check_points(scene, at, field="--at")
     if sweep is None:
-        result = study.steady_response(model, crank_speed(scene, one))
+        one = operating_speed(scene, one)[0]
+    elements_per_link, mesh = periodic_mesh(scene, n_modes, elements, tol)
+    model = study.forced_model(scene, n_modes, damping_ratio=damping_ratio, points=at,
+                               elements_per_link=elements_per_link)
+    if sweep is None:
+        result = study.steady_response(model, one)
     else:
         result = study.response_sweep(model, sweep, progress=progress_bar("speeds", as_json))
-    document, files = write_response(result, model, folder, scene.name)
+    document, files = write_response(result, model, folder, scene.name, mesh)
     publish(folder / "response.json", document, files, "\n".join(response_lines(document)),
             as_json)
+
+
+def parse_point(text: str, field: str = "--at"):
+    """"LINK:DISTANCE" (e.g. "coupler:60 mm", the distance from the link's start joint) as a
+    ``studies.running.steady_response.StrainPoint``."""
+    from flexlink.errors import InputError
+    from flexlink.studies.running.steady_response import StrainPoint
+    from flexlink.units import parse_quantity
+
+    link, sep, distance = str(text).partition(":")
+    if not sep or not link.strip():
+        raise InputError(f"{text!r} is not LINK:DISTANCE", source="command line", field=field,
+                         expected="e.g. 'coupler:60 mm'")
+    return StrainPoint(link.strip(), parse_quantity(distance.strip(), "length",
+                                                    source="command line", field=field))

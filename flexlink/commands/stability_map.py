@@ -5,9 +5,10 @@ from __future__ import annotations
 import click
 
 from flexlink.commands._failures import names_scene
-from flexlink.commands._options import (json_option, odd_count, out_option, parse_speeds,
-                                       periodic_basis_options, scheduler_option,
-                                       speeds_option)
+from flexlink.commands._options import (EnumChoice, json_option, odd_count, out_option,
+                                       periodic_basis_options, scheduler_option)
+from flexlink.commands._speeds import speeds_option
+from flexlink.analysis.periodic import Integrator
 
 
 @click.command("stability-map")
@@ -24,37 +25,40 @@ from flexlink.commands._options import (json_option, odd_count, out_option, pars
 @click.option("--basis-tolerance", default=1e-3, show_default=True,
               type=click.FloatRange(0.0, 1.0, min_open=True),
               help="Relative frequency excess the basis may have at any pose.")
-@click.option("--integrator", default="adiabatic", show_default=True,
-              type=click.Choice(["adiabatic", "magnus"]),
+@click.option("--integrator", default=Integrator.ADIABATIC.value, show_default=True,
+              type=EnumChoice(Integrator),
               help="Monodromy steps: adiabatic, or magnus (as accurate, many times slower "
                    "below a few thousand rev/min; docs/critical-speeds.md).")
 @scheduler_option("the speeds in chunks")
 @json_option
 @out_option
 @names_scene("scene_path")
-def command(scene_path, speeds, count, n_modes, damping_ratio, poses, basis_size,
+def command(scene_path, speeds, count, n_modes, damping_ratio, elements, tol, poses, basis_size,
             basis_tolerance, integrator, scheduler, as_json, out_dir):
     """Largest Floquet multiplier of SCENE's periodic elastic equations against crank speed
     and the unstable ranges, labelled by the nearest parametric resonance. Writes
     stability-map.png, .csv and .json to OUT/<scene>/."""
     import numpy as np
 
-    from flexlink.parallel import use_scheduler
+    from flexlink.analysis.periodic import periodic_model
     from flexlink.output.running.stability_map import stability_document, stability_lines, write_stability
-    from flexlink.studies.cycle.bands import _check_speeds
-    from flexlink.studies.running.stability_map import Integrator, periodic_model, stability_map
+    from flexlink.parallel import use_scheduler
+    from flexlink.studies.running.stability_map import stability_map
+    from ._options import periodic_mesh
     from ._progress import progress_bar
+    from ._speeds import parse_speeds
     from ._written import folder_and_scene, publish
 
-    low, high = _check_speeds(parse_speeds(speeds))
+    low, high = parse_speeds(speeds)
     folder, scene = folder_and_scene(out_dir, scene_path)
-    model = periodic_model(scene, n_modes, poses, damping_ratio, basis_size=basis_size,
-                           tolerance=basis_tolerance)
+    elements_per_link, mesh = periodic_mesh(scene, n_modes, elements, tol)
+    model = periodic_model(scene, n_modes, poses, damping_ratio, elements_per_link,
+                           basis_size=basis_size, tolerance=basis_tolerance)
     with use_scheduler(scheduler):
         result = stability_map(model, np.linspace(low, high, count),
                                show_progress=progress_bar("speeds", as_json) is not None,
-                               integrator=Integrator(integrator))
-    document = stability_document(scene.name, result, model)
+                               integrator=integrator)
+    document = stability_document(scene.name, result, model, mesh)
     publish(folder / "stability-map.json", document, write_stability(result, model, folder,
                                                                      scene.name),
             "\n".join(stability_lines(document)), as_json)

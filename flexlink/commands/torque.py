@@ -5,16 +5,17 @@ from __future__ import annotations
 import click
 
 from flexlink.commands._failures import names_scene
-from flexlink.commands._options import dumps, json_option, out_option
+from flexlink.commands._options import json_option, out_option
+from flexlink.commands._speeds import crank_acceleration_option, speed_option
 
 
 @click.command("torque")
 @click.argument("scene_path", metavar="SCENE", type=click.Path())
-@click.option("--speed", default=None, help="Crank speed, e.g. '600 rev/min', '3.27 rad/s' or "
-              "'10 Hz' (default: the scene's operation.crank_speed).")
-@click.option("--crank-acceleration", "acceleration", default=None,
-              help="Crank angular acceleration, e.g. '5 rad/s^2' (default: the scene's "
-                   "operation.crank_acceleration, else 0: constant speed).")
+@speed_option("Crank speed, e.g. '600 rev/min', '3.27 rad/s' or '10 Hz' (default: the scene's "
+              "operation.crank_speed).")
+@crank_acceleration_option("Crank angular acceleration, e.g. '5 rad/s^2' (default: the scene's "
+                           "operation.crank_acceleration, else 0: constant speed).",
+                           "acceleration")
 @click.option("--poses", default=360, show_default=True, type=click.IntRange(3, 1000000),
               help="Crank angles over one turn.")
 @json_option
@@ -23,33 +24,17 @@ from flexlink.commands._options import dumps, json_option, out_option
 def command(scene_path, speed, acceleration, poses, as_json, out_dir):
     """Driving torque, drive power and joint forces of SCENE's rigid-body motion at a crank
     speed, from the links' mass and inertia and the scene's [[loads]]. Writes torque.csv,
-    torque.json and torque.png to OUT/<scene>/."""
-    from flexlink.fileio import prepare_out_dir, write_atomic
-    from flexlink.output.running.torque import torque_csv, torque_document, torque_plot, torque_text
-    from flexlink.scene import load_scene
-    from flexlink.studies.running.torque import operating_point, torque_study
-    from flexlink.units import parse_quantity
+    torque.png and torque.json to OUT/<scene>/."""
+    from flexlink.output.running.torque import torque_document, torque_text, write_torque
+    from flexlink.studies.running.torque import torque_study
     from ._progress import progress_bar
-    from ._written import announce, scene_folders
+    from ._speeds import operating_speed, parse_acceleration, parse_speed
+    from ._written import folder_and_scene, publish
 
-    def option(text, kind, name):
-        return None if text is None else parse_quantity(text, kind, source="command line",
-                                                         field=name)
-
-    omega = option(speed, "angular speed", "--speed")
-    qdd = option(acceleration, "angular acceleration", "--crank-acceleration")
-    [folder] = scene_folders(prepare_out_dir(out_dir), [scene_path])
-    scene = load_scene(scene_path)
-    omega, qdd = operating_point(scene, omega, qdd)
+    omega, qdd = parse_speed(speed), parse_acceleration(acceleration)
+    folder, scene = folder_and_scene(out_dir, scene_path)
+    omega, qdd = operating_speed(scene, omega, qdd)
     curve = torque_study(scene, omega, qdd, poses, progress_bar("torque", as_json))
-    paths = [folder / "torque.csv", folder / "torque.json", folder / "torque.png"]
-    document = torque_document(curve, [f"{a.field}: {a.note}" for a in scene.assumptions],
-                               [str(p) for p in paths])
-    write_atomic(paths[0], torque_csv(curve))
-    write_atomic(paths[1], dumps(document))
-    write_atomic(paths[2], torque_plot(curve))
-    if as_json:
-        click.echo(dumps(document))
-        return
-    click.echo(torque_text(document))
-    announce(paths, as_json)
+    document = torque_document(curve, [f"{a.field}: {a.note}" for a in scene.assumptions])
+    publish(folder / "torque.json", document, write_torque(curve, folder),
+            torque_text(document), as_json)

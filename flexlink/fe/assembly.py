@@ -197,3 +197,28 @@ def rigid_elimination(model: FrameModel) -> sp.csr_matrix | None:
     rows = np.nonzero(keep)[0]
     return sp.csr_matrix((np.ones(len(rows)), (rows, column[roots[keep]])),
                          shape=(n, len(free_roots)))
+
+
+def eliminating_assembler(column: np.ndarray, n: int, dense: bool):
+    """Global entries (rows, cols, values) of a full-size matrix -> its n x n T^T A T, dense or
+    sparse CSR; ``column``, ``n`` from ``reduced_columns`` (T only renumbers and drops DOFs,
+    so the entries are renumbered and summed, no product formed)."""
+    if dense:
+        return lambda rows, cols, vals: dense_sum(dense_slots(column, n, rows, cols), vals, n)
+
+    def sparse(rows, cols, vals):
+        r, c = column[rows], column[cols]
+        keep = (r >= 0) & (c >= 0)
+        return sp.csr_matrix((vals[keep], (r[keep], c[keep])), shape=(n, n))
+    return sparse
+
+
+def eliminated_pair(model: FrameModel, T, assemble, direct: bool):
+    """(T^T K T, T^T M T) of ``model``: by ``assemble_reduced_dense`` when ``direct`` (small
+    models), else through ``assemble`` (an ``eliminating_assembler``) from the entries."""
+    if direct:
+        return assemble_reduced_dense(model, T)
+    rows, cols, values = rotated_entries(*placed_link_entries(model))
+    springs, masses = spring_entries(model), point_mass_entries(model)
+    return (assemble(*(np.concatenate(p) for p in zip((rows, cols, values[0]), springs))),
+            assemble(*(np.concatenate(p) for p in zip((rows, cols, values[1]), masses))))

@@ -41,7 +41,7 @@ from flexlink.fe.timoshenko import WEIGHTS, XI, shape_functions
 BENDING = np.array([1, 2, 4, 5])
 
 
-class GeometricForm(enum.Enum):
+class GeometricForm(enum.StrEnum):
     """Which K_g: the element's own cubic v (``CONSISTENT``) or the chord only (``STRING``)."""
 
     CONSISTENT = "consistent"

@@ -14,8 +14,10 @@ import numpy as np
 
 from flexlink.errors import InputError
 from flexlink.kinematics import Linkage
+from flexlink.kinematics.inverse import Wrench
+from flexlink.kinematics.linkage import State
 from flexlink.scene import parts, schema
-from flexlink.scene.contract import LoadKind, LoadSpec
+from flexlink.scene.contract import LoadFrame, LoadKind, LoadSpec
 from flexlink.scene.source import SceneSource
 from flexlink.units import parse_quantity
 
@@ -106,3 +108,18 @@ def build_loads(src: SceneSource, sf: schema.SceneFile, linkage: Linkage) -> tup
     """The scene's ``[[loads]]`` checked against the linkage's bodies, CSV files read."""
     names = [b.name for b in linkage.bodies]
     return tuple(load_spec(src, table, i, names) for i, table in enumerate(sf.loads))
+
+
+def wrench(linkage: Linkage, state: State, load: LoadSpec) -> Wrench:
+    """The load at the pose ``state``, in global components at a global point."""
+    body = linkage.body(load.body)
+    p0, p1 = (np.asarray(state.points[j], float) for j in body.joints[:2])
+    e = (p1 - p0) / np.linalg.norm(p1 - p0)
+    n = np.array([-e[1], e[0]])
+    value = load.value_at(state.q)
+    if load.kind is LoadKind.TORQUE:
+        return Wrench(load.body, torque=float(value[0]))
+    force = value[0] * e + value[1] * n if load.frame is LoadFrame.BODY else value
+    point = p0 + load.at[0] * e + load.at[1] * n
+    return Wrench(load.body, force=(float(force[0]), float(force[1])),
+                  point=(float(point[0]), float(point[1])))

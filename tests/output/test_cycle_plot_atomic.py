@@ -53,7 +53,8 @@ def test_tracked_and_campbell_pictures_are_written_atomically(tmp_path, monkeypa
     half-way leaves the old picture and no temporary file."""
     from flexlink.output.cycle.campbell import plot_campbell
     from flexlink.output.cycle.tracking import plot_tracked
-    from flexlink.studies.cycle.bands import RPM, Band
+    from flexlink.studies.cycle.bands import Band
+    from flexlink.units import RPM
     from flexlink.studies.cycle.tracking import TrackedMap, Tracks
 
     q = small_map().q

@@ -56,6 +56,7 @@ def studies_once():
     """The heavy studies (calibration, the stability checks, the periodic models with the
     stability map and the steady response computed on them) are computed once and reused by
     every run here: what is under test is how their results are written."""
+    import flexlink.analysis.periodic
     import flexlink.studies.calibration.calibration
     import flexlink.studies.verification.self_checks
     import flexlink.studies.running.stability_map
@@ -80,12 +81,15 @@ def studies_once():
                                                                        k.get("slow"))))
         # a scene is loaded afresh by every run, a model is the cached one (kept alive by the
         # cache, so its id names it)
-        for module, build, solve in (
-                (flexlink.studies.running.stability_map, "periodic_model", "stability_map"),
-                (flexlink.studies.running.steady_response, "forced_model", "steady_response")):
-            mp.setattr(module, build, once(getattr(module, build), lambda scene, *a, **k: (
+        running = flexlink.studies.running
+        for built, build, solved, solve in (
+                (flexlink.analysis.periodic, "periodic_model", running.stability_map,
+                 "stability_map"),
+                (running.steady_response, "forced_model", running.steady_response,
+                 "steady_response")):
+            mp.setattr(built, build, once(getattr(built, build), lambda scene, *a, **k: (
                 scene.path, repr(a), repr(sorted(k.items())))))
-            mp.setattr(module, solve, once(getattr(module, solve), lambda model, *a, **k: (
+            mp.setattr(solved, solve, once(getattr(solved, solve), lambda model, *a, **k: (
                 id(model), repr(a), repr(sorted(k.items())))))
         yield
 

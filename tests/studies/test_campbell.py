@@ -1,4 +1,4 @@
-"""Campbell diagram: critical speed ranges and nearest margin (studies/cycle/bands.py), and the
+"""Campbell diagram: critical speed ranges and nearest margin (studies/campbell.py), and the
 `flexlink campbell` command."""
 
 import json
@@ -8,9 +8,10 @@ import pytest
 from click.testing import CliRunner
 
 from flexlink.cli import main
-from flexlink.commands._options import parse_speeds
+from flexlink.commands._speeds import parse_speeds
 from flexlink.errors import InputError
-from flexlink.studies.cycle.bands import RPM, Band, bands, critical_speeds, nearest_margin
+from flexlink.studies.cycle.bands import Band, bands, critical_speeds, nearest_margin
+from flexlink.units import RPM
 
 
 def test_critical_speeds_against_a_hand_computation():

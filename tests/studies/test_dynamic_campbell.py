@@ -11,7 +11,7 @@ from conftest import CASES_DIR
 from flexlink.scene import load_scene
 from flexlink.studies.cycle.bands import bands
 from flexlink.studies.cycle.modal_map import kinematic_cycle
-from flexlink.studies.running.dynamic_campbell import dynamic_campbell, dynamic_critical, reduce_pose
+from flexlink.studies.running.dynamic_campbell import dynamic_campbell, dynamic_critical, project_pose
 from flexlink.studies.running.modes_at_speed import operating_modes
 from flexlink.studies.cycle.tracking import tracked_map
 
@@ -30,7 +30,7 @@ def test_reduced_pose_agrees_with_full_operating_point_solve(case1, pose):
     # modes; 3e-4 leaves room for the pose, while dropping the preload, the centrifugal or the
     # Coriolis term moves them by 1e-3 and more.
     state = kinematic_cycle(case1, 24).states[pose]
-    reduced, _ = reduce_pose(case1, state, case1.topology(8), 13)
+    reduced, _ = project_pose(case1, state, case1.topology(8), 13)
     s, _ = reduced.modes(2000 * RPM, 5)
     full = operating_modes(case1, 2000 * RPM, 5, 8, crank_angle=state.q)
     assert np.abs(s.imag) / (2 * math.pi) == pytest.approx(full.frequencies, rel=3e-4)
@@ -43,7 +43,7 @@ def test_reduced_pose_with_crank_acceleration(case1, pose, acceleration):
     # preload and the alpha S term) against the full solve with that acceleration: the same
     # 3e-4 as at constant speed, while 5e3 rad/s^2 moves the modes by 1e-2 and more
     state = kinematic_cycle(case1, 24).states[pose]
-    reduced, _ = reduce_pose(case1, state, case1.topology(8), 13)
+    reduced, _ = project_pose(case1, state, case1.topology(8), 13)
     s, _ = reduced.modes(2000 * RPM, 5, acceleration)
     full = operating_modes(case1, 2000 * RPM, 5, 8, crank_angle=state.q,
                            crank_acceleration=acceleration)
@@ -131,7 +131,7 @@ def test_lines_cross_where_their_modes_cross_in_speed(case1, monkeypatch):
 
     from flexlink.studies.running import dynamic_campbell as studied
 
-    real, top, slope = studied.reduce_pose, 100.0, {}
+    real, top, slope = studied.project_pose, 100.0, {}
 
     def crossing(scene, state, topology, basis, form=None):
         pose, mass = real(scene, state, topology, basis)
@@ -143,7 +143,7 @@ def test_lines_cross_where_their_modes_cross_in_speed(case1, monkeypatch):
         zero = np.zeros_like(pose.k0)
         return dataclasses.replace(pose, k0=np.diag(lam), k2=np.diag(d), g1=zero, k1=zero), mass
 
-    monkeypatch.setattr(studied, "reduce_pose", crossing)
+    monkeypatch.setattr(studied, "project_pose", crossing)
     speeds = np.linspace(0.0, top, 9)
     result = studied.dynamic_campbell(case1, speeds, n_poses=8, n_modes=2, elements_per_link=4)
     w0 = 2 * math.pi * result.frequencies[0]  # (poses, lines) at rest

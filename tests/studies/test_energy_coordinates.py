@@ -7,7 +7,7 @@ from conftest import CASES_DIR, SCENES_DIR
 
 from flexlink.analysis.floquet import monodromy
 from flexlink.scene import load_scene
-from flexlink.studies.running.stability_map import (
+from flexlink.analysis.periodic import (
     FLOOR_POINTS,
     Integrator,
     periodic_model,

@@ -29,7 +29,7 @@ RTOL = 1e-7
 
 def run(path, elements, form):
     case = RECORD["cases"][path]
-    speed = case["speed_rev_min"] * 2 * math.pi / 60
+    speed = case["speed_rev_per_min"] * 2 * math.pi / 60
     return operating_modes(load_scene(ROOT / path), speed, 4, elements,
                            terms=Terms(**PRELOAD, geometric=form))
 

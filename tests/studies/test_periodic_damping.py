@@ -1,4 +1,4 @@
-"""The damping of the periodic equations at speed (``studies.running.periodic_damping``): the scene's
+"""The damping of the periodic equations at speed (``studies.periodic_damping``): the scene's
 declared damping reaches the stability map and the steady response, one ratio per basis
 vector; a ratio given on the command line overrides it; the default only where the scene
 declares nothing."""
@@ -13,8 +13,9 @@ from flexlink.cli import main
 from flexlink.output.running.stability_map import stability_document, stability_lines
 from flexlink.output.running.steady_response import response_document, response_lines
 from flexlink.scene import load_scene
-from flexlink.studies.running.periodic_damping import DEFAULT_DAMPING_RATIO
-from flexlink.studies.running.stability_map import periodic_model, stability_map
+from flexlink.analysis.damping import DEFAULT_DAMPING_RATIO
+from flexlink.analysis.periodic import periodic_model
+from flexlink.studies.running.stability_map import stability_map
 from flexlink.studies.running.steady_response import forced_model, steady_response
 from flexlink.units import RPM
 

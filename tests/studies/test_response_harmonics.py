@@ -23,7 +23,8 @@ def model():
                         elements_per_link=2)
 
 
-@pytest.mark.parametrize("rpm, tolerances", [(300, (1e-4, 1e-6)), (1200, (1e-2, 1e-3, 1e-4))])
+# at 1200 rev/min 1e-4 already takes the reference's 192 harmonics (the doubling's last step)
+@pytest.mark.parametrize("rpm, tolerances", [(300, (1e-4, 1e-6)), (1200, (1e-2, 1e-3))])
 def test_error_estimate_bounds_the_error_of_a_many_harmonic_solve(model, rpm, tolerances):
     speed = rpm * RPM
     theta = np.linspace(0, 2 * np.pi, 720, endpoint=False)

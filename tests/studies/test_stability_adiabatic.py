@@ -6,13 +6,13 @@ from conftest import CASES_DIR
 from flexlink.output.running.stability_map import stability_document, stability_lines
 from flexlink.scene import load_scene
 from stability_convergence import map_convergence
-from flexlink.studies.running.stability_map import (
+from flexlink.analysis.periodic import (
     ADIABATIC_STEPS,
     Integrator,
     periodic_model,
     speed_multipliers,
-    stability_map,
 )
+from flexlink.studies.running.stability_map import stability_map
 from flexlink.units import RPM
 
 

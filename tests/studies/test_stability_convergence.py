@@ -5,7 +5,7 @@ from conftest import CASES_DIR
 
 from flexlink.scene import load_scene
 from stability_convergence import map_convergence
-from flexlink.studies.running.stability_map import Integrator
+from flexlink.analysis.periodic import Integrator
 
 SPEEDS = np.array([1500.0, 2200.0, 3000.0]) * np.pi / 30.0  # rad/s
 SMALL = dict(n_modes=2, poses=(13,), elements_per_link=2)

@@ -5,7 +5,8 @@ from conftest import CASES_DIR
 
 from flexlink.errors import InputError
 from flexlink.scene import load_scene
-from flexlink.studies.running.stability_map import PeriodicModel, _nearest, periodic_model, stability_map
+from flexlink.analysis.periodic import PeriodicModel, periodic_model
+from flexlink.studies.running.stability_map import _nearest, stability_map
 
 
 @pytest.fixture(scope="module")

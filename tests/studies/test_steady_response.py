@@ -1,4 +1,4 @@
-"""The steady elastic response of a running linkage (``studies.running.steady_response``).
+"""The steady elastic response of a running linkage (``studies.steady_response``).
 
 Each check is an independent route to the same answer: a time integration from rest run to
 steady state, the quasi-static deflection under the inertia loads, the full finite-element
@@ -21,14 +21,14 @@ from flexlink.fe.model_at_pose import pose_model
 from flexlink.fe.preload import inertia_loads, static_displacement
 from flexlink.kinematics.dynamics import rigid_motion
 from flexlink.scene import load_scene
-from flexlink.studies.running.modes_at_speed import link_motion
-from flexlink.studies.running.stability_map import PeriodicModel
+from flexlink.analysis.frame_motion import link_motion
+from flexlink.analysis.periodic import PeriodicModel
+from flexlink.commands.response import parse_point
 from flexlink.studies.running.steady_response import (
     ForcedModel,
     StrainPoint,
     forced_model,
     midspans,
-    parse_point,
     periodic_solution,
     response_sweep,
     UnstableError,
@@ -104,11 +104,12 @@ def synthetic(poses: int = 9, zeta: float = 0.01) -> ForcedModel:
                              coriolis=np.broadcast_to(0.2 * skew, (poses, 2, 2)),
                              stiffness=stiffness,
                              speed_stiffness=np.broadcast_to(-np.eye(2), (poses, 2, 2)),
-                             frequencies=w / (2 * np.pi), damping_ratio=zeta)
-    forcing = np.stack([np.cos(angles) + 0.5, np.sin(2 * angles)], axis=1)
+                             frequencies=w / (2 * np.pi), damping_ratio=zeta,
+                             inertia_forcing=np.stack([np.cos(angles) + 0.5,
+                                                       np.sin(2 * angles)], axis=1),
+                             external_forcing=np.zeros((poses, 2)))
     rows = np.broadcast_to(np.array([[1.0, 0.5]]), (poses, 1, 2))
-    return ForcedModel(periodic=periodic, inertia_forcing=forcing,
-                       external_forcing=np.zeros((poses, 2)), points=(StrainPoint("a", 0.0),),
+    return ForcedModel(periodic=periodic, points=(StrainPoint("a", 0.0),),
                        deflection=rows, curvature=rows, half_depth=np.array([0.001]))
 
 
@@ -124,7 +125,7 @@ def test_low_speed_tends_to_the_quasi_static_deflection():
         speed = r * 2 * np.pi * p.frequencies[0]
         response = steady_response(model, speed, samples=36)
         K = _rows(p.stiffness + speed**2 * p.speed_stiffness, p.angles, response.angles)
-        f = speed**2 * _rows(model.inertia_forcing, p.angles, response.angles)
+        f = speed**2 * _rows(model.periodic.inertia_forcing, p.angles, response.angles)
         q = np.linalg.solve(K, f[..., None])[..., 0]
         static = -model.half_depth * np.einsum(
             "spn,sn->sp", _rows(model.curvature, p.angles, response.angles), q)
@@ -144,7 +145,7 @@ def test_coupled_modes_equal_a_long_time_integration():
     N = len(p.angles)
     k = np.fft.fftfreq(N, 1.0 / N)
     coefficients = [np.fft.fft(a, axis=0) / N for a in (
-        p.mass, p.coriolis, p.stiffness, p.speed_stiffness, model.inertia_forcing)]
+        p.mass, p.coriolis, p.stiffness, p.speed_stiffness, model.periodic.inertia_forcing)]
 
     def rhs(t, x):
         e = np.exp(1j * k * speed * t)
@@ -200,7 +201,7 @@ def test_forcing_and_strain_rows_match_the_full_static_solution(case1, full):
         expected = np.array([_hermite_curvature(u, next(link for link in model.links
                                                          if link.name == pt.link), pt.position)
                              for pt in full.points])
-        q = la.solve(full.periodic.stiffness[p], full.inertia_forcing[p])
+        q = la.solve(full.periodic.stiffness[p], full.periodic.inertia_forcing[p])
         # the modal solve and the full one differ by round-off of a well-conditioned K
         assert full.curvature[p] @ q == pytest.approx(expected, rel=1e-7)
 

@@ -13,7 +13,8 @@ from conftest import CASES_DIR, ROOT, SCENES_DIR
 from flexlink.cli import main
 from flexlink.errors import InputError
 from flexlink.scene import load_scene
-from flexlink.studies.running.torque import operating_point, torque_study
+from flexlink.commands._speeds import operating_speed
+from flexlink.studies.running.torque import torque_study
 
 SHIPPED = sorted(CASES_DIR.glob("case*.toml")) + sorted(SCENES_DIR.glob("*.toml"))
 CASE3 = CASES_DIR / "case3.toml"
@@ -146,8 +147,8 @@ def test_scene_operation_is_the_default(tmp_path):
     path = scene_with(tmp_path, '[operation]\ncrank_speed = "60 rev/min"\n'
                                 'crank_acceleration = "2 rad/s^2"\n')
     scene = load_scene(path)
-    assert operating_point(scene) == pytest.approx((2 * math.pi, 2.0))
-    assert operating_point(scene, 3.0) == pytest.approx((3.0, 0.0))  # the speed given alone
+    assert operating_speed(scene) == pytest.approx((2 * math.pi, 2.0))
+    assert operating_speed(scene, 3.0) == pytest.approx((3.0, 0.0))  # the speed given alone
     bad = scene_with(tmp_path, '[operation]\ncrank_acceleration = "2 rad/s^2"\n')
     with pytest.raises(InputError, match="operation.crank_speed: missing"):
         load_scene(bad)

@@ -1,6 +1,6 @@
-"""The Campbell diagram's renderings (``studies.cycle.campbell.CampbellStudy``): the JSON
+"""The Campbell diagram's renderings (``studies.campbell_study.CampbellStudy``): the JSON
 document and the text summary of `flexlink campbell`, the CSV of critical ranges and the PNG
-diagram (and those of the diagram at speed, ``output.running.dynamic_campbell``)."""
+diagram (and those of the diagram at speed, ``output.dynamic_campbell``)."""
 
 from __future__ import annotations
 
@@ -11,7 +11,8 @@ from flexlink.output.running.dynamic_campbell import dynamic_csv, dynamic_json, 
 from flexlink.output.figures import write_figure
 from flexlink.output.cycle.tracking import (events_json, periodicity_json, reseeds_json,
                                              tracking_lines, unsampled_json)
-from flexlink.studies.cycle.bands import RPM, Band, CriticalSpeed
+from flexlink.studies.cycle.bands import Band, CriticalSpeed
+from flexlink.units import rev_per_min
 from flexlink.studies.cycle.campbell import CampbellStudy
 from flexlink.studies.cycle.tracking import unsampled_note
 
@@ -23,17 +24,18 @@ def campbell_document(scene, study: CampbellStudy) -> dict:
     labels, tracked, nearest = study.labels, study.tracked, study.nearest
     document = {
         "command": "campbell", "scene": scene.name,
-        "speeds_rev_per_min": [study.window[0] / RPM, study.window[1] / RPM],
+        "speeds_rev_per_min": [rev_per_min(study.window[0]), rev_per_min(study.window[1])],
         "margin": study.margin, "harmonics": study.harmonics, "poses": study.poses,
         "mesh": study.mesh.as_dict(),
         "bands": [{"mode": b.mode, "label": labels.get(b.mode), "min_Hz": b.low,
                    "max_Hz": b.high} for b in study.bands],
         "critical_speeds": [{"mode": c.mode, "harmonic": c.harmonic,
-                             "from_rev_per_min": c.low / RPM, "to_rev_per_min": c.high / RPM}
+                             "from_rev_per_min": rev_per_min(c.low),
+                             "to_rev_per_min": rev_per_min(c.high)}
                             for c in study.critical],
         "nearest_margin": None if nearest is None else {
             "mode": nearest.mode, "harmonic": nearest.harmonic, "relative_gap": nearest.gap,
-            "at_rev_per_min": nearest.speed / RPM},
+            "at_rev_per_min": rev_per_min(nearest.speed)},
         "tracking_events": events_json(tracked),
         "tracking_reseeds": reseeds_json(tracked),
         "periodicity": periodicity_json(tracked),
@@ -97,8 +99,8 @@ def critical_csv(critical: list[CriticalSpeed], found: list[Band]) -> str:
     lines = ["mode,band_min_Hz,band_max_Hz,harmonic,from_rev_per_min,to_rev_per_min"]
     for c in critical:
         b = by_mode[c.mode]
-        lines.append(f"{c.mode},{b.low:.8g},{b.high:.8g},{c.harmonic},{c.low / RPM:.6g},"
-                     f"{c.high / RPM:.6g}")
+        lines.append(f"{c.mode},{b.low:.8g},{b.high:.8g},{c.harmonic},{rev_per_min(c.low):.6g},"
+                     f"{rev_per_min(c.high):.6g}")
     return "\n".join(lines) + "\n"
 
 
@@ -114,7 +116,7 @@ def plot_campbell(found: list[Band], speeds: tuple[float, float], margin: float,
     import matplotlib.pyplot as plt
 
     labels = labels or {}
-    low, high = speeds[0] / RPM, speeds[1] / RPM
+    low, high = rev_per_min(speeds[0]), rev_per_min(speeds[1])
     fig, ax = plt.subplots(figsize=(8, 5))
     top = max(b.high for b in found) * (1 + margin) * 1.1
     for b in found:
@@ -131,7 +133,7 @@ def plot_campbell(found: list[Band], speeds: tuple[float, float], margin: float,
         else:
             ax.annotate(f"{n}x", (60.0 * top / n, top), fontsize=7, ha="right", va="top")
     for c in critical:
-        ax.axvspan(c.low / RPM, c.high / RPM, color="red", alpha=0.08, lw=0)
+        ax.axvspan(rev_per_min(c.low), rev_per_min(c.high), color="red", alpha=0.08, lw=0)
     ax.set_xlim(low, high)
     ax.set_ylim(0, top)
     ax.set_xlabel("crank speed [rev/min]")

@@ -12,11 +12,11 @@ from flexlink.studies.running.dynamic_campbell import (CriticalShift, Divergence
                                                frozen_bands)
 from flexlink.studies.running.modes_at_speed import ASSUMPTIONS
 from flexlink.studies.cycle.tracking import PAIR_MAC
-from flexlink.units import RPM
+from flexlink.units import rev_per_min
 
 
 def _rpm(pair):
-    return None if pair is None else [pair[0] / RPM, pair[1] / RPM]
+    return None if pair is None else [rev_per_min(pair[0]), rev_per_min(pair[1])]
 
 
 def shift_json(shift: CriticalShift, ends: tuple[float, float]) -> dict:
@@ -25,7 +25,7 @@ def shift_json(shift: CriticalShift, ends: tuple[float, float]) -> dict:
     moved = None
     if shift.frozen and shift.dynamic:
         moved = {edge: None if f == d and f in ends else
-                 {"rev_per_min": (d - f) / RPM, "percent": 100 * (d - f) / f if f else None}
+                 {"rev_per_min": rev_per_min(d - f), "percent": 100 * (d - f) / f if f else None}
                  for edge, f, d in zip(("from", "to"), shift.frozen, shift.dynamic)}
     return {"mode": shift.mode, "harmonic": shift.harmonic,
             "frozen_rev_per_min": _rpm(shift.frozen), "at_speed_rev_per_min": _rpm(shift.dynamic),
@@ -44,7 +44,7 @@ def dynamic_json(result: DynamicCampbell, shifts: list[CriticalShift]) -> dict:
         "crank_acceleration_rad_s2": result.crank_acceleration,
         "frozen_bands": [{"mode": b.mode, "min_Hz": b.low, "max_Hz": b.high}
                          for b in frozen_bands(result)],
-        "bands_at_speed": [{"rev_per_min": w / RPM,
+        "bands_at_speed": [{"rev_per_min": rev_per_min(w),
                             "min_Hz": None if not np.isfinite(lo).all() else lo.tolist(),
                             "max_Hz": None if not np.isfinite(hi).all() else hi.tolist()}
                            for w, lo, hi in zip(result.speeds, low, high)],
@@ -58,18 +58,18 @@ def divergence_json(d: Divergence | None) -> dict | None:
     """The divergence [rev/min, deg, 1/s], or None."""
     if d is None:
         return None
-    return {"rev_per_min": None if d.speed is None else d.speed / RPM,
+    return {"rev_per_min": None if d.speed is None else rev_per_min(d.speed),
             "crank_deg": math.degrees(d.q) % 360.0, "line": d.line,
-            "grid_rev_per_min": d.grid_speed / RPM, "growth_rate_per_s": d.growth_rate}
+            "grid_rev_per_min": rev_per_min(d.grid_speed), "growth_rate_per_s": d.growth_rate}
 
 
 def divergence_line(d: Divergence) -> str:
     """One sentence: which line diverges, where, and how fast it grows past it."""
     who = f"mode {d.line}" if d.line else "a mode above the tracked lines"
-    at = "" if d.speed is None else f" at {d.speed / RPM:.1f} rev/min"
+    at = "" if d.speed is None else f" at {rev_per_min(d.speed):.1f} rev/min"
     return (f"divergence: {who} falls to 0 Hz{at} (crank angle {math.degrees(d.q) % 360:.1f} "
             f"deg) and grows past it (real root +{d.growth_rate:.4g} 1/s at "
-            f"{d.grid_speed / RPM:.1f} rev/min): no band from {d.grid_speed / RPM:.1f} rev/min on")
+            f"{rev_per_min(d.grid_speed):.1f} rev/min): no band from {rev_per_min(d.grid_speed):.1f} rev/min on")
 
 
 def dynamic_csv(result: DynamicCampbell) -> str:
@@ -80,7 +80,7 @@ def dynamic_csv(result: DynamicCampbell) -> str:
     rows = ["rev_per_min," + ",".join(f"mode{j + 1}_min_Hz,mode{j + 1}_max_Hz" for j in range(n))]
     for w, lo, hi in zip(result.speeds, low, high):
         cells = [f"{v:.8g}" if np.isfinite(v) else "" for pair in zip(lo, hi) for v in pair]
-        rows.append(f"{w / RPM:.6g}," + ",".join(cells))
+        rows.append(f"{rev_per_min(w):.6g}," + ",".join(cells))
     return "\n".join(rows) + "\n"
 
 
@@ -132,7 +132,7 @@ def plot_dynamic(result: DynamicCampbell, margin: float, harmonics: int, path,
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    rpm = result.speeds / RPM
+    rpm = rev_per_min(result.speeds)
     low, high = result.bands()
     fig, ax = plt.subplots(figsize=(8, 5))
     frozen = frozen_bands(result)
@@ -150,7 +150,7 @@ def plot_dynamic(result: DynamicCampbell, margin: float, harmonics: int, path,
                         va="bottom")
     if result.divergence is not None:
         d = result.divergence
-        ax.axvline((d.speed or d.grid_speed) / RPM, color="red", lw=1.2,
+        ax.axvline(rev_per_min(d.speed or d.grid_speed), color="red", lw=1.2,
                    label=f"divergence{f' (mode {d.line})' if d.line else ''}")
     ax.set_xlim(rpm[0], rpm[-1])
     ax.set_ylim(0, top)

@@ -11,9 +11,8 @@ import math
 from pathlib import Path
 
 from flexlink.studies.running.modes_at_speed import ASSUMPTIONS, OperatingPoint
-from flexlink.units import percent_error
+from flexlink.units import percent_error, rev_per_min
 
-RPM = 60.0 / (2 * math.pi)  # rev/min per rad/s
 
 
 def operating_summary(op: OperatingPoint) -> dict:
@@ -33,7 +32,7 @@ def operating_summary(op: OperatingPoint) -> dict:
     return {
         "scene": op.scene.name, "file": op.scene.path,
         "crank_angle_deg": math.degrees(op.motion.q),
-        "speed_rad_s": op.motion.speed, "speed_rev_min": op.motion.speed * RPM,
+        "speed_rad_s": op.motion.speed, "speed_rev_per_min": rev_per_min(op.motion.speed),
         "crank_acceleration_rad_s2": op.motion.crank_acceleration,
         "terms": {"preload": terms.preload, "centrifugal": terms.centrifugal,
                   "coriolis": terms.coriolis, "angular_acceleration": terms.acceleration,
@@ -111,7 +110,7 @@ def format_operating(summary: dict) -> str:
     head = f"{summary['scene']}  ({summary['file']})"
     off = [k for k, v in summary["terms"].items() if v is False]
     lines = [head, "-" * len(head),
-             f"at speed: {summary['speed_rev_min']:.6g} rev/min ({summary['speed_rad_s']:.6g} "
+             f"at speed: {summary['speed_rev_per_min']:.6g} rev/min ({summary['speed_rad_s']:.6g} "
              f"rad/s), crank angle {summary['crank_angle_deg']:.3f} deg"
              + (f", crank acceleration {summary['crank_acceleration_rad_s2']:.6g} rad/s^2"
                 if summary["crank_acceleration_rad_s2"] else "")
@@ -141,11 +140,11 @@ def operating_csv(summaries: list[dict]) -> str:
     """One row per mode and scene."""
     out = io.StringIO()
     w = csv.writer(out, lineterminator="\n")
-    w.writerow(["scene", "speed_rev_min", "crank_angle_deg", "mode", "frequency_Hz",
+    w.writerow(["scene", "speed_rev_per_min", "crank_angle_deg", "mode", "frequency_Hz",
                 "static_Hz", "change_Hz", "change_pct", "growth_rate_1_s", "mac", "static_mode"])
     for s in summaries:
         for r in s["modes"]:
-            w.writerow([s["scene"], f"{s['speed_rev_min']:.10g}", f"{s['crank_angle_deg']:.10g}",
+            w.writerow([s["scene"], f"{s['speed_rev_per_min']:.10g}", f"{s['crank_angle_deg']:.10g}",
                         r["mode"], f"{r['frequency_Hz']:.10g}", f"{r['static_Hz']:.10g}",
                         f"{r['change_Hz']:.10g}", f"{r['change_pct']:.10g}",
                         f"{r['growth_rate_1_s']:.10g}", f"{r['mac']:.6f}", r["static_mode"]])

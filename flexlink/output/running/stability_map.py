@@ -3,7 +3,7 @@ speed ranges over the Campbell diagram and of the largest Floquet multiplier aga
 
 from __future__ import annotations
 
-from flexlink.studies.cycle.bands import RPM
+from flexlink.units import rev_per_min
 
 
 def basis_caveat(model) -> str | None:
@@ -26,15 +26,21 @@ def damping_line(ratios: list[float], source: str) -> str:
     return f"damping ratio {span} ({source})"
 
 
-def stability_document(scene_name: str, result, model) -> dict:
-    """The JSON document: per speed the largest modulus and growth rate, the ranges, and the
-    basis with its check."""
+def mesh_json(mesh) -> dict | None:
+    """The mesh (an ``analysis.mesh.MeshRule``) and why, with its one-line description."""
+    return None if mesh is None else {**mesh.as_dict(), "description": mesh.describe()}
+
+
+def stability_document(scene_name: str, result, model, mesh=None) -> dict:
+    """The JSON document: per speed the largest modulus and growth rate, the ranges, the
+    basis with its check and the mesh (an ``analysis.mesh.MeshRule``, None: not stated)."""
     basis = model.basis
     return {
         "command": "stability-map", "scene": scene_name, "caveat": basis_caveat(model),
+        "mesh": mesh_json(mesh),
         "damping_ratio": model.damping_ratio.tolist(), "damping_source": model.damping_source,
         "poses": len(model.angles), "integrator": result.integrator.value,
-        "magnus_fallback_rev_per_min": (result.speeds[result.magnus_fallback] / RPM).tolist(),
+        "magnus_fallback_rev_per_min": (rev_per_min(result.speeds[result.magnus_fallback])).tolist(),
         "basis": None if basis is None else {
             "size": basis.size, "modes_checked": int(basis.exact.shape[1]),
             "tolerance": basis.tolerance, "largest_frequency_error": basis.error,
@@ -44,12 +50,12 @@ def stability_document(scene_name: str, result, model) -> dict:
         "frequencies_over_turn_Hz": (None if basis is None else
                                      {"low": basis.exact.min(axis=0).tolist(),
                                       "high": basis.exact.max(axis=0).tolist()}),
-        "speeds_rev_per_min": (result.speeds / RPM).tolist(),
+        "speeds_rev_per_min": (rev_per_min(result.speeds)).tolist(),
         "largest_modulus": result.largest_modulus.tolist(),
         "growth_rate_per_s": result.growth_rate.tolist(),
         "stiffness_floor_rad2_per_s2": result.stiffness_floor.tolist(),
         "instability_ranges": [
-            {"from_rev_per_min": r.low / RPM, "to_rev_per_min": r.high / RPM,
+            {"from_rev_per_min": rev_per_min(r.low), "to_rev_per_min": rev_per_min(r.high),
              "modes": list(r.modes), "harmonic": r.harmonic, "kind": r.kind,
              "largest_growth_rate_per_s": r.growth_rate} for r in result.ranges],
     }
@@ -57,7 +63,7 @@ def stability_document(scene_name: str, result, model) -> dict:
 
 def stability_csv(result) -> str:
     lines = ["speed_rev_per_min,largest_modulus,growth_rate_per_s,stiffness_floor_rad2_per_s2"]
-    lines += [f"{w / RPM:.6g},{m:.10g},{g:.10g},{f:.6g}" for w, m, g, f in
+    lines += [f"{rev_per_min(w):.6g},{m:.10g},{g:.10g},{f:.6g}" for w, m, g, f in
               zip(result.speeds, result.largest_modulus, result.growth_rate,
                   result.stiffness_floor)]
     return "\n".join(lines) + "\n"
@@ -68,6 +74,8 @@ def stability_lines(document: dict) -> list[str]:
     out = [f"{document['scene']}: {len(document['basis_frequencies_Hz'])} basis vectors, "
            f"{len(document['speeds_rev_per_min'])} speeds, {document['integrator']} steps",
            damping_line(document["damping_ratio"], document["damping_source"])]
+    if document.get("mesh"):
+        out.append(document["mesh"]["description"])
     fallback = document["magnus_fallback_rev_per_min"]
     if fallback:
         count = f"{len(fallback)} speed" + ("s" if len(fallback) > 1 else "")
@@ -104,7 +112,7 @@ def plot_stability(result, model, path, title: str, harmonics: int = 6) -> None:
 
     from flexlink.output.figures import write_figure
 
-    rpm = result.speeds / RPM
+    rpm = rev_per_min(result.speeds)
     bands = (np.vstack([model.checked, model.checked]) if model.basis is None else
              np.vstack([model.basis.exact.min(axis=0), model.basis.exact.max(axis=0)]))
     fig, (campbell, modulus) = plt.subplots(2, 1, figsize=(8, 7), sharex=True,
@@ -124,7 +132,7 @@ def plot_stability(result, model, path, title: str, harmonics: int = 6) -> None:
     for r in result.ranges:  # each unstable speed stands for half a grid step either side
         colour = "0.5" if r.kind == "divergence" else "tab:red"
         for ax in (campbell, modulus):
-            ax.axvspan(r.low / RPM - half, r.high / RPM + half, color=colour, alpha=0.25, lw=0)
+            ax.axvspan(rev_per_min(r.low) - half, rev_per_min(r.high) + half, color=colour, alpha=0.25, lw=0)
     campbell.set(ylim=(0, top), ylabel="frequency [Hz]",
                  title=f"{title}: unstable speed ranges over the Campbell diagram")
     campbell.legend(fontsize=7, loc="upper left")

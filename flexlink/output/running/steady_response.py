@@ -8,8 +8,8 @@ import math
 
 import numpy as np
 
-from flexlink.output.running.stability_map import damping_line
-from flexlink.units import RPM
+from flexlink.output.running.stability_map import damping_line, mesh_json
+from flexlink.units import rev_per_min
 
 STRAIN_NOTE = ("strain: bending strain at the fibre y = +depth/2 of the link's local frame "
                "(left of start -> end); deflection: transverse, less the chord through the "
@@ -22,12 +22,14 @@ def _crank_deg(response) -> np.ndarray:
     return np.degrees(response.angles) % 360.0
 
 
-def response_document(scene_name: str, response, model) -> dict:
-    """One speed: per point the strain and deflection over the crank angle and their peaks."""
+def response_document(scene_name: str, response, model, mesh=None) -> dict:
+    """One speed: per point the strain and deflection over the crank angle and their peaks;
+    the mesh (an ``analysis.mesh.MeshRule``, None: not stated)."""
     deg = _crank_deg(response)
     return {
         "command": "response", "scene": scene_name, "caveat": CAVEAT, "note": STRAIN_NOTE,
-        "speed_rev_per_min": response.speed / RPM,
+        "mesh": mesh_json(mesh),
+        "speed_rev_per_min": rev_per_min(response.speed),
         "damping_ratio": model.periodic.damping_ratio.tolist(),
         "damping_source": model.periodic.damping_source,
         "basis_frequencies_Hz": model.periodic.frequencies.tolist(),
@@ -44,19 +46,20 @@ def response_document(scene_name: str, response, model) -> dict:
     }
 
 
-def sweep_document(scene_name: str, sweep, model) -> dict:
+def sweep_document(scene_name: str, sweep, model, mesh=None) -> dict:
     """A speed sweep: peak strain and deflection per point against speed; unstable speeds
-    (no steady state) as null and listed."""
+    (no steady state) as null and listed; the mesh as in ``response_document``."""
     def listed(values):
         return [None if math.isnan(v) else float(v) for v in values]
     return {
         "command": "response", "scene": scene_name, "caveat": CAVEAT, "note": STRAIN_NOTE,
+        "mesh": mesh_json(mesh),
         "damping_ratio": model.periodic.damping_ratio.tolist(),
         "damping_source": model.periodic.damping_source,
         "basis_frequencies_Hz": model.periodic.frequencies.tolist(),
-        "speeds_rev_per_min": (sweep.speeds / RPM).tolist(),
+        "speeds_rev_per_min": (rev_per_min(sweep.speeds)).tolist(),
         "largest_modulus": listed(sweep.largest_modulus),
-        "unstable_speeds_rev_per_min": (sweep.speeds[sweep.unstable] / RPM).tolist(),
+        "unstable_speeds_rev_per_min": (rev_per_min(sweep.speeds[sweep.unstable])).tolist(),
         "points": [{"label": p.label, "link": p.link, "position_m": p.position,
                     "peak_strain": listed(sweep.peak_strain[:, k]),
                     "peak_deflection_m": listed(sweep.peak_deflection[:, k])}
@@ -85,7 +88,7 @@ def sweep_csv(sweep) -> str:
         values = [sweep.largest_modulus[i]] + [x for k in range(len(sweep.points))
                                                for x in (sweep.peak_strain[i, k],
                                                          sweep.peak_deflection[i, k])]
-        lines.append(",".join([f"{w / RPM:.6g}"] + ["" if math.isnan(x) else f"{x:.10g}"
+        lines.append(",".join([f"{rev_per_min(w):.6g}"] + ["" if math.isnan(x) else f"{x:.10g}"
                                                      for x in values]))
     return "\n".join(lines) + "\n"
 
@@ -95,6 +98,8 @@ def response_lines(document: dict) -> list[str]:
     out = [f"{document['scene']}: {len(document['basis_frequencies_Hz'])} basis vectors",
            damping_line(document["damping_ratio"], document["damping_source"]),
            f"caveat: {document['caveat']}"]
+    if document.get("mesh"):
+        out.append(document["mesh"]["description"])
     if "speeds_rev_per_min" in document:
         speeds = document["speeds_rev_per_min"]
         out.append(f"{len(speeds)} speeds, {speeds[0]:g} to {speeds[-1]:g} rev/min")
@@ -136,7 +141,7 @@ def plot_response(response, model, path, title: str) -> None:
         top.plot(deg[order], response.strain[order, k] * 1e6, label=p.label)
         bottom.plot(deg[order], response.deflection[order, k] * 1e3, label=p.label)
     top.set(ylabel="bending strain [1e-6]",
-            title=f"{title}: steady response at {response.speed / RPM:g} rev/min")
+            title=f"{title}: steady response at {rev_per_min(response.speed):g} rev/min")
     bottom.set(xlabel="crank angle [deg]", ylabel="deflection [mm]", xlim=(0, 360))
     top.legend(fontsize=8)
     write_figure(fig, path)
@@ -153,7 +158,7 @@ def plot_sweep(sweep, path, title: str, frequencies=(), harmonics: int = 4) -> N
 
     from flexlink.output.figures import write_figure
 
-    rpm = sweep.speeds / RPM
+    rpm = rev_per_min(sweep.speeds)
     fig, ax = plt.subplots(figsize=(8, 4))
     for k, p in enumerate(sweep.points):
         ax.semilogy(rpm, sweep.peak_strain[:, k] * 1e6, lw=1.2, label=p.label)
@@ -173,18 +178,20 @@ def plot_sweep(sweep, path, title: str, frequencies=(), harmonics: int = 4) -> N
     write_figure(fig, path)
 
 
-def write_response(result, model, folder, title: str) -> tuple[dict, list]:
+def write_response(result, model, folder, title: str, mesh=None) -> tuple[dict, list]:
     """response.png and response.csv in ``folder`` (atomically) for one speed
-    (``SteadyResponse``) or a sweep of speeds; returns (the JSON document, their paths)."""
+    (``SteadyResponse``) or a sweep of speeds; returns (the JSON document, with ``mesh`` as
+    ``response_document`` has it, and their paths)."""
     from flexlink.fileio import write_atomic
     from flexlink.studies.running.steady_response import SteadyResponse
 
     paths = [folder / "response.png", folder / "response.csv"]
     if isinstance(result, SteadyResponse):
         plot_response(result, model, paths[0], title)
-        csv, document = response_csv(result, model), response_document(title, result, model)
+        csv, document = response_csv(result, model), response_document(title, result, model,
+                                                                        mesh)
     else:
         plot_sweep(result, paths[0], title, model.periodic.frequencies)
-        csv, document = sweep_csv(result), sweep_document(title, result, model)
+        csv, document = sweep_csv(result), sweep_document(title, result, model, mesh)
     write_atomic(paths[1], csv)
     return document, paths

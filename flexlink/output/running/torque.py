@@ -1,5 +1,5 @@
 """Rendering of ``studies.running.torque.TorqueCurve``: CSV (one row per crank angle), the JSON
-document, the text summary and the torque plot (PNG bytes; the caller writes them)."""
+document, the text summary and the torque plot (``write_torque`` writes the CSV and the PNG)."""
 
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ import math
 
 import numpy as np
 
-RPM = 60 / (2 * math.pi)  # [rev/min] per [rad/s]
+from flexlink.units import rev_per_min
 
 
 def torque_csv(curve) -> str:
@@ -27,7 +27,7 @@ def torque_csv(curve) -> str:
     return "\n".join(lines) + "\n"
 
 
-def torque_document(curve, assumptions, files) -> dict:
+def torque_document(curve, assumptions) -> dict:
     """The JSON document: operating point, summary, per-joint peak forces, mass properties,
     the model's assumptions and the scene's."""
     peaks = {}
@@ -37,12 +37,12 @@ def torque_document(curve, assumptions, files) -> dict:
         peaks[key] = {"peak_N": float(magnitude[i]),
                       "at_deg": float(math.degrees(curve.q[i]) % 360.0)}
     return {"command": "torque", "scene": curve.scene, "crank_speed_rad_s": curve.speed,
-            "crank_speed_rev_per_min": curve.speed * RPM,
+            "crank_speed_rev_per_min": rev_per_min(curve.speed),
             "crank_acceleration_rad_s2": curve.crank_acceleration, "poses": len(curve.q),
             **curve.summary(), "joint_forces": peaks,
             "bodies": [{"body": m.body, "mass_kg": m.mass, "centroid_m": list(m.centroid),
                         "inertia_kg_m2": m.inertia} for m in curve.masses],
-            "model": list(curve.model), "assumptions": list(assumptions), "files": files}
+            "model": list(curve.model), "assumptions": list(assumptions)}
 
 
 def torque_text(doc: dict) -> str:
@@ -75,7 +75,7 @@ def torque_plot(curve, size=(8.0, 6.0), dpi: int = 120) -> bytes:
     top.axhline(curve.torque.mean(), color="grey", ls="--", lw=1,
                 label=f"mean {curve.torque.mean():.4g} N m")
     top.set_ylabel("driving torque [N m]")
-    top.set_title(f"{curve.scene}: {curve.speed * RPM:.4g} rev/min ({curve.speed:.4g} rad/s)"
+    top.set_title(f"{curve.scene}: {rev_per_min(curve.speed):.4g} rev/min ({curve.speed:.4g} rad/s)"
                   + (f", {curve.crank_acceleration:.4g} rad/s^2" if curve.crank_acceleration
                      else ""))
     top.legend(fontsize=9)
@@ -90,3 +90,13 @@ def torque_plot(curve, size=(8.0, 6.0), dpi: int = 120) -> bytes:
     buffer = io.BytesIO()
     fig.savefig(buffer, format="png")
     return buffer.getvalue()
+
+
+def write_torque(curve, folder) -> list:
+    """torque.csv and torque.png in ``folder`` (atomically); returns their paths."""
+    from flexlink.fileio import write_atomic
+
+    paths = [folder / "torque.csv", folder / "torque.png"]
+    write_atomic(paths[0], torque_csv(curve))
+    write_atomic(paths[1], torque_plot(curve))
+    return paths

@@ -20,7 +20,7 @@ import math
 import numpy as np
 
 from flexlink.errors import InputError
-from flexlink.units import RPM
+from flexlink.units import rev_per_min
 
 
 
@@ -70,7 +70,7 @@ def bands(frequencies: np.ndarray, to_zero=()) -> list[Band]:
 def _check_speeds(speeds: tuple[float, float]) -> tuple[float, float]:
     low, high = speeds
     if not (0 <= low < high and math.isfinite(high)):
-        raise InputError(f"speed range {low / RPM:g}:{high / RPM:g} rev/min", field="--speeds",
+        raise InputError(f"speed range {rev_per_min(low):g}:{rev_per_min(high):g} rev/min", field="speeds",
                          expected="0 <= low < high, finite")
     return low, high
 

@@ -36,18 +36,15 @@ import math
 
 import numpy as np
 
+from flexlink.analysis.eigensolver import AUTO_DENSE_MAX
+from flexlink.analysis.frame_motion import pose_speed_terms, unit_motion
+from flexlink.analysis.periodic import PeriodicModel, periodic_model, speed_multipliers
 from flexlink.errors import InputError
-from flexlink.fe.assembly import reduced_columns, rigid_elimination
-from flexlink.fe.co_rotating import co_rotating_turn, link_angles
-from flexlink.fe.model_at_pose import pose_model
-from flexlink.fe.preload import element_inertia_loads, inertia_loads, static_displacement
+from flexlink.fe.assembly import (eliminated_pair, eliminating_assembler, reduced_columns,
+                                  rigid_elimination)
+from flexlink.fe.preload import element_inertia_loads
 from flexlink.fe.stress import FIBRES, end_positions, link_stresses
-from flexlink.kinematics.dynamics import rigid_motion
 from flexlink.scene import Scene
-from flexlink.studies.running.modes_at_speed import (external_loads, link_motion, reduced_pair,
-                                                     reducer)
-from flexlink.studies.running.stability_map import (PeriodicModel, periodic_model,
-                                                    speed_multipliers)
 from flexlink.studies.running.steady_response import (SAMPLES, ForcedModel, UnstableError,
                                                       forced_model, periodic_solution)
 from flexlink.units import RPM
@@ -134,34 +131,30 @@ def stress_model(scene: Scene, n_modes: int = MODES, poses: int = 37,
     verdict = forced.periodic if own else periodic_model(scene, VERDICT_MODES, poses,
                                                          damping_ratio, elements_per_link)
     topology = scene.topology(elements_per_link)
-    model0 = pose_model(topology, scene.rigid_state(None).points)
+    periodic = forced.periodic
+    model0 = periodic.pose_models[0]
     T = rigid_elimination(model0)
     column, n = reduced_columns(T, model0.n_dofs)
-    reduce = reducer(column, n, dense=True)
-    reference = link_angles(model0)
-    basis = forced.periodic.basis.vectors
+    assemble = eliminating_assembler(column, n, dense=True)
     points = _points(model0)
-    count, size = len(points.link), basis.shape[1]
+    count, size = len(points.link), periodic.pose_shapes.shape[2]
     modal = np.empty((poses, count, size))
     residual, quasi = np.empty((poses, count, 2)), np.empty((poses, count, 2))
-    for p, angle in enumerate(forced.periodic.angles):
+    for p, (angle, model, full) in enumerate(zip(periodic.angles, periodic.pose_models,
+                                                 periodic.pose_shapes)):
         state = scene.rigid_state(angle)
-        model = pose_model(topology, state.points)
-        to_global = co_rotating_turn(model, reference, T) @ basis
-        full = to_global if T is None else np.asarray(T @ to_global)
         modal[p] = _flat(link_stresses(model, full))
-        Kr = reduced_pair(model, T, n, reduce)[0]
+        Kr = eliminated_pair(model, T, assemble, direct=n <= AUTO_DENSE_MAX)[0]
         Kr = Kr.toarray() if hasattr(Kr, "toarray") else np.asarray(Kr)
-        _, alpha, acc = link_motion(scene, model, topology,
-                                    rigid_motion(scene.linkage, state, 1.0, 0.0))
-        loads = np.stack([inertia_loads(model, acc, alpha),
-                          external_loads(scene, model, topology, state)], axis=1)
-        u = np.stack([static_displacement(Kr, T, loads[:, k]) for k in range(2)], axis=1)
+        terms = pose_speed_terms(scene, topology, state, model, Kr, T, assemble)
+        u = np.stack([terms.inertia_displacement, terms.external_displacement], axis=1)
+        motion = unit_motion(scene, model, topology, state)
         own = tuple(np.stack([e, np.zeros_like(e)], axis=-1)
-                    for e in element_inertia_loads(model, acc, alpha))
+                    for e in element_inertia_loads(model, motion.acceleration, motion.alpha))
         quasi[p] = _flat(link_stresses(model, u, own))
-        reduced_loads = loads if T is None else np.asarray(T.T @ loads)
-        qs = np.linalg.solve(to_global.T @ Kr @ to_global, to_global.T @ reduced_loads)
+        # the basis' static answer to the same loads: its projected stiffness and forcing
+        qs = np.linalg.solve(periodic.elastic_stiffness[p], np.stack(
+            [periodic.inertia_forcing[p], periodic.external_forcing[p]], axis=1))
         residual[p] = quasi[p] - modal[p] @ qs
     return StressModel(forced=forced, points=points, modal=modal, residual=residual,
                        quasi_static=quasi, elements=tuple(l.elements for l in model0.links),

@@ -7,13 +7,14 @@ is a sum of powers of the two: the rigid accelerations (a = p'' Omega^2 + p' qdd
 alpha = L Omega^2 + K qddot), hence the d'Alembert preload, its axial forces and K_g(N), and
 the circulatory alpha S are Omega^2 times their values at 1 rad/s plus qddot times their
 values at 1 rad/s^2 from rest, the centrifugal -omega^2 Mt is Omega^2 times its value and the
-gyroscopic G is Omega times its value. So per pose
+gyroscopic G is Omega times its value (``fe.speed_terms``). So per pose
     M x'' + Omega G1 x' + (K + K_ext + Omega^2 K2 + qddot K1) x = 0,
 with K_ext the geometric stiffness of the scene's constant [[loads]]; the same qddot is taken
-at every speed and pose (the modes at that instant of a crank speeding up, not a run-up). Each pose is reduced once
-onto its lowest static modes Phi (mass normalised, ``basis`` of them: Galerkin projection, M ->
-I, K -> diag(omega_i^2)), and every speed is then a small dense quadratic eigenproblem. The
-reduction is checked against the full ``operating_modes`` solve in the tests.
+at every speed and pose (the modes at that instant of a crank speeding up, not a run-up). Each
+pose is projected once onto its lowest static modes Phi (mass normalised, ``basis`` of them:
+Galerkin projection, M -> I, K -> diag(omega_i^2)), and every speed is then a small dense
+quadratic eigenproblem. The projection is checked against the full ``operating_modes`` solve
+in the tests.
 
 Modes are tracked through the cycle at the first grid speed as the static cycle map tracks
 them (``tracking.track``), and from there through the speeds at every pose: the modes at each
@@ -26,7 +27,7 @@ counted as ambiguous.
 A divergence is where the stiffness at speed K + K_ext + Omega^2 K2 turns singular at some
 pose: a mode's frequency falls to 0 Hz there and a real root pair +-sigma follows (the mode
 grows). Its speed at each pose is the smallest real positive Omega^2 with
-det(K + K_ext + Omega^2 K2) = 0, a small generalised eigenproblem of the reduced matrices;
+det(K + K_ext + Omega^2 K2) = 0, a small generalised eigenproblem of the projected matrices;
 the diagram reports the lowest over the sampled poses, the line whose mode it is (the MAC of
 the singular direction with the lines' shapes below it) and the growth rate sigma at the first
 grid speed past it. Harmonic n is critical for mode j at speed Omega when
@@ -43,27 +44,27 @@ import numpy as np
 import scipy.linalg as la
 import scipy.sparse as sp
 
+from flexlink.analysis.frame_motion import pose_speed_terms
+from flexlink.analysis.runs import true_runs
 from flexlink.analysis.mac import link_frame, link_frame_mass, mac_matrix, pair_modes
 from flexlink.analysis.modal import pose_modes
 from flexlink.analysis.solve import MECHANISM
 from flexlink.errors import InputError, NumericalError
-from flexlink.fe.assembly import (assemble_reduced_dense, dense_slots, dense_sum,
+from flexlink.fe.assembly import (assemble_reduced_dense, eliminating_assembler,
                                   reduced_columns, rigid_elimination)
-from flexlink.fe.geometric import GeometricForm, geometric_entries
-from flexlink.fe.preload import axial_forces, inertia_loads, static_displacement
-from flexlink.fe.rotating import rotating_entries
-from flexlink.kinematics.dynamics import rigid_motion
+from flexlink.fe.geometric import GeometricForm
+from flexlink.fe.speed_terms import speed_linear, speed_quadratic
 from flexlink.scene import Scene
+from flexlink.studies.array_shapes import check_shape
 from flexlink.studies.cycle.bands import Band, CriticalSpeed, bands, critical_speeds
 from flexlink.studies.cycle.modal_map import kinematic_cycle
-from flexlink.studies.running.modes_at_speed import external_loads, link_motion
 from flexlink.studies.cycle.tracking import PAIR_MAC, SPARE, track
 
 EXTRA = 8  # static modes in each pose's basis beyond the ones solved at speed
 
 
 @dataclasses.dataclass(frozen=True)
-class ReducedPose:
+class ProjectedPose:
     """One pose's operating-point matrices on its static modes Phi (full DOFs, mass
     normalised): k0 = Phi^T (K + K_ext) Phi, k2, g1 and k1 the Omega^2, Omega and crank
     acceleration coefficients [1/s^2, -, 1/s, -]; ``frame``: Phi in link frames, for the MAC."""
@@ -75,6 +76,13 @@ class ReducedPose:
     k1: np.ndarray
     frame: np.ndarray
 
+    def __post_init__(self):
+        n = len(self.static_hz)
+        check_shape("ProjectedPose", "static_hz", self.static_hz, (n,))
+        for name in ("k0", "k2", "g1", "k1"):
+            check_shape("ProjectedPose", name, getattr(self, name), (n, n))
+        check_shape("ProjectedPose", "frame", self.frame, (None, n))
+
     def stiffness(self, acceleration: float = 0.0) -> np.ndarray:
         """k0 + qddot k1: the stiffness at speed less its Omega^2 part [1/s^2]."""
         return self.k0 + acceleration * self.k1 if acceleration else self.k0
@@ -83,7 +91,8 @@ class ReducedPose:
         """(every root s (2 n,) [1/s], its shape (n,) in the basis) at crank ``speed`` [rad/s]
         and crank ``acceleration`` [rad/s^2]."""
         n = len(self.k0)
-        K, G = self.stiffness(acceleration) + speed**2 * self.k2, speed * self.g1
+        K = speed_quadratic(speed, self.k0, self.k2, acceleration, self.k1)
+        G = speed_linear(speed, 0.0, self.g1)
         s, Z = la.eig(np.block([[np.zeros((n, n)), np.eye(n)], [-K, -G]]))
         return s, Z[:n]
 
@@ -119,10 +128,10 @@ class ReducedPose:
         return math.sqrt(mu.real[k]), self.frame @ x.real
 
 
-def reduce_pose(scene: Scene, state, topology, basis: int,
-                form: GeometricForm = GeometricForm.CONSISTENT) -> tuple[ReducedPose, object]:
-    """(the pose ``state`` reduced onto its lowest ``basis`` static modes, its link-frame mass
-    matrix)."""
+def project_pose(scene: Scene, state, topology, basis: int,
+                 form: GeometricForm = GeometricForm.CONSISTENT) -> tuple[ProjectedPose, object]:
+    """(the pose ``state`` projected onto its lowest ``basis`` static modes, its link-frame
+    mass matrix)."""
     model, static, _ = pose_modes(topology, state.points, basis)
     if MECHANISM in static.kinds:
         raise NumericalError(
@@ -131,33 +140,18 @@ def reduce_pose(scene: Scene, state, topology, basis: int,
     T = rigid_elimination(model)
     column, n = reduced_columns(T, model.n_dofs)
     Kr, _ = assemble_reduced_dense(model, T)
-    motion = rigid_motion(scene.linkage, state, 1.0, 0.0)  # every term at 1 rad/s
-    omega, alpha, acc = link_motion(scene, model, topology, motion)
-    start = rigid_motion(scene.linkage, state, 0.0, 1.0)  # and at 1 rad/s^2 from rest
-    _, alpha1, acc1 = link_motion(scene, model, topology, start)
-
-    def reduce(rows, cols, vals):
-        return dense_sum(dense_slots(column, n, rows, cols), vals, n)
-
-    def geometric(loads):
-        forces = axial_forces(model, static_displacement(Kr, T, loads))
-        return reduce(*geometric_entries(model, forces, form))
-
-    rows, cols, rot = rotating_entries(model, omega, alpha)
-    K2 = reduce(rows, cols, rot[0] + rot[2]) + geometric(inertia_loads(model, acc, alpha))
-    G1 = reduce(rows, cols, rot[1])
-    rows1, cols1, rot1 = rotating_entries(model, np.zeros_like(alpha1), alpha1)
-    K1 = reduce(rows1, cols1, rot1[2]) + geometric(inertia_loads(model, acc1, alpha1))
-    external = external_loads(scene, model, topology, state)
-    K_ext = geometric(external) if np.any(external) else np.zeros((n, n))
+    terms = pose_speed_terms(scene, topology, state, model, Kr, T,
+                             eliminating_assembler(column, n, dense=True), form,
+                             accelerating=True)
     Phi = static.shapes[:, static.elastic[:basis]]
     keep = column >= 0
     P = np.zeros((n, Phi.shape[1]))
-    P[column[keep]] = Phi[keep]  # the reduced coordinates of the static modes
+    P[column[keep]] = Phi[keep]  # the eliminated coordinates of the static modes
     lam = (2 * math.pi * static.elastic_frequencies[:basis]) ** 2
-    pose = ReducedPose(static_hz=static.elastic_frequencies[:basis],
-                       k0=np.diag(lam) + P.T @ K_ext @ P, k2=P.T @ K2 @ P, g1=P.T @ G1 @ P,
-                       k1=P.T @ K1 @ P, frame=link_frame(model, Phi))
+    pose = ProjectedPose(static_hz=static.elastic_frequencies[:basis],
+                         k0=np.diag(lam) + P.T @ terms.constant() @ P,
+                         k2=P.T @ terms.squared() @ P, g1=P.T @ terms.linear() @ P,
+                         k1=P.T @ terms.accelerated() @ P, frame=link_frame(model, Phi))
     return pose, link_frame_mass(model)
 
 
@@ -174,6 +168,14 @@ class Divergence:
     line: int | None
     grid_speed: float
     growth_rate: float
+
+    def __post_init__(self):
+        for name in ("speed", "q", "grid_speed", "growth_rate"):
+            value = getattr(self, name)
+            if not (value is None and name == "speed"):
+                check_shape("Divergence", name, value, ())
+        if self.line is not None and self.line < 1:
+            raise ValueError(f"Divergence.line is {self.line}, expected a 1-based line or None")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -195,6 +197,14 @@ class DynamicCampbell:
     ambiguous: int = 0
     crank_acceleration: float = 0.0  # [rad/s^2], the same at every speed and pose
 
+    def __post_init__(self):
+        poses, speeds = len(self.q), len(self.speeds)
+        check_shape("DynamicCampbell", "q", self.q, (poses,))
+        check_shape("DynamicCampbell", "speeds", self.speeds, (speeds,))
+        check_shape("DynamicCampbell", "frequencies", self.frequencies, (speeds, poses, None))
+        check_shape("DynamicCampbell", "static", self.static,
+                    (poses, np.shape(self.frequencies)[2]))
+
     @property
     def stable_speeds(self) -> int:
         """How many grid speeds, from the first, have no divergence."""
@@ -210,17 +220,17 @@ def dynamic_campbell(scene: Scene, speeds: np.ndarray, n_poses: int = 72, n_mode
                      progress=None, crank_acceleration: float = 0.0) -> DynamicCampbell:
     """The lowest ``n_modes`` operating-point modes at every pose of ``n_poses`` over the cycle
     and every crank speed of ``speeds`` [rad/s] (ascending) with the crank angular acceleration
-    ``crank_acceleration`` [rad/s^2] (default 0: constant speed), each pose reduced
+    ``crank_acceleration`` [rad/s^2] (default 0: constant speed), each pose projected
     onto its lowest ``basis`` static modes (default n_modes + SPARE + EXTRA), tracked by MAC
     through the cycle at the first speed and through the speeds at every pose. Speeds from the
     first where a pose diverges on are left out (NaN)."""
     speeds = np.asarray(speeds, dtype=float)
     if (speeds.ndim != 1 or not np.all(np.isfinite(speeds)) or np.any(speeds < 0)
             or np.any(np.diff(speeds) <= 0)):
-        raise InputError("crank speeds must be finite, >= 0 and ascending", field="--speeds",
+        raise InputError("crank speeds must be finite, >= 0 and ascending", field="speeds",
                          expected="0 <= low < high")
     if not math.isfinite(crank_acceleration):
-        raise InputError(f"got {crank_acceleration!r} rad/s^2", field="--crank-acceleration",
+        raise InputError(f"got {crank_acceleration!r} rad/s^2", field="crank_acceleration",
                          expected="a finite angular acceleration")
     count = n_modes + SPARE
     basis = basis or count + EXTRA
@@ -234,10 +244,10 @@ def dynamic_campbell(scene: Scene, speeds: np.ndarray, n_poses: int = 72, n_mode
     static = np.empty((n_poses, count))
     first, static_shapes = [], []
     W, stop = None, len(speeds)
-    lowest = (math.inf, None, None, None)  # (speed, pose, continued mode, pose's reduction)
+    lowest = (math.inf, None, None, None)  # (speed, pose, continued mode, pose's projection)
     states = progress(cycle.states) if progress else cycle.states
     for i, state in enumerate(states):
-        pose, mass = reduce_pose(scene, state, topology, basis)
+        pose, mass = project_pose(scene, state, topology, basis)
         W = W if W is not None else sp.block_diag([mass, mass]).tocsr()
         static[i] = pose.static_hz[:count]
         frame = pose.frame[:, :count]
@@ -321,19 +331,11 @@ def dynamic_critical(result: DynamicCampbell, margin: float = 0.05,
             f_n = n * w / (2 * math.pi)
             # <= 0 inside the band with its margin: the larger of the two edge excesses
             c = np.maximum(low[:, j] * (1 - margin) - f_n, f_n - high[:, j] * (1 + margin))
-            inside = c <= 0
-            k = 0
-            while k < len(w):
-                if not inside[k]:
-                    k += 1
-                    continue
-                start = k
-                while k + 1 < len(w) and inside[k + 1]:
-                    k += 1
+            for start, stop in true_runs(c <= 0):
+                k = stop - 1
                 a = w[start] if start == 0 else _root(w, c, start - 1)
                 b = w[k] if k == len(w) - 1 else _root(w, c, k)
                 out.append(CriticalSpeed(j + 1, n, float(a), float(b)))
-                k += 1
     return out
 
 

@@ -1,10 +1,10 @@
 """The steady elastic response of the running linkage: deflection and bending strain over one
 revolution at a crank speed, and the peak strain against speed.
 
-The periodic equations of ``studies.running.stability_map`` (its reduced basis, ``analysis.pose_basis``,
-co-rotating node coordinates, modal damping) forced by the loads of the rigid
-motion: the d'Alembert loads (``fe.preload.inertia_loads``, which scale with Omega^2 at constant
-crank speed) and the scene's [[loads]] (independent of speed),
+The periodic equations of ``analysis.periodic`` (the stability map's: its basis,
+``analysis.pose_basis``, co-rotating node coordinates, modal damping) forced by the loads of the
+rigid motion: the d'Alembert loads (which scale with Omega^2 at constant crank speed) and the
+scene's [[loads]] (independent of speed),
 
     M(theta) x'' + (C + Omega G1) x' + (K + K_ext + Omega^2 K2) x = Omega^2 f2(theta) + f_ext(theta),
 
@@ -15,7 +15,7 @@ polynomials of the crank angle, so the periodic solution's harmonics fall spectr
 count does not grow with the stiffest basis frequency (a time integration over the turn needs
 steps ~ omega_max / Omega). Whether the steady state exists (every Floquet multiplier inside
 the unit circle) is the stability map's verdict at the same speed
-(``stability_map.speed_multipliers``).
+(``analysis.periodic.speed_multipliers``).
 
 Outputs at named points (a link and a distance from its start joint; by default each link's
 midspan): the bending deflection v(s) - chord (the local transverse displacement less the line
@@ -27,26 +27,18 @@ rotation: dv/dx for Euler-Bernoulli), both from the element's own shape function
 from __future__ import annotations
 
 import dataclasses
-import functools
 import math
 
 import numpy as np
 
-from flexlink.analysis.fourier import fourier_coefficients
 from flexlink.analysis.harmonic_balance import HarmonicSolution, harmonic_balance
+from flexlink.analysis.periodic import PeriodicModel, periodic_model, speed_multipliers
 from flexlink.errors import InputError, NumericalError
-from flexlink.fe.assembly import reduced_columns, rigid_elimination
 from flexlink.fe.beams import shear_parameter
-from flexlink.fe.co_rotating import co_rotating_turn, link_angles
-from flexlink.fe.model_at_pose import pose_model
-from flexlink.fe.preload import inertia_loads
 from flexlink.fe.timoshenko import shape_functions
-from flexlink.kinematics.dynamics import rigid_motion
 from flexlink.scene import Scene
-from flexlink.studies.running.modes_at_speed import external_loads, link_motion, reduced_pair, reducer
-from flexlink.studies.running.stability_map import (PeriodicModel, fourier_series, periodic_model,
-                                           speed_multipliers)
-from flexlink.units import RPM
+from flexlink.studies.array_shapes import check_shape
+from flexlink.units import rev_per_min
 
 SAMPLES = 180  # crank angles per revolution of the output (2 deg)
 TOLERANCE = 1e-7  # harmonic balance's error estimate, relative to the largest |q| over the turn
@@ -70,15 +62,11 @@ class StrainPoint:
 
 @dataclasses.dataclass(frozen=True)
 class ForcedModel:
-    """The periodic model with its forcing and output rows, sampled at ``periodic.angles``.
-
-    inertia_forcing (poses, n) [per (rad/s)^2] and external_forcing (poses, n): modal loads;
-    deflection, curvature (poses, points, n): [m] and [1/m] per modal coordinate;
-    half_depth (points,) [m]."""
+    """The forced periodic equations (``periodic``, with its forcing) and the output rows at
+    ``points``, sampled at ``periodic.angles``: deflection, curvature (poses, points, n): [m]
+    and [1/m] per modal coordinate; half_depth (points,) [m]."""
 
     periodic: PeriodicModel
-    inertia_forcing: np.ndarray
-    external_forcing: np.ndarray
     points: tuple[StrainPoint, ...]
     deflection: np.ndarray
     curvature: np.ndarray
@@ -86,36 +74,16 @@ class ForcedModel:
 
     def __post_init__(self):
         poses, n = len(self.periodic.angles), len(self.periodic.frequencies)
-        for name in ("inertia_forcing", "external_forcing"):
-            if getattr(self, name).shape != (poses, n):
-                raise ValueError(f"{name} must be ({poses}, {n})")
+        if self.periodic.inertia_forcing is None:
+            raise ValueError("ForcedModel.periodic carries no forcing")
         for name in ("deflection", "curvature"):
-            if getattr(self, name).shape != (poses, len(self.points), n):
-                raise ValueError(f"{name} must be ({poses}, {len(self.points)}, {n})")
+            check_shape("ForcedModel", name, getattr(self, name), (poses, len(self.points), n))
+        check_shape("ForcedModel", "half_depth", self.half_depth, (len(self.points),))
 
     def at(self, samples: np.ndarray, theta) -> np.ndarray:
         """``samples`` (poses, ...) interpolated at crank angles ``theta`` (m,) [rad], as the
         periodic model interpolates its matrices."""
-        return fourier_series(samples, np.asarray(theta) - self.periodic.angles[0])
-
-    def harmonic_equations(self, speed: float):
-        """Fourier coefficients (``analysis.fourier``) of S = M^-1 (K + Omega^2 K2) [1/s^2],
-        D = M^-1 (C + Omega G1) [1/s] (both (P + 1, n, n)) and g = M^-1 (Omega^2 f2 + f_ext)
-        ((P + 1, n)) at crank ``speed`` Omega [rad/s], theta from the first pose: the
-        stability map's equations (``PeriodicModel.system``), whose parts' coefficients
-        (``_coefficients``) combine linearly at every speed."""
-        blocks, loads = self._coefficients
-        return (blocks[:, 2] + speed**2 * blocks[:, 3], blocks[:, 0] + speed * blocks[:, 1],
-                speed**2 * loads[:, 0] + loads[:, 1])
-
-    @functools.cached_property
-    def _coefficients(self) -> tuple[np.ndarray, np.ndarray]:
-        """The Fourier coefficients of M^-1 C, M^-1 G1, M^-1 K, M^-1 K2 ((P + 1, 4, n, n), the
-        map's first-order samples) and of M^-1 f2, M^-1 f_ext ((P + 1, 2, n)), once per model."""
-        forcing = np.stack([self.inertia_forcing, self.external_forcing], axis=1)
-        loads = np.linalg.solve(self.periodic.mass[:, None], forcing[..., None])[..., 0]
-        return (fourier_coefficients(self.periodic._first_order_samples),
-                fourier_coefficients(loads))
+        return self.periodic.at(samples, theta)
 
 
 def midspans(scene: Scene) -> tuple[StrainPoint, ...]:
@@ -131,8 +99,9 @@ def _link_lengths(scene: Scene) -> dict[str, float]:
             for link in scene.topology().links}
 
 
-def check_points(scene: Scene, points, field: str = "--at") -> tuple[StrainPoint, ...]:
-    """``points`` unchanged if each lies on a beam link of ``scene``, else InputError."""
+def check_points(scene: Scene, points, field: str = "points") -> tuple[StrainPoint, ...]:
+    """``points`` unchanged if each lies on a beam link of ``scene``, else InputError naming
+    ``field``."""
     lengths = _link_lengths(scene)
     for p in points:
         if p.link not in lengths:
@@ -150,43 +119,19 @@ def forced_model(scene: Scene, n_modes: int = 6, poses: int = 37,
                  points: tuple[StrainPoint, ...] | None = None,
                  elements_per_link: int | None = None,
                  basis_size: int | None = None) -> ForcedModel:
-    """``stability_map.periodic_model`` with the forcing of the rigid motion and the output rows
-    at ``points`` (default: each link's midspan), in the same basis and poses; the damping
-    ratio and the basis size as there (None: the scene's declared damping; the checked
+    """``analysis.periodic.periodic_model`` (its forcing included) with the output rows at
+    ``points`` (default: each link's midspan), read off the basis at each of its poses; the
+    damping ratio and the basis size as there (None: the scene's declared damping; the checked
     basis)."""
     points = check_points(scene, midspans(scene) if points is None else points)
     periodic = periodic_model(scene, n_modes, poses, damping_ratio, elements_per_link,
                               basis_size=basis_size)
-    topology = scene.topology(elements_per_link)
-    model0 = pose_model(topology, scene.rigid_state(None).points)
-    T = rigid_elimination(model0)
-    n = reduced_columns(T, model0.n_dofs)[1]
-    basis = periodic.basis.vectors  # co-rotating reduced DOFs per coordinate
-    reference = link_angles(model0)
-    size = basis.shape[1]
-    forcing = np.empty((2, len(periodic.angles), size))
-    rows = np.empty((2, len(periodic.angles), len(points), size))
-    for p, angle in enumerate(periodic.angles):
-        state = scene.rigid_state(angle)
-        model = pose_model(topology, state.points)
-        to_global = co_rotating_turn(model, reference, T) @ basis  # reduced global DOFs
-        if p == 0:  # the same coordinates as the periodic model's matrices
-            _, M = reduced_pair(model, T, n, reducer(reduced_columns(T, model0.n_dofs)[0], n,
-                                                     dense=True))
-            M = M.toarray() if hasattr(M, "toarray") else np.asarray(M)
-            if not np.allclose(to_global.T @ M @ to_global, periodic.mass[0], rtol=1e-9,
-                               atol=1e-12):
-                raise NumericalError("the response basis is not the stability map's")
-        _, alpha, acc = link_motion(scene, model, topology, rigid_motion(
-            scene.linkage, state, 1.0, 0.0))
-        for i, f in enumerate((inertia_loads(model, acc, alpha),
-                               external_loads(scene, model, topology, state))):
-            forcing[i, p] = to_global.T @ (f if T is None else T.T @ f)
-        full = to_global if T is None else np.asarray(T @ to_global)
-        rows[:, p] = _point_rows(model, full, points)
+    rows = np.stack([_point_rows(model, shapes, points) for model, shapes in
+                     zip(periodic.pose_models, periodic.pose_shapes)], axis=1)
+    model0 = periodic.pose_models[0]
     half = np.array([_link(model0, p.link).section.depth / 2.0 for p in points])
-    return ForcedModel(periodic=periodic, inertia_forcing=forcing[0], external_forcing=forcing[1],
-                       points=points, deflection=rows[0], curvature=rows[1], half_depth=half)
+    return ForcedModel(periodic=periodic, points=points, deflection=rows[0], curvature=rows[1],
+                       half_depth=half)
 
 
 def _link(model, name):
@@ -226,6 +171,12 @@ class SteadyResponse:
     strain: np.ndarray
     largest_modulus: float
 
+    def __post_init__(self):
+        samples = len(self.angles)
+        check_shape("SteadyResponse", "angles", self.angles, (samples,))
+        check_shape("SteadyResponse", "deflection", self.deflection, (samples, None))
+        check_shape("SteadyResponse", "strain", self.strain, self.deflection.shape)
+
     @property
     def peak_strain(self) -> np.ndarray:
         """max |strain| over the turn, per point [-]."""
@@ -241,7 +192,7 @@ def periodic_solution(model: ForcedModel, speed: float,
                       tolerance: float = TOLERANCE) -> HarmonicSolution:
     """The periodic modal coordinates q(theta - first pose) at crank ``speed`` [rad/s] by
     harmonic balance to ``tolerance`` (its error estimate), whether stable or not."""
-    return harmonic_balance(*model.harmonic_equations(speed), speed, tolerance)
+    return harmonic_balance(*model.periodic.harmonic_equations(speed), speed, tolerance)
 
 
 def steady_response(model: ForcedModel, speed: float, samples: int = SAMPLES,
@@ -250,7 +201,7 @@ def steady_response(model: ForcedModel, speed: float, samples: int = SAMPLES,
     crank angles. UnstableError where a Floquet multiplier has |mu| >= 1 (the stability
     map's multipliers at this speed, by its own step rule)."""
     if not (math.isfinite(speed) and speed > 0.0):
-        raise InputError(f"crank speed {speed / RPM:.6g} rev/min", field="--speed",
+        raise InputError(f"crank speed {rev_per_min(speed):.6g} rev/min", field="speed",
                          expected="a positive finite speed")
     stability = speed_multipliers(model.periodic, speed)
     if stability.largest_modulus >= 1.0:
@@ -275,6 +226,13 @@ class ResponseSweep:
     peak_strain: np.ndarray
     peak_deflection: np.ndarray
     largest_modulus: np.ndarray
+
+    def __post_init__(self):
+        n, k = len(self.speeds), len(self.points)
+        check_shape("ResponseSweep", "speeds", self.speeds, (n,))
+        for name in ("peak_strain", "peak_deflection"):
+            check_shape("ResponseSweep", name, getattr(self, name), (n, k))
+        check_shape("ResponseSweep", "largest_modulus", self.largest_modulus, (n,))
 
     @property
     def unstable(self) -> np.ndarray:
@@ -307,20 +265,7 @@ def _static_peaks(model: ForcedModel, samples: int):
     periodic = model.periodic
     angles = periodic.angles[0] + 2.0 * np.pi * np.arange(samples) / samples
     K = model.at(periodic.stiffness, angles)
-    q = np.linalg.solve(K, model.at(model.external_forcing, angles)[..., None])[..., 0]
+    q = np.linalg.solve(K, model.at(periodic.external_forcing, angles)[..., None])[..., 0]
     deflection = np.einsum("spn,sn->sp", model.at(model.deflection, angles), q)
     strain = -model.half_depth * np.einsum("spn,sn->sp", model.at(model.curvature, angles), q)
     return np.abs(strain).max(axis=0), np.abs(deflection).max(axis=0)
-
-
-
-def parse_point(text: str, field: str = "--at") -> StrainPoint:
-    """"LINK:DISTANCE" (e.g. "coupler:60 mm", the distance from the link's start joint)."""
-    from flexlink.units import parse_quantity
-
-    link, sep, distance = str(text).partition(":")
-    if not sep or not link.strip():
-        raise InputError(f"{text!r} is not LINK:DISTANCE", source="command line", field=field,
-                         expected="e.g. 'coupler:60 mm'")
-    return StrainPoint(link.strip(), parse_quantity(distance.strip(), "length",
-                                                    source="command line", field=field))

@@ -6,22 +6,16 @@ bodies' mass properties from the beams and joint masses the scene states and its
 from __future__ import annotations
 
 import dataclasses
-import math
 
 import numpy as np
 
 from flexlink.errors import InputError
 from flexlink.kinematics.dynamics import check_speed, rigid_motion
-from flexlink.kinematics.inverse import (
-    Bar,
-    BodyMass,
-    Wrench,
-    body_masses,
-    inverse_dynamics,
-)
-from flexlink.kinematics.linkage import Linkage, State
+from flexlink.kinematics.inverse import Bar, BodyMass, body_masses, inverse_dynamics
+from flexlink.kinematics.linkage import Linkage
 from flexlink.scene import Scene
-from flexlink.scene.contract import LoadFrame, LoadKind, LoadSpec
+from flexlink.scene.loads import wrench
+from flexlink.studies.array_shapes import check_shape
 from flexlink.studies.cycle.modal_map import kinematic_cycle
 
 MODEL = (
@@ -56,10 +50,9 @@ class TorqueCurve:
     def __post_init__(self):
         n = len(self.q)
         for name in ("torque", "power", "kinetic_energy", "load_power"):
-            if np.shape(getattr(self, name)) != (n,):
-                raise ValueError(f"{name} needs one value per crank angle ({n})")
-        if any(np.shape(f) != (n, 2) for f in self.forces.values()):
-            raise ValueError(f"each joint force needs shape ({n}, 2)")
+            check_shape("TorqueCurve", name, getattr(self, name), (n,))
+        for key, force in self.forces.items():
+            check_shape("TorqueCurve", f"forces[{key!r}]", force, (n, 2))
 
     def summary(self) -> dict:
         """Peak (largest magnitude), largest, smallest and mean torque [N m] and power [W]
@@ -77,33 +70,6 @@ class TorqueCurve:
                 "peak_power_W": float(self.power[j]), "peak_power_at_deg": float(deg[j])}
 
 
-def operating_point(scene: Scene, speed: float | None = None,
-                    crank_acceleration: float | None = None) -> tuple[float, float]:
-    """(speed [rad/s], crank acceleration [rad/s^2]) from the command line's values (None: not
-    given), else the scene's [operation]. Refuses a negative or non-finite speed, a missing one,
-    and an acceleration without a speed, naming the option."""
-    where = "command line"
-    if speed is None:
-        if crank_acceleration is not None and scene.options.crank_speed is None:
-            raise InputError("a crank acceleration needs a crank speed: give --speed too (or "
-                             "[operation] crank_speed in the scene)", source=where,
-                             field="--crank-acceleration")
-        if scene.options.crank_speed is None:
-            raise InputError("no crank speed: give --speed (e.g. '600 rev/min') or [operation] "
-                             "crank_speed in the scene", source=where, field="--speed")
-        speed = scene.options.crank_speed
-        if crank_acceleration is None:
-            crank_acceleration = scene.options.crank_acceleration
-    if not (math.isfinite(speed) and speed >= 0):
-        raise InputError(f"got {speed!r} rad/s", source=where, field="--speed",
-                         expected="a finite speed >= 0 (the crank turns counter-clockwise)")
-    acc = 0.0 if crank_acceleration is None else float(crank_acceleration)
-    if not math.isfinite(acc):
-        raise InputError(f"got {acc!r} rad/s^2", source=where, field="--crank-acceleration",
-                         expected="a finite angular acceleration")
-    return float(speed), acc
-
-
 def scene_masses(scene: Scene) -> tuple[BodyMass, ...]:
     """Each body's mass properties from the scene's beams and joint masses."""
     bars = [Bar(link.name, link.start, link.end, link.section.mass_per_length,
@@ -112,21 +78,6 @@ def scene_masses(scene: Scene) -> tuple[BodyMass, ...]:
         return body_masses(scene.linkage, bars, {j.name: j.mass for j in scene.joints})
     except InputError as exc:
         raise InputError(str(exc), source=scene.path) from None
-
-
-def wrench(linkage: Linkage, state: State, load: LoadSpec) -> Wrench:
-    """The load at the pose ``state``, in global components at a global point."""
-    body = linkage.body(load.body)
-    p0, p1 = (np.asarray(state.points[j], float) for j in body.joints[:2])
-    e = (p1 - p0) / np.linalg.norm(p1 - p0)
-    n = np.array([-e[1], e[0]])
-    value = load.value_at(state.q)
-    if load.kind is LoadKind.TORQUE:
-        return Wrench(load.body, torque=float(value[0]))
-    force = value[0] * e + value[1] * n if load.frame is LoadFrame.BODY else value
-    point = p0 + load.at[0] * e + load.at[1] * n
-    return Wrench(load.body, force=(float(force[0]), float(force[1])),
-                  point=(float(point[0]), float(point[1])))
 
 
 def torque_study(scene: Scene, speed: float, crank_acceleration: float = 0.0,

@@ -1,0 +1,375 @@
+"""The periodic equations of the running linkage over one crank turn, and their Floquet
+multipliers at a crank speed.
+
+Model: at crank speed Omega the elastic motion about the rigid motion obeys, with
+theta = Omega t the crank angle,
+    M(theta) x'' + (C(theta) + Omega G1(theta)) x'
+        + (K(theta) + K_ext(theta) + Omega^2 K2(theta)) x = Omega^2 f2(theta) + f_ext(theta),
+the speed terms of ``fe.speed_terms`` taken at each crank angle (frozen configuration at each
+instant; at constant crank speed the inertia preload, the centrifugal and the link
+angular-acceleration terms and the d'Alembert loads all scale with Omega^2, the Coriolis matrix
+with Omega). The matrices and loads are assembled once, at ``poses`` equally spaced crank angles,
+per unit speed (``analysis.frame_motion.pose_speed_terms``), and interpolated in theta by their
+Fourier series (``analysis.fourier``: exact for a trigonometric polynomial of degree below
+poses/2), in co-rotating node coordinates (``fe.co_rotating``). They are projected on the basis
+of ``analysis.pose_basis`` (the static modes of the poses over the turn, compressed by SVD and
+checked against every pose's own lowest frequencies), given as the scene pose's Ritz vectors.
+The damping C(theta) is each pose's own (``analysis.damping.deformation_damping``): modal over
+the pose's modes in the basis, so it acts on the rate of the elastic deformation at that pose.
+A damping fixed in the basis, diag(2 zeta_i omega_i) of the scene pose's Ritz vectors at every
+pose, would instead act on the basis's own motion: the links' co-rotating frames turn against
+each other over the turn, so the pins' translations carried with them read, in the scene
+pose's terms, as stretches of the stiff pin springs, and the stiff vectors' damping (large
+under Rayleigh's beta K) resists the quasi-static response itself. The period is one
+revolution, T = 2 pi / Omega.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import enum
+import functools
+import logging
+
+import numpy as np
+
+from flexlink.analysis import adiabatic
+from flexlink.analysis.damping import basis_damping, checked_ratio, deformation_damping
+from flexlink.analysis.eigensolver import AUTO_DENSE_MAX
+from flexlink.analysis.floquet import FloquetResult, floquet, monodromy
+from flexlink.analysis.fourier import fourier_coefficients, fourier_series
+from flexlink.analysis.frame_motion import pose_speed_terms
+from flexlink.analysis.modal import pose_modes
+from flexlink.analysis.pose_basis import DEFAULT_TOLERANCE, PoseBasis, pose_basis
+from flexlink.analysis.solve import MECHANISM
+from flexlink.errors import InputError, NumericalError
+from flexlink.fe.assembly import (eliminated_pair, eliminating_assembler, reduced_columns,
+                                  rigid_elimination)
+from flexlink.fe.co_rotating import co_rotating_turn, link_angles
+from flexlink.fe.model_at_pose import pose_model
+from flexlink.fe.speed_terms import speed_linear, speed_quadratic
+from flexlink.scene import Scene
+
+log = logging.getLogger(__name__)
+ADIABATIC_GRID = 2048  # crank angles of the adiabatic basis per turn: 1024 steps at most
+ADIABATIC_STEPS = 64  # equal adiabatic steps a turn at least, then halved where Q needs:
+# ln |mu| per turn within the map's 1e-3 (docs/critical-speeds.md, "Convergence")
+FLOOR_POINTS = 4  # crank angles per sampled pose where the stiffness floor is sought
+STEP_PHASE = 2.0  # h omega_max bound [rad]: ln|mu| within 1.3e-4 per turn of h omega_max 0.5
+
+
+class Integrator(enum.StrEnum):
+    """How a speed's monodromy is integrated: ADIABATIC (the default), the
+    interaction-picture steps of ``analysis.adiabatic``, whose count does not follow the
+    stiffest frequency; MAGNUS, the fourth-order Magnus steps of ``analysis.floquet`` (h
+    omega_max <= step_phase), as accurate and many times slower below a few thousand rev/min
+    (docs/critical-speeds.md, "Speed")."""
+
+    ADIABATIC = "adiabatic"
+    MAGNUS = "magnus"
+
+
+@dataclasses.dataclass(frozen=True)
+class PeriodicModel:
+    """The periodic equations projected on a basis, sampled at ``angles`` [rad].
+
+    mass, coriolis (per rad/s), stiffness (at Omega = 0), speed_stiffness (per (rad/s)^2):
+    (poses, n, n); frequencies (n,): the basis vectors' Ritz frequencies at the scene's pose
+    [Hz]; damping_ratio (n,) [-]: zeta_i per basis vector at the scene's pose (a single number
+    is taken for every vector); damping_samples (poses, n, n): C at each pose (None: the modal
+    C = diag(2 zeta_i omega_i) of equations given directly in modal coordinates, the same at
+    every pose); elastic_stiffness (poses, n, n): K alone, without the external loads'
+    preload (None: not given); basis: how the basis was
+    built and its check (``analysis.pose_basis``), None for equations given directly; then the
+    first ``checked`` frequencies are those the check covers (all of them without a basis);
+    damping_source: where the ratios came from, for the outputs. The forcing, None for free
+    equations: inertia_forcing (poses, n) [per (rad/s)^2] the projected d'Alembert loads and
+    external_forcing (poses, n) the scene's [[loads]]; ``pose_models`` (the frame model at
+    each pose) and ``pose_shapes`` (poses, n_dofs, n): the basis vectors in each pose's global
+    DOFs, for what a study reads off the response."""
+
+    angles: np.ndarray
+    mass: np.ndarray
+    coriolis: np.ndarray
+    stiffness: np.ndarray
+    speed_stiffness: np.ndarray
+    frequencies: np.ndarray
+    damping_ratio: np.ndarray
+    basis: PoseBasis | None = None
+    damping_source: str = "given with the equations"
+    inertia_forcing: np.ndarray | None = None
+    external_forcing: np.ndarray | None = None
+    pose_models: tuple = ()
+    pose_shapes: np.ndarray | None = None
+    damping_samples: np.ndarray | None = None
+    elastic_stiffness: np.ndarray | None = None
+
+    def __post_init__(self):
+        poses, n = len(self.angles), len(self.frequencies)
+        for name in ("mass", "coriolis", "stiffness", "speed_stiffness", "damping_samples",
+                     "elastic_stiffness"):
+            if name in ("damping_samples", "elastic_stiffness") and getattr(self, name) is None:
+                continue
+            if np.shape(getattr(self, name)) != (poses, n, n):
+                raise ValueError(f"PeriodicModel.{name} has shape "
+                                 f"{np.shape(getattr(self, name))}, expected ({poses}, {n}, {n})")
+        ratios = np.broadcast_to(np.asarray(self.damping_ratio, dtype=float),
+                                 np.shape(self.frequencies)).copy()
+        if not (np.all(np.isfinite(ratios)) and np.all(ratios >= 0.0)):
+            raise ValueError(f"damping ratios must be finite and >= 0, got {ratios}")
+        object.__setattr__(self, "damping_ratio", ratios)
+        if (self.inertia_forcing is None) != (self.external_forcing is None):
+            raise ValueError("PeriodicModel needs both forcings or neither")
+        for name in ("inertia_forcing", "external_forcing"):
+            value = getattr(self, name)
+            if value is not None and np.shape(value) != (poses, n):
+                raise ValueError(f"PeriodicModel.{name} has shape {np.shape(value)}, expected "
+                                 f"({poses}, {n})")
+        if self.pose_shapes is not None and (
+                np.ndim(self.pose_shapes) != 3 or np.shape(self.pose_shapes)[::2] != (poses, n)
+                or len(self.pose_models) != poses):
+            raise ValueError(f"PeriodicModel.pose_shapes has shape {np.shape(self.pose_shapes)}"
+                             f" and {len(self.pose_models)} pose models, expected "
+                             f"({poses}, n_dofs, {n}) and {poses}")
+
+    @property
+    def checked(self) -> np.ndarray:
+        """The scene pose's lowest frequencies [Hz] the basis was checked on (the modes the
+        unstable ranges are labelled with)."""
+        return self.frequencies if self.basis is None else self.basis.exact[0]
+
+    @property
+    def damping(self) -> np.ndarray:
+        """C (poses, n, n) at each sampled pose: ``damping_samples``, else the modal damping
+        diag(2 zeta_i omega_i) at every pose."""
+        if self.damping_samples is not None:
+            return self.damping_samples
+        diagonal = np.diag(2.0 * self.damping_ratio * 2.0 * np.pi * self.frequencies)
+        return np.broadcast_to(diagonal, self.mass.shape)
+
+    def at(self, samples: np.ndarray, theta) -> np.ndarray:
+        """``samples`` (poses, ...) taken at this model's angles, interpolated at crank angles
+        ``theta`` (m,) [rad] as the model interpolates its matrices."""
+        return fourier_series(samples, np.asarray(theta, dtype=float) - self.angles[0])
+
+    def matrices_at(self, theta: np.ndarray) -> tuple[np.ndarray, ...]:
+        """(M, G1, K, K2) at crank angles theta (m,) [rad] by Fourier interpolation."""
+        return tuple(self.at(a, theta) for a in
+                     (self.mass, self.coriolis, self.stiffness, self.speed_stiffness))
+
+    def stiffness_floor(self, speed: float) -> float:
+        """The lowest eigenvalue [(rad/s)^2] over the turn (FLOOR_POINTS points per sampled
+        pose) of the symmetric part of K + speed^2 K2, mass weighted: negative where the
+        frozen frame buckles under its own inertia at that speed (a quasi-static divergence,
+        not a parametric resonance), or at rest where the interpolation between poses fails."""
+        at_rest, per_speed = self._floor_pencil
+        return float(np.linalg.eigvalsh(speed_quadratic(speed, at_rest, per_speed))[:, 0].min())
+
+    @functools.cached_property
+    def _floor_pencil(self) -> tuple[np.ndarray, np.ndarray]:
+        """L sym(K) L^T and L sym(K2) L^T at FLOOR_POINTS points per sampled pose, L L^T =
+        M^-1 (the mass weighting is the same at every speed)."""
+        theta = self.angles[0] + np.linspace(0.0, 2.0 * np.pi, FLOOR_POINTS * len(self.angles),
+                                             endpoint=False)
+        M, _, K, K2 = self.matrices_at(theta)
+        L = np.linalg.inv(np.linalg.cholesky(M))
+        return tuple(L @ (0.5 * (A + np.swapaxes(A, -1, -2))) @ np.swapaxes(L, -1, -2)
+                     for A in (K, K2))
+
+    @functools.cached_property
+    def per_mass(self) -> np.ndarray:
+        """(poses, 4, n, n): M^-1 C, M^-1 G1, M^-1 K, M^-1 K2 at each sampled pose, the blocks
+        of the first-order equations that are interpolated (linear in C + Omega G1 and
+        K + Omega^2 K2, so one series serves every speed; exact at the samples like the
+        matrices' own series)."""
+        blocks = np.stack(np.broadcast_arrays(self.damping, self.coriolis, self.stiffness,
+                                              self.speed_stiffness), axis=1)
+        return np.linalg.solve(self.mass[:, None], blocks)
+
+    @functools.cached_property
+    def _coefficients(self) -> tuple[np.ndarray, np.ndarray]:
+        """The Fourier coefficients of ``per_mass`` ((P + 1, 4, n, n)) and of M^-1 f2,
+        M^-1 f_ext ((P + 1, 2, n)), once per model."""
+        if self.inertia_forcing is None:
+            raise ValueError("these periodic equations carry no forcing")
+        forcing = np.stack([self.inertia_forcing, self.external_forcing], axis=1)
+        loads = np.linalg.solve(self.mass[:, None], forcing[..., None])[..., 0]
+        return fourier_coefficients(self.per_mass), fourier_coefficients(loads)
+
+    def harmonic_equations(self, speed: float):
+        """Fourier coefficients (``analysis.fourier``) of S = M^-1 (K + Omega^2 K2) [1/s^2],
+        D = M^-1 (C + Omega G1) [1/s] (both (P + 1, n, n)) and g = M^-1 (Omega^2 f2 + f_ext)
+        ((P + 1, n)) at crank ``speed`` Omega [rad/s], theta from the first pose: the
+        equations of ``system``, whose parts' coefficients combine linearly at every speed
+        (the input of ``analysis.harmonic_balance``)."""
+        blocks, loads = self._coefficients
+        return (speed_quadratic(speed, blocks[:, 2], blocks[:, 3]),
+                speed_linear(speed, blocks[:, 0], blocks[:, 1]),
+                speed_quadratic(speed, loads[:, 1], loads[:, 0]))
+
+    @functools.cached_property
+    def energy_scale(self) -> np.ndarray:
+        """R (n, n) [rad/s]: the symmetric square root of the turn's mean mass-weighted
+        stiffness at rest, L sym(K) L^T (L L^T = M^-1, ``_floor_pencil``: positive definite
+        at every point, as the model refuses it otherwise; the symmetric part of M^-1 K need
+        not be, where M varies over the turn and K is stiff: the wiper, rigid pins). In the
+        coordinates (R q, q') the stiffness and velocity parts of the state weigh alike, so
+        A's norm is near its spectral radius there (in (q, q') it is up to 65 times larger
+        on Table II case 1, and each doubling is one more squaring in every step's
+        exponential)."""
+        values, vectors = np.linalg.eigh(self._floor_pencil[0].mean(axis=0))
+        return (vectors * np.sqrt(values)) @ vectors.T
+
+    @property
+    def adiabatic(self) -> adiabatic.AdiabaticBasis:
+        """A0, A0', A1, A2 of dx/dtheta = (A0 / Omega + A1 + Omega A2) x, x = (q, q'),
+        decomposed over ADIABATIC_GRID crank angles (``analysis.adiabatic``): built once, used
+        at every speed; its refusal (NumericalError) is kept and raised again, not rebuilt."""
+        built = self._adiabatic_or_refusal
+        if isinstance(built, NumericalError):
+            raise built.with_traceback(None)  # a kept refusal, not a growing traceback
+        return built
+
+    @functools.cached_property
+    def _adiabatic_or_refusal(self) -> adiabatic.AdiabaticBasis | NumericalError:
+        samples = self.per_mass
+        n = samples.shape[-1]
+        theta = 2.0 * np.pi * np.arange(ADIABATIC_GRID + 1) / ADIABATIC_GRID
+        a0, a0_prime, a1, a2 = (np.zeros((len(theta), 2 * n, 2 * n)) for _ in range(4))
+        a0[:, :n, n:] = np.eye(n)
+        for order, out in ((0, a0), (1, a0_prime)):
+            out[:, n:, :n] = -fourier_series(samples[:, 2], theta, order)
+            out[:, n:, n:] = -fourier_series(samples[:, 0], theta, order)
+        a1[:, n:, n:] = -fourier_series(samples[:, 1], theta)
+        a2[:, n:, :n] = -fourier_series(samples[:, 3], theta)
+        try:
+            return adiabatic.adiabatic_basis(self.angles[0] + theta, a0, a0_prime, a1, a2)
+        except NumericalError as refusal:
+            return refusal
+
+    def system(self, speed: float, *, energy_coordinates: bool = False):
+        """times (m,) [s] -> A(t) (m, 2n, 2n) at crank speed ``speed`` [rad/s], t = 0 at the
+        scene's pose, for the state (q, q'), or with ``energy_coordinates`` for (R q, q'), R
+        the ``energy_scale`` (the same multipliers; a similarity, exact)."""
+        samples = self.per_mass
+        n = samples.shape[-1]
+        damping = speed_linear(speed, samples[:, 0], samples[:, 1])
+        stiffness = speed_quadratic(speed, samples[:, 2], samples[:, 3])
+        coupling = np.eye(n)
+        if energy_coordinates:  # [[0, R], [-K R^-1, -D]] = S A S^-1, S = diag(R, I)
+            coupling = self.energy_scale
+            stiffness = np.linalg.solve(coupling, np.swapaxes(stiffness, -1, -2))
+            stiffness = np.swapaxes(stiffness, -1, -2)
+
+        def a(t):
+            theta = speed * np.asarray(t, dtype=float)
+            out = np.zeros(theta.shape + (2 * n, 2 * n))
+            out[..., :n, n:] = coupling
+            out[..., n:, :n] = -fourier_series(stiffness, theta)
+            out[..., n:, n:] = -fourier_series(damping, theta)
+            return out
+        return a
+
+
+def periodic_model(scene: Scene, n_modes: int = 6, poses: int = 37,
+                   damping_ratio: float | None = None,
+                   elements_per_link: int | None = None, basis_size: int | None = None,
+                   tolerance: float = DEFAULT_TOLERANCE) -> PeriodicModel:
+    """The periodic equations of ``scene`` over one crank turn with their forcing, sampled at
+    ``poses`` (odd) crank angles from the scene's pose, in the basis of
+    ``analysis.pose_basis``: the lowest ``n_modes`` static modes of every other pose in
+    co-rotating coordinates, compressed by SVD to ``basis_size`` vectors (None: the fewest
+    whose lowest ``n_modes`` frequencies match the full model's at every pose to
+    ``tolerance``), given as the scene pose's Ritz vectors. ``damping_ratio`` [-]: every
+    vector's, else (None) the scene's declared damping (``analysis.damping.basis_damping``)."""
+    if poses < 3 or poses % 2 == 0:
+        raise InputError(f"poses must be an odd count of at least 3, got {poses}",
+                         field="poses", expected="an odd count >= 3")
+    if damping_ratio is not None:  # refused before any work
+        checked_ratio(damping_ratio)
+    topology = scene.topology(elements_per_link)
+    state0 = scene.rigid_state(None)
+    model0, static, _ = pose_modes(topology, state0.points, n_modes)
+    if MECHANISM in static.kinds:
+        raise NumericalError(f"{scene.path}: the frame has a mechanism mode at its pose: the "
+                             "periodic equations need the crank held by its drive")
+    T = rigid_elimination(model0)
+    column, n = reduced_columns(T, model0.n_dofs)
+    assemble = eliminating_assembler(column, n, dense=True)
+    reference = link_angles(model0)
+    angles = state0.q + 2.0 * np.pi * np.arange(poses) / poses
+    full = np.empty((5, poses, n, n))  # M, G1, K, K_ext, K2 in co-rotating DOFs
+    loads = np.empty((2, poses, n))  # f2, f_ext in co-rotating DOFs
+    models, turns = [], []
+    for p, angle in enumerate(angles):
+        state = scene.rigid_state(angle)
+        model = pose_model(topology, state.points)
+        K, M = (np.asarray(A.toarray() if hasattr(A, "toarray") else A)
+                for A in eliminated_pair(model, T, assemble, direct=n <= AUTO_DENSE_MAX))
+        terms = pose_speed_terms(scene, topology, state, model, K, T, assemble)
+        R = co_rotating_turn(model, reference, T)
+        for k, A in enumerate((M, terms.linear(), K, terms.constant(), terms.squared())):
+            full[k, p] = R.T @ np.asarray(A) @ R
+        for k, f in enumerate((terms.inertia_loads, terms.external_loads)):
+            loads[k, p] = R.T @ (f if T is None else T.T @ f)
+        models.append(model)
+        turns.append(R)
+    basis = pose_basis(full[2], full[0], n_modes, basis_size, tolerance)
+    V = basis.vectors  # co-rotating eliminated DOFs per coordinate
+    M, G1, K, K_ext, K2 = (V.T @ A @ V for A in full)
+    shapes = np.stack([R @ V if T is None else np.asarray(T @ (R @ V)) for R in turns])
+    # at the scene's pose the co-rotating DOFs are the global ones
+    damping = basis_damping(scene, damping_ratio, 2.0 * np.pi * basis.frequencies, model0,
+                            shapes[0])
+    model = PeriodicModel(angles=angles, mass=M, coriolis=G1, stiffness=K + K_ext,
+                          speed_stiffness=K2, frequencies=basis.frequencies,
+                          damping_ratio=damping.ratios, basis=basis,
+                          damping_source=damping.source, inertia_forcing=loads[0] @ V,
+                          external_forcing=loads[1] @ V, pose_models=tuple(models),
+                          pose_shapes=shapes, elastic_stiffness=K,
+                          damping_samples=deformation_damping(scene, damping_ratio, M, K, models,
+                                                              shapes))
+    floor = model.stiffness_floor(0.0)
+    if floor <= 0.0:
+        raise NumericalError(
+            f"{scene.path}: between the {poses} sampled poses the interpolated stiffness is "
+            f"indefinite (lowest eigenvalue {floor:.3g} (rad/s)^2 at rest): the basis' stiff "
+            "directions change faster than the poses resolve; use more poses")
+    return model
+
+
+def speed_multipliers(model: PeriodicModel, speed: float, steps: int = 200,
+                      step_phase: float = STEP_PHASE,
+                      integrator: Integrator = Integrator.ADIABATIC,
+                      adiabatic_steps: int = ADIABATIC_STEPS) -> FloquetResult:
+    """Floquet multipliers over one revolution at crank ``speed`` [rad/s] (> 0). With
+    ``Integrator.ADIABATIC``, by ``adiabatic_steps`` equal adiabatic steps at least (more
+    where the damping needs them), each halved where the couplings need it
+    (``adiabatic.step_bounds``), and by the Magnus steps where the adiabatic basis
+    refuses or its grid cannot give them (logged). With ``Integrator.MAGNUS``, by at least
+    ``steps`` Magnus steps, and more where needed to keep h max|eig A| <= ``step_phase``: at
+    low speed one revolution spans many periods of the highest basis frequency, and the
+    Magnus step's error grows with h omega_max (docs/critical-speeds.md, convergence)."""
+    return multipliers_by(model, speed, steps, step_phase, integrator, adiabatic_steps)[0]
+
+
+def multipliers_by(model: PeriodicModel, speed: float, steps: int = 200,
+                   step_phase: float = STEP_PHASE,
+                   integrator: Integrator = Integrator.ADIABATIC,
+                   adiabatic_steps: int = ADIABATIC_STEPS) -> tuple[FloquetResult, Integrator]:
+    """``speed_multipliers`` and the integrator that gave them."""
+    if integrator is Integrator.ADIABATIC:
+        try:
+            return (adiabatic.adiabatic_monodromy(model.adiabatic, speed, adiabatic_steps),
+                    Integrator.ADIABATIC)
+        except NumericalError as error:
+            log.warning("adiabatic steps refused at %.6g rad/s (%s): Magnus steps there",
+                        speed, error)
+    period = 2.0 * np.pi / speed
+    system = model.system(speed, energy_coordinates=True)
+    size = np.abs(np.linalg.eigvals(system((model.angles - model.angles[0]) / speed))).max()
+    scaled = monodromy(system, period, max(steps, int(np.ceil(period * size / step_phase))))
+    n = len(model.frequencies)
+    scale = np.eye(2 * n)
+    scale[:n, :n] = model.energy_scale
+    return floquet(np.linalg.solve(scale, scaled.monodromy @ scale), period), Integrator.MAGNUS
