@@ -7,7 +7,8 @@ import click
 from flexlink.commands._failures import names_scene
 from flexlink.commands._options import (crank_acceleration_option, harmonics_option, json_option,
                                        map_parallel_options, mesh_options, out_option,
-                                       parse_crank_acceleration, parse_speeds, speeds_option)
+                                       parse_crank_acceleration, parse_speeds, refuse_unless,
+                                       speeds_option)
 
 
 @click.command("campbell")
@@ -43,6 +44,7 @@ def command(scene_path, speeds, n_modes, poses, elements, tol, margin, harmonics
     from ._progress import progress_bar
     from ._written import folder_and_scene, publish
 
+    refuse_unless("speed_steps", "--dynamic", dynamic)
     window, qdd = parse_speeds(speeds), parse_crank_acceleration(acceleration, dynamic)
     folder, scene = folder_and_scene(out_dir, scene_path)
     with use_scheduler(scheduler):

@@ -6,7 +6,7 @@ import click
 
 from flexlink.commands._failures import names_scene
 from flexlink.commands._options import (json_option, out_option, parse_speeds,
-                                       periodic_basis_options)
+                                       periodic_basis_options, refuse_unless)
 
 
 @click.command("response")
@@ -38,6 +38,7 @@ def command(scene_path, speed, speeds, count, n_modes, damping_ratio, points, as
 
     if speed is not None and speeds is not None:
         raise InputError("give --speed or --speeds, not both", field="--speeds")
+    refuse_unless("count", "--speeds", speeds is not None)
     sweep = None if speeds is None else np.linspace(*_check_speeds(parse_speeds(speeds)), count)
     one = speed and parse_quantity(speed, "angular speed", source="command line", field="--speed")
     at = tuple(study.parse_point(p) for p in points) or None

@@ -27,6 +27,7 @@ def command(scene_path, speed, acceleration, poses, as_json, out_dir):
     from flexlink.fileio import prepare_out_dir, write_atomic
     from flexlink.output.running.torque import torque_csv, torque_document, torque_plot, torque_text
     from flexlink.scene import load_scene
+    from flexlink.scene.plausibility import check_speeds
     from flexlink.studies.running.torque import operating_point, torque_study
     from flexlink.units import parse_quantity
     from ._progress import progress_bar
@@ -40,14 +41,20 @@ def command(scene_path, speed, acceleration, poses, as_json, out_dir):
     qdd = option(acceleration, "angular acceleration", "--crank-acceleration")
     [folder] = scene_folders(prepare_out_dir(out_dir), [scene_path])
     scene = load_scene(scene_path)
+    if omega is not None:
+        check_speeds(scene, [omega], "--speed")
+    fields = tuple(("command line: " + name) if given is not None else name for given, name in
+                   ((omega, "--speed"), (qdd, "--crank-acceleration")))
     omega, qdd = operating_point(scene, omega, qdd)
-    curve = torque_study(scene, omega, qdd, poses, progress_bar("torque", as_json))
+    curve = torque_study(scene, omega, qdd, poses, progress_bar("torque", as_json),
+                         fields=fields)
     paths = [folder / "torque.csv", folder / "torque.json", folder / "torque.png"]
     document = torque_document(curve, [f"{a.field}: {a.note}" for a in scene.assumptions],
                                [str(p) for p in paths])
-    write_atomic(paths[0], torque_csv(curve))
-    write_atomic(paths[1], dumps(document))
-    write_atomic(paths[2], torque_plot(curve))
+    # every file's content first: a failure leaves the earlier run's files as they were
+    contents = [torque_csv(curve), dumps(document), torque_plot(curve)]
+    for path, content in zip(paths, contents):
+        write_atomic(path, content)
     if as_json:
         click.echo(dumps(document))
         return

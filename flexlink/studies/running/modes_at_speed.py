@@ -38,7 +38,7 @@ from flexlink.fe.rotating import rotating_entries
 from flexlink.kinematics.dynamics import RigidMotion, check_speed, rigid_motion
 from flexlink.scene import Scene, load_scene
 from flexlink.scene.contract import LoadKind, RigidPose, pose_transmission_angles
-from flexlink.scene.plausibility import model_warnings, pose_warnings
+from flexlink.scene.plausibility import check_speeds, model_warnings, pose_warnings
 from flexlink.studies.running.torque import operating_point, wrench
 
 ASSUMPTIONS = (
@@ -219,6 +219,8 @@ def scene_operating_modes(path, n_modes: int = 4, elements: int | None = None,
     mesh of its static modes (``elements`` per link, else the scene's pinned mesh, else the
     mesh rule at relative tolerance ``tol``)."""
     scene = load_scene(path)
+    if at.speed is not None:
+        check_speeds(scene, [at.speed], "--speed")
     speed, acceleration = operating_point(scene, at.speed, at.crank_acceleration)
     mesh = choose_mesh(scene, n_modes, elements, tol)
     return operating_modes(scene, speed, n_modes, mesh.elements, at.crank_angle, acceleration,

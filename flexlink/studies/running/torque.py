@@ -10,16 +10,17 @@ import math
 
 import numpy as np
 
-from flexlink.errors import InputError
+from flexlink.errors import InputError, KinematicsError
 from flexlink.kinematics.dynamics import check_speed, rigid_motion
 from flexlink.kinematics.inverse import (
     Bar,
     BodyMass,
+    InverseDynamics,
     Wrench,
     body_masses,
     inverse_dynamics,
 )
-from flexlink.kinematics.linkage import Linkage, State
+from flexlink.kinematics.linkage import NEAR_SINGULAR, Linkage, State
 from flexlink.scene import Scene
 from flexlink.scene.contract import LoadFrame, LoadKind, LoadSpec
 from flexlink.studies.cycle.modal_map import kinematic_cycle
@@ -51,29 +52,36 @@ class TorqueCurve:
     load_power: np.ndarray
     forces: dict[str, np.ndarray]
     masses: tuple[BodyMass, ...]
+    singular: np.ndarray  # (n,) bool: a pose whose motion is not determined; NaN rows there
+    at_pose: InverseDynamics | None = None  # at the scene's own pose; None where singular
+    loads: tuple[LoadSpec, ...] = ()
     model: tuple[str, ...] = MODEL
 
     def __post_init__(self):
         n = len(self.q)
-        for name in ("torque", "power", "kinetic_energy", "load_power"):
+        for name in ("torque", "power", "kinetic_energy", "load_power", "singular"):
             if np.shape(getattr(self, name)) != (n,):
                 raise ValueError(f"{name} needs one value per crank angle ({n})")
         if any(np.shape(f) != (n, 2) for f in self.forces.values()):
             raise ValueError(f"each joint force needs shape ({n}, 2)")
+        if self.singular.all():
+            raise ValueError("every pose is singular: no torque to show")
 
     def summary(self) -> dict:
         """Peak (largest magnitude), largest, smallest and mean torque [N m] and power [W]
-        (means over the crank angle, which at constant speed are the means over time)."""
+        over the poses whose motion is determined (means over the crank angle, which at
+        constant speed are the means over time)."""
         deg = np.degrees(self.q) % 360.0
-        i, hi, lo = (int(np.argmax(np.abs(self.torque))), int(np.argmax(self.torque)),
-                     int(np.argmin(self.torque)))
-        j = int(np.argmax(np.abs(self.power)))
+        ok = np.flatnonzero(~self.singular)
+        torque, power = self.torque[ok], self.power[ok]
+        i, hi, lo = (ok[np.argmax(np.abs(torque))], ok[np.argmax(torque)], ok[np.argmin(torque)])
+        j = ok[np.argmax(np.abs(power))]
         return {"peak_torque_N_m": float(self.torque[i]), "peak_torque_at_deg": float(deg[i]),
                 "max_torque_N_m": float(self.torque[hi]), "max_torque_at_deg": float(deg[hi]),
                 "min_torque_N_m": float(self.torque[lo]), "min_torque_at_deg": float(deg[lo]),
-                "mean_torque_N_m": float(self.torque.mean()),
-                "rms_torque_N_m": float(np.sqrt(np.mean(self.torque**2))),
-                "mean_power_W": float(self.power.mean()),
+                "mean_torque_N_m": float(torque.mean()),
+                "rms_torque_N_m": float(np.sqrt(np.mean(torque**2))),
+                "mean_power_W": float(power.mean()),
                 "peak_power_W": float(self.power[j]), "peak_power_at_deg": float(deg[j])}
 
 
@@ -130,11 +138,17 @@ def wrench(linkage: Linkage, state: State, load: LoadSpec) -> Wrench:
 
 
 def torque_study(scene: Scene, speed: float, crank_acceleration: float = 0.0,
-                 poses: int = 360, progress=None) -> TorqueCurve:
+                 poses: int = 360, progress=None,
+                 fields: tuple[str, str] = ("operation.crank_speed",
+                                            "operation.crank_acceleration")) -> TorqueCurve:
     """The driving torque and joint forces of ``scene`` at ``poses`` crank angles over one
     turn, at crank speed ``speed`` [rad/s] and angular acceleration ``crank_acceleration``
-    [rad/s^2]. Refuses a scene with neither masses nor loads, and one with a compliant link
-    (a beam not on one rigid body)."""
+    [rad/s^2], and at the scene's own pose. A pose whose motion is not determined (a dead
+    centre or a change-point linkage's flat pose: ``linkage.NEAR_SINGULAR``) is marked
+    singular and left out (NaN), never averaged in. Refuses a scene with neither masses nor
+    loads, one with a compliant link (a beam not on one rigid body), and an operating point
+    whose torque or forces overflow, naming the one of ``fields`` (where the speed and the
+    acceleration were given) whose term is the larger."""
     check_speed(speed, crank_acceleration)
     masses = scene_masses(scene)
     if not scene.loads and not any(m.mass > 0 for m in masses):
@@ -143,19 +157,71 @@ def torque_study(scene: Scene, speed: float, crank_acceleration: float = 0.0,
                          source=scene.path, field="links")
     linkage = scene.linkage
     cycle = kinematic_cycle(scene, poses, progress)
-    rows = []
-    for state in cycle.states:
-        motion = rigid_motion(linkage, state, speed, crank_acceleration)
-        loads = [wrench(linkage, state, load) for load in scene.loads]
-        rows.append(inverse_dynamics(linkage, motion, masses, loads))
-    torque = np.array([r.torque for r in rows])
-    keys = [k for k in rows[0].forces if _reported(linkage, *k)]
-    forces = {f"{j}:{b}": np.array([r.forces[(j, b)] for r in rows]) for j, b in keys}
-    return TorqueCurve(scene=scene.name, speed=speed, crank_acceleration=crank_acceleration,
-                       q=cycle.q, torque=torque, power=torque * speed,
-                       kinetic_energy=np.array([r.kinetic_energy for r in rows]),
-                       load_power=np.array([r.load_power for r in rows]), forces=forces,
-                       masses=masses)
+    singular = np.array([linkage.conditioning(s) < NEAR_SINGULAR for s in cycle.states])
+    if singular.all():
+        raise KinematicsError("every sampled pose is singular: the motion is not determined "
+                              "at any of them")
+    with np.errstate(over="ignore", invalid="ignore"):  # an overflow is refused below
+        try:
+            rows = [None if flat else _dynamics(scene, state, speed, crank_acceleration, masses)
+                    for state, flat in zip(cycle.states, singular)]
+        except InputError as exc:  # an overflowing motion, named where the user gave its cause
+            field = fields[0] if exc.field == "speed" else fields[1]
+            raise InputError(str(exc).split(": ", 1)[-1], source=scene.path, field=field) from None
+        first = next(r for r in rows if r is not None)
+        keys = [k for k in first.forces if _reported(linkage, *k)]
+        blank = np.full(2, np.nan)
+
+        def column(value):
+            return np.array([np.nan if r is None else value(r) for r in rows])
+        torque = column(lambda r: r.torque)
+        forces = {f"{j}:{b}": np.array([blank if r is None else r.forces[(j, b)] for r in rows])
+                  for j, b in keys}
+        pose_state = scene.rigid_state(None)
+        at_pose = (None if linkage.conditioning(pose_state) < NEAR_SINGULAR
+                   else _dynamics(scene, pose_state, speed, crank_acceleration, masses))
+        curve = TorqueCurve(scene=scene.name, speed=speed, crank_acceleration=crank_acceleration,
+                            q=cycle.q, torque=torque, power=torque * speed,
+                            kinetic_energy=column(lambda r: r.kinetic_energy),
+                            load_power=column(lambda r: r.load_power), forces=forces,
+                            masses=masses, singular=singular, at_pose=at_pose, loads=scene.loads)
+        _check_finite(curve, scene, fields)
+    return curve
+
+
+def torque_at(scene: Scene, speed: float, crank_acceleration: float,
+              crank_angle: float) -> InverseDynamics:
+    """The inverse dynamics of ``scene`` at ``crank_angle`` [rad] (on the scene's assembly),
+    crank speed ``speed`` [rad/s] and acceleration ``crank_acceleration`` [rad/s^2]."""
+    check_speed(speed, crank_acceleration)
+    return _dynamics(scene, scene.rigid_state(crank_angle), speed, crank_acceleration,
+                     scene_masses(scene))
+
+
+def _dynamics(scene: Scene, state: State, speed: float, crank_acceleration: float,
+              masses) -> InverseDynamics:
+    linkage = scene.linkage
+    motion = rigid_motion(linkage, state, speed, crank_acceleration)
+    loads = [wrench(linkage, state, load) for load in scene.loads]
+    return inverse_dynamics(linkage, motion, masses, loads)
+
+
+def _check_finite(curve: TorqueCurve, scene: Scene, fields: tuple[str, str]) -> None:
+    """InputError when a torque, force, energy or power of ``curve`` (or its summary: the rms
+    squares the torque) is beyond the floating-point range."""
+    ok = ~curve.singular
+    values = [curve.torque[ok], curve.power[ok], curve.kinetic_energy[ok],
+              curve.load_power[ok], *(f[ok] for f in curve.forces.values()),
+              np.array(list(curve.summary().values()))]
+    if curve.at_pose is not None:
+        values.append(np.array([curve.at_pose.torque, curve.at_pose.kinetic_energy]))
+    if all(np.isfinite(v).all() for v in values):
+        return
+    speed, acc = curve.speed, curve.crank_acceleration
+    field = fields[1] if abs(acc) > speed * speed else fields[0]
+    raise InputError(f"the driving torque at {speed:.6g} rad/s and {acc:.6g} rad/s^2 "
+                     "overflows the floating-point range", source=scene.path, field=field,
+                     expected="a crank speed and acceleration a machine can have")
 
 
 def _reported(linkage: Linkage, joint: str, body: str) -> bool:
