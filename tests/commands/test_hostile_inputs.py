@@ -6,11 +6,10 @@ model cannot give (a flat pose's torque) is reported, never averaged in."""
 import json
 import math
 
-import numpy as np
 import pytest
 from click.testing import CliRunner
 
-from conftest import CASES_DIR, ROOT, SCENES_DIR
+from conftest import CASES_DIR, SCENES_DIR
 from flexlink.cli import main
 from flexlink.errors import InputError
 from flexlink.scene import load_scene
