@@ -161,32 +161,48 @@ def torque_study(scene: Scene, speed: float, crank_acceleration: float = 0.0,
     if singular.all():
         raise KinematicsError("every sampled pose is singular: the motion is not determined "
                               "at any of them")
+    pose_state = scene.rigid_state(None)
+    states = [None if flat else s for s, flat in zip(cycle.states, singular)]
+    if linkage.conditioning(pose_state) >= NEAR_SINGULAR:
+        states.append(pose_state)  # the scene's own pose last
     with np.errstate(over="ignore", invalid="ignore"):  # an overflow is refused below
         try:
-            rows = [None if flat else _dynamics(scene, state, speed, crank_acceleration, masses)
-                    for state, flat in zip(cycle.states, singular)]
+            rows = [None if s is None else _dynamics(scene, s, speed, crank_acceleration, masses)
+                    for s in states]
         except InputError as exc:  # an overflowing motion, named where the user gave its cause
             field = fields[0] if exc.field == "speed" else fields[1]
             raise InputError(str(exc).split(": ", 1)[-1], source=scene.path, field=field) from None
         first = next(r for r in rows if r is not None)
         keys = [k for k in first.forces if _reported(linkage, *k)]
-        blank = np.full(2, np.nan)
 
         def column(value):
-            return np.array([np.nan if r is None else value(r) for r in rows])
-        torque = column(lambda r: r.torque)
-        forces = {f"{j}:{b}": np.array([blank if r is None else r.forces[(j, b)] for r in rows])
-                  for j, b in keys}
-        pose_state = scene.rigid_state(None)
-        at_pose = (None if linkage.conditioning(pose_state) < NEAR_SINGULAR
-                   else _dynamics(scene, pose_state, speed, crank_acceleration, masses))
+            return np.array([np.full(np.shape(value(first)), np.nan) if r is None else value(r)
+                             for r in rows])
+        forces = {f"{j}:{b}": column(lambda r, key=(j, b): r.forces[key]) for j, b in keys}
+        torque = _without_round_off(column(lambda r: r.torque), forces, linkage.size)
+        n = len(cycle.q)
+        at_pose = None if len(rows) == n else dataclasses.replace(rows[-1], torque=torque[-1])
         curve = TorqueCurve(scene=scene.name, speed=speed, crank_acceleration=crank_acceleration,
-                            q=cycle.q, torque=torque, power=torque * speed,
-                            kinetic_energy=column(lambda r: r.kinetic_energy),
-                            load_power=column(lambda r: r.load_power), forces=forces,
-                            masses=masses, singular=singular, at_pose=at_pose, loads=scene.loads)
+                            q=cycle.q, torque=torque[:n], power=torque[:n] * speed,
+                            kinetic_energy=column(lambda r: r.kinetic_energy)[:n],
+                            load_power=column(lambda r: r.load_power)[:n],
+                            forces={k: f[:n] for k, f in forces.items()}, masses=masses,
+                            singular=singular, at_pose=at_pose, loads=scene.loads)
         _check_finite(curve, scene, fields)
     return curve
+
+
+ROUND_OFF = 1e-12  # a torque below this share of the pin forces' moment is round-off
+
+
+def _without_round_off(torque: np.ndarray, forces: dict[str, np.ndarray],
+                       size: float) -> np.ndarray:
+    """``torque`` [N m] with the values below ROUND_OFF times the largest pin force [N] times
+    the linkage's ``size`` [m] set to 0: the pin solve leaves about 1e-16 of that moment, so a
+    balanced rotor's torque, exactly 0, would otherwise show as a jagged +-1e-13 N m."""
+    moments = [np.nanmax(np.hypot(f[:, 0], f[:, 1])) * size for f in forces.values()]
+    floor = ROUND_OFF * max(moments, default=0.0)
+    return np.where(np.abs(torque) <= floor, 0.0, torque)  # +0.0, never -0.0
 
 
 def torque_at(scene: Scene, speed: float, crank_acceleration: float,
