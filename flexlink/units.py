@@ -10,6 +10,8 @@ from __future__ import annotations
 import math
 import re
 
+import numpy as np
+
 from flexlink.errors import InputError
 
 # dimension -> {unit spelling: factor to SI}
@@ -96,9 +98,13 @@ def parse_range(text: object, dimension: str, *, source: str | None = None,
 RPM = UNITS["angular speed"]["rev/min"]  # [rad/s] per rev/min
 
 
-def rev_per_min(omega: float) -> float:
-    """An angular speed ``omega`` [rad/s] in rev/min."""
-    return omega / RPM
+def rev_per_min(omega):
+    """An angular speed ``omega`` [rad/s] (a number or an array) in rev/min, to 12
+    significant digits: a speed given in rev/min comes back as written (2900, not the
+    2900.0000000000005 of the round trip through rad/s)."""
+    values = np.asarray(omega, dtype=float) / RPM
+    rounded = np.array([float(f"{v:.12g}") for v in values.ravel()]).reshape(values.shape)
+    return float(rounded) if rounded.ndim == 0 else rounded
 
 
 def percent_error(computed, reference):

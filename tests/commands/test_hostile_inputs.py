@@ -6,6 +6,7 @@ model cannot give (a flat pose's torque) is reported, never averaged in."""
 import json
 import math
 
+import numpy as np
 import pytest
 from click.testing import CliRunner
 
@@ -260,3 +261,16 @@ def test_a_balanced_rotor_needs_no_torque_and_shows_none(tmp_path):
     code, out, err = run("torque", CASE3, "--speed", "600 rev/min", "--poses", "72", "--json",
                          "--out", tmp_path)
     assert abs(json.loads(out)["peak_torque_N_m"]) > 1e-3
+
+
+def test_a_range_edge_in_rev_per_min_comes_back_as_written(tmp_path):
+    """2900 rev/min went to rad/s and back as 2900.0000000000005 in campbell.json."""
+    from flexlink.units import RPM, rev_per_min
+    assert repr(rev_per_min(2900 * RPM)) == "2900.0"  # rounded to 12 digits: exact by design
+    assert list(rev_per_min(np.array([2900 * RPM, 1e-3]))) == [2900.0, pytest.approx(1e-3 / RPM,
+                                                                              rel=1e-12)]
+    code, out, err = run("campbell", CASE3, "--speeds", "0:2900 rev/min", "--json",
+                         "--out", tmp_path)
+    assert code == 0, err
+    assert "2900.0000000000005" not in out
+    assert json.loads(out)["speeds_rev_per_min"] == [0.0, 2900.0]

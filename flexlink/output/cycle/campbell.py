@@ -14,6 +14,7 @@ from flexlink.output.cycle.tracking import (events_json, periodicity_json, resee
 from flexlink.studies.cycle.bands import RPM, Band, CriticalSpeed
 from flexlink.studies.cycle.campbell import CampbellStudy
 from flexlink.studies.cycle.tracking import unsampled_note
+from flexlink.units import rev_per_min
 
 
 def campbell_document(scene, study: CampbellStudy) -> dict:
@@ -23,17 +24,18 @@ def campbell_document(scene, study: CampbellStudy) -> dict:
     labels, tracked, nearest = study.labels, study.tracked, study.nearest
     document = {
         "command": "campbell", "scene": scene.name,
-        "speeds_rev_per_min": [study.window[0] / RPM, study.window[1] / RPM],
+        "speeds_rev_per_min": [rev_per_min(study.window[0]), rev_per_min(study.window[1])],
         "margin": study.margin, "harmonics": study.harmonics, "poses": study.poses,
         "mesh": study.mesh.as_dict(),
         "bands": [{"mode": b.mode, "label": labels.get(b.mode), "min_Hz": b.low,
                    "max_Hz": b.high} for b in study.bands],
         "critical_speeds": [{"mode": c.mode, "harmonic": c.harmonic,
-                             "from_rev_per_min": c.low / RPM, "to_rev_per_min": c.high / RPM}
+                             "from_rev_per_min": rev_per_min(c.low),
+                             "to_rev_per_min": rev_per_min(c.high)}
                             for c in study.critical],
         "nearest_margin": None if nearest is None else {
             "mode": nearest.mode, "harmonic": nearest.harmonic, "relative_gap": nearest.gap,
-            "at_rev_per_min": nearest.speed / RPM},
+            "at_rev_per_min": rev_per_min(nearest.speed)},
         "tracking_events": events_json(tracked),
         "tracking_reseeds": reseeds_json(tracked),
         "periodicity": periodicity_json(tracked),

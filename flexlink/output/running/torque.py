@@ -8,7 +8,7 @@ import math
 
 import numpy as np
 
-RPM = 60 / (2 * math.pi)  # [rev/min] per [rad/s]
+from flexlink.units import rev_per_min
 
 
 def torque_csv(curve) -> str:
@@ -37,7 +37,7 @@ def torque_document(curve, assumptions, files) -> dict:
         peaks[key] = {"peak_N": float(magnitude[i]),
                       "at_deg": float(math.degrees(curve.q[i]) % 360.0)}
     return {"command": "torque", "scene": curve.scene, "crank_speed_rad_s": curve.speed,
-            "crank_speed_rev_per_min": curve.speed * RPM,
+            "crank_speed_rev_per_min": rev_per_min(curve.speed),
             "crank_acceleration_rad_s2": curve.crank_acceleration, "poses": len(curve.q),
             **curve.summary(), "joint_forces": peaks,
             "singular_poses_deg": [float(math.degrees(q) % 360.0)
@@ -128,7 +128,7 @@ def torque_plot(curve, size=(8.0, 6.0), dpi: int = 120) -> bytes:
     top.plot(deg, curve.torque, color="#1f77b4")
     top.axhline(mean, color="grey", ls="--", lw=1, label=f"mean {mean:.4g} N m")
     top.set_ylabel("driving torque [N m]")
-    top.set_title(f"{curve.scene}: {curve.speed * RPM:.4g} rev/min ({curve.speed:.4g} rad/s)"
+    top.set_title(f"{curve.scene}: {rev_per_min(curve.speed):.4g} rev/min ({curve.speed:.4g} rad/s)"
                   + (f", {curve.crank_acceleration:.4g} rad/s^2" if curve.crank_acceleration
                      else ""))
     top.legend(fontsize=9)
