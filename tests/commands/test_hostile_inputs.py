@@ -274,3 +274,20 @@ def test_a_range_edge_in_rev_per_min_comes_back_as_written(tmp_path):
     assert code == 0, err
     assert "2900.0000000000005" not in out
     assert json.loads(out)["speeds_rev_per_min"] == [0.0, 2900.0]
+
+
+def test_overdamped_modes_are_named(tmp_path):
+    """[damping] rayleigh_beta = 1 s (inside its declared range) gives case 3's first mode
+    zeta = beta omega / 2 = 175 times critical; modes printed 17506 % without a word."""
+    path = scene_with(tmp_path, "[damping]\nrayleigh_beta = 1\n")
+    code, out, err = run("modes", path, "-n", "2", "-e", "8", "--json", "--out", tmp_path)
+    assert code == 0, err
+    [case] = json.loads(out)["cases"]
+    first = case["modes"][0]["computed_Hz"]
+    assert case["damping_ratio"][0] == pytest.approx(2 * math.pi * first / 2, rel=1e-9)
+    assert any("mode(s) 1, 2 overdamped" in w for w in case["warnings"]), case["warnings"]
+    code, text, _ = run("modes", path, "-n", "2", "-e", "8", "--out", tmp_path)
+    assert "warning: mode(s) 1, 2 overdamped" in text
+    light = scene_with(tmp_path, "[damping]\nratio = 0.02\n", name="light.toml")
+    code, out, _ = run("modes", light, "-n", "2", "-e", "8", "--json", "--out", tmp_path)
+    assert not any("overdamped" in w for w in json.loads(out)["cases"][0]["warnings"])
