@@ -45,8 +45,9 @@ def command(scenes, n_modes, elements, tol, solver, cycle_poses, sensitivity, sa
 
     def page(path):  # with the scene's .vtu and .pvd files, which the page links to
         scene = report_scene(path, n_modes, elements, tol, solver, cycle_poses, run)
-        return scene_page(scene, export_case(scene.summary, out, ExportSettings(
-            n_modes=n_modes, pictures=False, plot=False)), out)
+        files = {} if scene.summary is None else export_case(scene.summary, out, ExportSettings(
+            n_modes=n_modes, pictures=False, plot=False))
+        return scene_page(scene, files, out)
 
     failures: list[dict] = []
     with sensitivity_scheduler(sensitivity, scheduler):  # one cluster for every scene

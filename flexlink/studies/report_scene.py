@@ -10,14 +10,16 @@ import dataclasses
 import numpy as np
 
 from flexlink.errors import FlexlinkError
-from flexlink.scene import Scene
+from flexlink.scene import Scene, load_scene
 from flexlink.studies.array_shapes import check_shape
 from flexlink.studies.cycle.modal_map import ModalMap, modal_map
+from flexlink.studies.cycle.rigid_motion import MotionStudy, motion_study
 from flexlink.studies.running.modes_at_speed import OperatingPoint, operating_modes
 from flexlink.studies.pose.scene_summary import SceneSummary, SensitivityRun, scene_summary
 from flexlink.studies.running.steady_response import ForcedModel, SteadyResponse, forced_model, steady_response
 from flexlink.studies.running.torque import TorqueCurve, torque_study
 
+KINEMATIC_POSES = 120  # crank angles of a kinematics-only scene's motion without a cycle map
 SPEED_STEPS = 11  # crank speeds from rest to the operating speed in the frequency diagram
 TORQUE_POSES = 72
 
@@ -90,15 +92,19 @@ class ReportScene:
     ``cycle_unavailable``, the reason it could not; ``at_speed``: the scene at its operating
     speed, None when it declares none."""
 
-    summary: SceneSummary
+    summary: SceneSummary | None
     cycle: ModalMap | None
     cycle_unavailable: str | None = None
     at_speed: AtSpeed | None = None
+    motion: MotionStudy | None = None  # a scene without beams: its rigid motion instead
 
     def __post_init__(self):
         if self.cycle is not None and self.cycle_unavailable is not None:
             raise ValueError("ReportScene has a cycle map and a reason it is unavailable, "
                              "expected at most one")
+        if (self.summary is None) == (self.motion is None):
+            raise ValueError("ReportScene needs a summary of the modes or, for a scene "
+                             "without beams, its rigid motion, expected exactly one")
 
 
 def report_scene(path, n_modes: int, elements: int | None, tol: float | None, solver,
@@ -106,6 +112,10 @@ def report_scene(path, n_modes: int, elements: int | None, tol: float | None, so
     """The scene file at ``path`` summarised (``scene_summary``, its in-plane modes) with its
     modal map over ``cycle_poses`` crank angles (none for 0) and its operating speed, on the
     same mesh."""
+    own = load_scene(path)
+    if not own.links:  # kinematics only: what the page can show is the rigid motion
+        poses = cycle_poses or KINEMATIC_POSES
+        return ReportScene(None, None, motion=motion_study(own, poses, own.options.crank_speed))
     summary = scene_summary(path, n_modes, elements, tol, solver, in_plane_only="this page",
                             sensitivity=sensitivity)
     scene, elements = summary.case.scene, summary.mesh.elements

@@ -291,3 +291,19 @@ def test_overdamped_modes_are_named(tmp_path):
     light = scene_with(tmp_path, "[damping]\nratio = 0.02\n", name="light.toml")
     code, out, _ = run("modes", light, "-n", "2", "-e", "8", "--json", "--out", tmp_path)
     assert not any("overdamped" in w for w in json.loads(out)["cases"][0]["warnings"])
+
+
+def test_report_on_a_kinematics_only_scene_shows_its_motion(tmp_path):
+    """scenes/extended_rocker.toml has no beams; report exited 2 ("kinematics only") where
+    `flexlink kinematics` answers: its page now holds the pose and the rigid motion."""
+    code, out, err = run("report", SCENES_DIR / "extended_rocker.toml", "--json",
+                         "--out", tmp_path)
+    assert code == 0, err
+    [scene] = json.loads(out)["scenes"]
+    assert scene["frequencies_Hz"] == [] and "kinematics only" in scene["note"]
+    html = (tmp_path / "report.html").read_text()
+    assert "Rigid motion" in html and "kinematics only" in html
+    code, kin, _ = run("kinematics", SCENES_DIR / "extended_rocker.toml", "--poses", "120",
+                       "--out", tmp_path / "k")
+    first = kin.splitlines()[0]
+    assert first in html  # the motion as `flexlink kinematics` prints it
