@@ -117,7 +117,9 @@ def at_speed_data(at: AtSpeed | None) -> dict | None:
         curve = at.torque
         order = np.argsort(np.degrees(curve.q) % 360.0)
         out["torque"] = {"crank_deg": _rounded(np.degrees(curve.q[order]) % 360.0),
-                         "torque_N_m": [float(t) for t in curve.torque[order]],
+                         # a singular pose's torque is not determined: a gap in the curve
+                         "torque_N_m": [None if math.isnan(t) else float(t)
+                                        for t in curve.torque[order]],
                          "summary": curve.summary()}
     out["response"] = steady_response_data(at)
     if at.points_unavailable is not None:

@@ -307,3 +307,18 @@ def test_report_on_a_kinematics_only_scene_shows_its_motion(tmp_path):
                        "--out", tmp_path / "k")
     first = kin.splitlines()[0]
     assert first in html  # the motion as `flexlink kinematics` prints it
+
+
+def test_the_report_draws_a_flat_pose_as_a_gap_in_the_torque():
+    """The report's 72 torque poses land on the change point's flat pose, whose torque is
+    not determined: the page's data has a gap (null) there, never NaN (which JSON refuses)."""
+    from flexlink.output.report_data import at_speed_data
+    from flexlink.studies.report_scene import SPEED_STEPS, AtSpeed
+    from flexlink.studies.running.torque import torque_study
+    curve = torque_study(load_scene(CHANGE_POINT), 60.0, poses=72)
+    at = AtSpeed(60.0, 0.0, curve, None, np.linspace(0.0, 60.0, SPEED_STEPS), (), "none asked",
+                 response_unavailable="none asked")
+    data = at_speed_data(at)["torque"]
+    json.dumps(data, allow_nan=False)
+    gaps = [d for d, t in zip(data["crank_deg"], data["torque_N_m"]) if t is None]
+    assert gaps == [pytest.approx(180.0)]

@@ -21,6 +21,7 @@ import dataclasses
 import numpy as np
 import scipy.sparse as sp
 
+from flexlink.analysis.instability import Cause, RootKind, instability_causes, root_kinds
 from flexlink.analysis.mesh import choose_mesh
 from flexlink.analysis.modal import pose_system
 from flexlink.analysis.quadratic import QuadraticModes, quadratic_modes
@@ -47,6 +48,9 @@ ASSUMPTIONS = (
     ("frozen configuration: each link's turning rate and the preload are those of this "
      "instant, and the pins tie the links' turning frames at this instant"),
 )
+
+
+PAIRING_MAC = 0.8  # a mode at speed whose MAC with every static mode is lower: unpaired
 
 
 @dataclasses.dataclass(frozen=True)
@@ -103,11 +107,24 @@ class OperatingPoint:
     elements_per_link: int
     loads: np.ndarray  # the preload's nodal loads, d'Alembert and external (n_dofs,) [N, N m]
     warnings: tuple[str, ...] = ()  # model outside its range (``scene.plausibility``)
+    causes: tuple[Cause, ...] = ()  # why the point is unstable (``analysis.instability``)
 
     def __post_init__(self):
         k = len(self.modes.eigenvalues)
         if self.static_index.shape != (k,) or self.mac.shape != (k,):
             raise ValueError(f"static_index and mac need one value per mode ({k})")
+
+    @property
+    def kinds(self) -> tuple[RootKind, ...]:
+        """Per mode: a vibration, or a real root (diverging or decaying: no frequency)."""
+        return root_kinds(self.modes.eigenvalues)
+
+    @property
+    def paired(self) -> np.ndarray:
+        """Per mode: a vibration whose shape is its static partner's, MAC >= PAIRING_MAC;
+        only a paired mode has a change from the static frequency."""
+        vibrating = np.array([k is RootKind.VIBRATING for k in self.kinds])
+        return vibrating & (self.mac >= PAIRING_MAC)
 
     @property
     def frequencies(self) -> np.ndarray:
@@ -204,12 +221,18 @@ def operating_modes(scene: Scene, speed: float, n_modes: int = 4,
                             guess, stiffness)
     mac = complex_mac(static_shapes, modes.shapes, Mr)
     pair = mac.argmax(axis=0)
+    parts = {Cause.PRELOAD: reduce(*geometric_entries(model, forces, terms.geometric))
+             if terms.preload else None,
+             Cause.CENTRIFUGAL: reduce(rows, cols, rot[0]) if terms.centrifugal else None}
+    causes = instability_causes(Kr, parts, reduce(rows, cols, rot[2]) if terms.acceleration
+                                else None, modes.negative_stiffness, modes.growing,
+                                root_kinds(modes.eigenvalues))
     return OperatingPoint(
         scene=scene, motion=motion, terms=terms, model=model, static=static, modes=modes,
         static_index=pair, mac=mac[pair, np.arange(len(pair))], link_omega=omega,
         link_alpha=alpha, axial_forces={l.name: f for l, f in zip(model.links, forces)},
         largest_axial=_largest(model, forces), elements_per_link=topology.links[0].elements,
-        loads=loads, warnings=warnings)
+        loads=loads, warnings=warnings, causes=causes)
 
 
 def scene_operating_modes(path, n_modes: int = 4, elements: int | None = None,
