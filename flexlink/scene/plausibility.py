@@ -15,6 +15,7 @@ import math
 from flexlink.errors import InputError
 from flexlink.fe.beams import BeamTheory, euler_bernoulli_pinned, timoshenko_pinned
 from flexlink.scene.contract import LoadKind, Plausibility
+from flexlink.units import RPM
 
 log = logging.getLogger(__name__)
 
@@ -24,7 +25,7 @@ RANGES = {
     "section": (1e-6, 10.0, "m", "a section size, 1 um to 10 m"),
     "E": (1e5, 2e12, "Pa", "soft elastomers (0.1 MPa) to diamond (1.2 TPa)"),
     "density": (1.0, 3e4, "kg/m^3", "foams (10 kg/m^3) to osmium (22600 kg/m^3)"),
-    "crank speed": (0.0, 1e6 * math.pi / 30.0, "rad/s",
+    "crank speed": (0.0, 1e6 * RPM, "rad/s",
                     "up to 1e6 rev/min, past the fastest dental turbines (4e5 rev/min)"),
 }
 LOAD_REACH = 10.0  # a load point farther than this many body sizes from its body: a unit slip
