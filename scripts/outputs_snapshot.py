@@ -48,7 +48,7 @@ def run(target: Path) -> None:
     target.mkdir(parents=True, exist_ok=True)
     jobs = [(name, args, scene) for name, args, prb in RUNS for scene in SCENES
             if not prb or "[prb]" in scene.read_text()]
-    jobs.append(("stability", ["stability"], None))
+    jobs.append(("verify", ["verify"], None))
     for name, args, scene in jobs:
         with tempfile.TemporaryDirectory() as out:
             if scene is None:

@@ -1,4 +1,4 @@
-"""Re-take the README's picture of the HTML report (docs/report-screenshot.png):
+"""Re-take docs/report.md's picture of the HTML report (docs/report-screenshot.png):
     python scripts/report-screenshot.py out/report.html
 Headless Chromium (scripts/browser-deps.sh) through playwright, as in tests/output/test_report_browser.py;
 shows case 1's mode-shape player (paused on mode 2) and its cycle map."""

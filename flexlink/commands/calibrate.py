@@ -23,11 +23,18 @@ from flexlink.fe.motions import ModelFamily
               type=EnumChoice(ModelFamily, none="scene"), help="Model family "
               "(repeat to compare; 'scene' = the first scene's [model] family).")
 @settings_options
+@click.option("--test", "test_file", type=click.Path(), default=None,
+              help="Instead of the scenes' reference columns: fit the one SCENE to this modal "
+                   "test (UFF or CSV, as `flexlink correlate` reads), its frequencies paired "
+                   "by MAC at every step; needs --free. Writes calibrate-test.json.")
+@click.option("--mac-weight", default=0.0, show_default=True, type=click.FloatRange(0, 100),
+              help="With --test: weight w of the residuals w (1 - MAC) of the pairs.")
 @scheduler_option("the fits and the Monte Carlo")
 @json_option
 @out_option
 @names_scene("scenes")
-def command(scenes, free_specs, families, scheduler, as_json, out_dir, **settings):
+def command(scenes, free_specs, families, test_file, mac_weight, scheduler, as_json, out_dir,
+            **settings):
     """Calibrate each model family against the scenes' Ex column (and, separately, the paper's
     FE), cross-validate leaving one case out, fit each case alone and its mode ratios, and
     propagate Table I scatter by Monte Carlo; writes calibrate.json, report.md and PNG plots
@@ -44,6 +51,9 @@ def command(scenes, free_specs, families, scheduler, as_json, out_dir, **setting
     out = run_folder(prepare_out_dir(out_dir), scenes)
     files = [str(f) for f in scene_files(scenes)]
     free = tuple(parse_free(s) for s in free_specs) or None
+    if test_file is not None:
+        _fit_to_test(out, files, test_file, free, mac_weight, settings["elements"], as_json)
+        return
     settings = study_settings(**settings, show_progress=sys.stderr.isatty() and not as_json)
     studies, written = [], []
     with use_scheduler(scheduler):
@@ -58,3 +68,22 @@ def command(scenes, free_specs, families, scheduler, as_json, out_dir, **setting
     written.append(write_atomic(out / "calibrate.json", dumps(document)))
     click.echo(dumps(document) if as_json else summary_text(studies))
     announce(written, as_json)
+
+
+def _fit_to_test(out, files, test_file, free, mac_weight, elements, as_json) -> None:
+    """``calibrate SCENE --test FILE``: the fit of the free inputs to the test."""
+    from flexlink.errors import InputError
+    from flexlink.output.calibration.by_test import by_test_json, by_test_text
+    from flexlink.studies.calibration.by_test import fit_to_test
+    from flexlink.studies.correlation.measured import read_test
+    from ._written import publish
+
+    if len(files) != 1:
+        raise InputError(f"{len(files)} scenes: a test belongs to one", source="command line",
+                         field="SCENES", expected="one scene file with --test")
+    if free is None:
+        raise InputError("--test needs the inputs to fit", source="command line",
+                         field="--free", expected="e.g. --free 'Kt=1e5 N/m:1e8 N/m'")
+    fit = fit_to_test(files[0], read_test(test_file), free, elements, mac_weight)
+    document = {"command": "calibrate", **by_test_json(fit)}
+    publish(out / "calibrate-test.json", document, [], by_test_text(document), as_json)

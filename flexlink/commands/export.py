@@ -16,25 +16,42 @@ from flexlink.commands._options import dumps, json_option, mesh_options, out_opt
               type=click.IntRange(1, 200), help="Number of elastic modes to export.")
 @mesh_options()
 @export_options
+@click.option("--uff", "uff", is_flag=True,
+              help="Also write OUT/<scene>/<scene>_modes.uff: the modes for test software "
+                   "(UFF datasets 164, 15 or 2411 and one 55 per mode, by pyuff), at every "
+                   "node, or at --uff-points.")
+@click.option("--uff-geometry", type=click.Choice(["15", "2411"]), default="15",
+              show_default=True, help="UFF dataset of the geometry.")
+@click.option("--uff-points", type=click.Path(), default=None,
+              help="A test or sensor layout file (UFF or CSV, as `flexlink correlate` reads) "
+                   "whose points the modes are written at, in that file's frame and unit "
+                   "(the scene's [test] table places them).")
 @json_option
 @out_option
 @names_scene("scenes")
 def command(scenes, n_modes, elements, tol, solver, subdivide, phases, amplitude, pictures,
-            common_phase, as_json, out_dir):
+            common_phase, uff, uff_geometry, uff_points, as_json, out_dir):
     """Write, for each SCENE (a scene file or a folder of them), the first modes as a .vtu, a
     .pvd animation per mode, a PNG per mode, an overview sheet and a frequency plot, into
     OUT/<scene file name>/ (each folder replaced as a whole, with its own list of files,
     export.json), and with several scenes the combined list in OUT/export.json."""
     from flexlink.fileio import write_atomic
-    from flexlink.output.export import (ExportSettings, export_case, export_document,
-                                        export_entry, export_text)
+    from flexlink.output.export import (ExportSettings, UffSettings, export_case,
+                                        export_document, export_entry, export_text)
     from flexlink.studies.pose.scene_summary import scene_summary
     from ._analysed import each_scene, scene_run
     from ._failures import finish
 
+    from flexlink.errors import InputError
+    from flexlink.studies.correlation.measured import read_test
+
+    if uff_points is not None and not uff:
+        raise InputError("--uff-points needs --uff", source="command line", field="--uff-points")
+    points = read_test(uff_points) if uff_points is not None else None
     settings = ExportSettings(n_modes=n_modes, subdivisions=subdivide, phases=phases,
                               amplitude=amplitude, pictures=pictures, plot=True,
-                              common_phase=common_phase)
+                              common_phase=common_phase,
+                              uff=UffSettings(int(uff_geometry), points) if uff else None)
     out, files, _ = scene_run(scenes, out_dir)
     combined = out / "export.json" if len(files) > 1 else None  # as modes.json: several scenes
     entries, failures, done = [], [], []

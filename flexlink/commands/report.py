@@ -20,11 +20,14 @@ from flexlink.commands._sensitivity import (sensitivity_options, sensitivity_run
 @click.option("--cycle-poses", default=120, show_default=True, type=click.IntRange(0, 100000),
               help="Crank angles of each scene's cycle map (0: no cycle map).")
 @sensitivity_options
+@click.option("--test", "test_file", type=click.Path(), default=None,
+              help="A modal test file (UFF or CSV, as `flexlink correlate` reads): each scene's "
+                   "page gets a Test correlation section.")
 @json_option
 @out_option
 @names_scene("scenes")
 def command(scenes, n_modes, elements, tol, solver, cycle_poses, sensitivity, samples, seed, jobs,
-            scheduler, as_json, out_dir):
+            scheduler, test_file, as_json, out_dir):
     """Write OUT/report.html: for each SCENE (a scene file or a folder of them) its pose and
     drawing, frequencies against the reference columns, assumptions (with --sensitivity their end
     points and the Monte Carlo 95 % interval), mesh, animated mode shapes, cycle map, and links
@@ -42,12 +45,18 @@ def command(scenes, n_modes, elements, tol, solver, cycle_poses, sensitivity, sa
     logging.getLogger("flexlink.analysis.modal").setLevel(logging.ERROR)  # shown on the page
     out, files, _ = scene_run(scenes, out_dir)
     run = sensitivity_run(sensitivity, samples, seed, jobs, as_json)
+    measured = None
+    if test_file is not None:
+        from flexlink.studies.correlation.measured import read_test
+
+        measured = read_test(test_file)
 
     def page(path):  # with the scene's .vtu and .pvd files, which the page links to
         scene = report_scene(path, n_modes, elements, tol, solver, cycle_poses, run)
-        files = {} if scene.summary is None else export_case(scene.summary, out, ExportSettings(
-            n_modes=n_modes, pictures=False, plot=False))
-        return scene_page(scene, files, out)
+        if scene.summary is None:  # kinematics only: no modes to export or correlate
+            return scene_page(scene, {}, out)
+        return scene_page(scene, export_case(scene.summary, out, ExportSettings(
+            n_modes=n_modes, pictures=False, plot=False)), out, _correlation(scene, measured))
 
     failures: list[dict] = []
     with sensitivity_scheduler(sensitivity, scheduler):  # one cluster for every scene
@@ -59,3 +68,14 @@ def command(scenes, n_modes, elements, tol, solver, cycle_poses, sensitivity, sa
     click.echo(dumps(document) if as_json else report_text(document))
     announce([report], as_json)
     finish(failures, len(files))
+
+
+def _correlation(scene, measured) -> dict | None:
+    """The test's correlation with the report's scene, at the scene's mesh, as JSON."""
+    if measured is None:
+        return None
+    from flexlink.output.correlation.correlation import correlation_json
+    from flexlink.studies.correlation.correlation import correlate_test
+
+    return correlation_json(correlate_test(scene.summary.case.scene, measured,
+                                           elements=scene.summary.mesh.elements))

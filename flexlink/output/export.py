@@ -5,6 +5,8 @@
     <stem>_mode<n>.png            picture of mode n (pyvista, off screen)
     <stem>_modes.png              overview sheet of all modes
     <stem>_frequencies.png        computed vs reference frequencies (matplotlib)
+    <stem>_modes.uff              with a UFF setting: the modes for test software (UFF 164,
+                                  15 or 2411, 55 per mode) at every node or at a test's points
     export.json                   the list of these files (``flexlink export``, not ``report``)
 
 ``<stem>`` is the scene file's name without ``.toml``. The folder is written as a whole: into a
@@ -26,7 +28,18 @@ from flexlink.fileio import staged_folder, write_atomic
 from flexlink.output.counts import counted
 from flexlink.output.export_vtk import mode_set, modes_mesh, write_animation, write_vtu
 from flexlink.stopping import signals_deferred
+from flexlink.studies.correlation.measured import ModalTest
 from flexlink.studies.pose.scene_summary import SceneSummary
+
+
+@dataclasses.dataclass(frozen=True)
+class UffSettings:
+    """The modes as a UFF file: geometry dataset 15 or 2411; at every node (``points``
+    None) or at the sensor points of a test or layout file read by
+    ``studies.correlation.measured`` (placed by the scene's [test] table)."""
+
+    geometry: int = 15
+    points: ModalTest | None = None
 
 
 @dataclasses.dataclass(frozen=True)
@@ -43,6 +56,7 @@ class ExportSettings:
     pictures: bool = True
     plot: bool = True
     common_phase: bool = False
+    uff: UffSettings | None = None
 
     def __post_init__(self):
         checks = (("n_modes", 1, 200), ("subdivisions", 1, 64), ("phases", 2, 1000))
@@ -93,7 +107,26 @@ def _is_export_file(stem: str, name: str, settings: ExportSettings) -> bool:
     if settings.pictures and (name == f"{stem}_modes.png"
                               or re.fullmatch(rf"{re.escape(stem)}_mode\d+\.png", name)):
         return True
+    if settings.uff is not None and name == f"{stem}_modes.uff":
+        return True
     return settings.plot and name == f"{stem}_frequencies.png"
+
+
+def _write_uff(summary: SceneSummary, path: Path, settings: ExportSettings) -> Path:
+    """The exported modes (in-plane, mass-normalised) at every node or at the test's points."""
+    from flexlink.output.correlation.measured import write_uff
+    from flexlink.studies.correlation.correlation import modes_at_nodes, modes_at_test_points
+
+    result = summary.case
+    chosen = result.modes.elastic[:settings.n_modes]
+    shapes, freqs = result.modes.shapes[:, chosen], result.modes.frequencies[chosen]
+    if settings.uff.points is None:
+        at = modes_at_nodes(result.model, shapes, freqs)
+    else:
+        at = modes_at_test_points(result.scene, settings.uff.points, result.model, shapes, freqs)
+    damping = summary.damping_ratio[:len(chosen)] if len(summary.damping_ratio) else None
+    title = f"flexlink model modes: {result.scene.name}"
+    return write_uff(path, at, title, damping, settings.uff.geometry)
 
 
 def _write_case(summary: SceneSummary, folder: Path, stem: str, settings: ExportSettings
@@ -101,6 +134,8 @@ def _write_case(summary: SceneSummary, folder: Path, stem: str, settings: Export
     result = summary.case
     modes = mode_set(result, settings.n_modes, settings.subdivisions)
     files: dict[str, list[Path]] = {"vtu": [], "pvd": [], "frames": [], "pictures": [], "plot": []}
+    if settings.uff is not None:
+        files["uff"] = [_write_uff(summary, folder / f"{stem}_modes.uff", settings)]
     files["vtu"].append(write_vtu(folder / f"{stem}.vtu",
                                   modes_mesh(result, modes, settings.amplitude)))
     for i in range(len(modes.numbers)):
@@ -156,7 +191,8 @@ def export_text(done: list[tuple[SceneSummary, dict]], combined: Path | None) ->
         lines.append(f"{summary.case.scene.name}: {counted(len(summary.frequencies), 'mode')} -> "
                      f"{f['folder']}/  ({len(f['vtu'])} .vtu, {len(f['pvd'])} .pvd with "
                      f"{counted(len(f['frames']), 'frame')}, "
-                     f"{counted(len(f['pictures']), 'picture')}, {counted(len(f['plot']), 'plot')})"
+                     f"{counted(len(f['pictures']), 'picture')}, {counted(len(f['plot']), 'plot')}"
+                     + "".join(f", {p}" for p in f.get("uff", ())) + ")"
                      f"\n  {summary.mesh.describe()}")
     if done:
         lines.append("written: " + ", ".join([*(f["record"][0] for _, f in done),

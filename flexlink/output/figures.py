@@ -28,9 +28,8 @@ def cycle_axes(ax, deg: np.ndarray, mu90: dict, hits, title: str) -> None:
     ax.legend(fontsize=8)
 
 
-def write_figure(fig, path, dpi: int = 120) -> None:
-    """Save a pyplot figure as PNG to ``path`` atomically (a drawing that fails half-way leaves
-    the old picture) and close it."""
+def figure_png(fig, dpi: int = 120) -> bytes:
+    """A pyplot figure as PNG bytes; the figure is closed whatever happens."""
     import matplotlib.pyplot as plt
 
     buffer = io.BytesIO()
@@ -38,4 +37,10 @@ def write_figure(fig, path, dpi: int = 120) -> None:
         fig.savefig(buffer, format="png", dpi=dpi)
     finally:
         plt.close(fig)
-    write_atomic(path, buffer.getvalue())
+    return buffer.getvalue()
+
+
+def write_figure(fig, path, dpi: int = 120) -> None:
+    """Save a pyplot figure as PNG to ``path`` atomically (a drawing that fails half-way leaves
+    the old picture) and close it."""
+    write_atomic(path, figure_png(fig, dpi))

@@ -365,6 +365,44 @@ def _steady_response_part(page: dict, figures: list, response: dict | None) -> s
                      numeric_from=1))
 
 
+def correlation_section(page: dict, figures: list) -> str:
+    """A modal test correlated with the scene (``flexlink report --test``): the MAC heat map,
+    the pairs with their frequency errors, the unpaired modes and aliasing warnings; "" (no
+    section) without a test."""
+    c = page.get("correlation")
+    if c is None:
+        return ""
+    mac = c["mac"]
+    data = [{"type": "heatmap", "z": mac, "zmin": 0, "zmax": 1, "colorscale": "Viridis",
+             "x": [f"model {m['mode']} ({m['Hz']:.0f} Hz)" for m in c["model"]["modes"]],
+             "y": [f"test {m['mode']} ({m['Hz']:.0f} Hz)" for m in c["test"]["modes"]],
+             "hovertemplate": "%{y} / %{x}: MAC %{z:.3f}<extra></extra>"}]
+    layout = {"yaxis": {"autorange": "reversed"}, "height": 120 + 28 * len(mac),
+              "margin": {"l": 130, "r": 15, "t": 20, "b": 110}}
+    rows = [[str(p["test"]), _number(p["test_Hz"]), str(p["model"]), _number(p["model_Hz"]),
+             f"{p['error_pct']:+.2f}", f"{p['mac']:.3f}", _e(p["quality"]),
+             "-" if p["test_damping"] is None else _number(100 * p["test_damping"]),
+             _e(p["model_label"])] for p in c["pairs"]]
+    notes = [f"Unpaired test mode {u['mode']} ({_number(u['Hz'])} Hz): best MAC "
+             f"{u['best_mac']:.3f} with model mode {u['best_model']}." for u in c["unpaired_test"]]
+    if c["unpaired_model"]:
+        notes.append("Model modes not paired: " + ", ".join(
+            f"{u['mode']} ({_number(u['Hz'])} Hz, {_e(u['label'])})" for u in c["unpaired_model"])
+            + ".")
+    notes += [f"Warning: test modes {a['a']} and {a['b']} have autoMAC {a['auto_mac']:.3f}: the "
+              "sensors cannot tell them apart (spatial aliasing)." for a in c["aliased"]]
+    t = c["thresholds"]
+    return ("<h3>Test correlation</h3>"
+            f"<p>Test {_e(c['test']['file'])}: {c['test']['sensors']} sensors, "
+            f"{c['test']['channels']} channels. Modes paired by shape (MAC, optimal "
+            f"assignment): &ge; {t['good']} good, {t['doubtful']}-{t['good']} doubtful, below "
+            "not paired.</p>"
+            + _figure(page, figures, "mac", data, layout)
+            + _table(["test", "test Hz", "model", "model Hz", "error %", "MAC", "quality",
+                      "damping %", "model mode"], rows, 0)
+            + "".join(f'<p class="note">{n}</p>' for n in notes))
+
+
 def files_section(page: dict, figures: list) -> str:
     files = page["files"]
     links = [f'<li><a href="{_e(p)}">{_e(p)}</a></li>' for p in files["vtu"] + files["pvd"]]
@@ -397,7 +435,7 @@ def kinematics_section(page: dict, figures: list) -> str:
 
 SECTIONS = (pose_section, frequency_section, assumptions_section, sensitivity_section,
             mesh_section, modes_section,
-            cycle_section, at_speed_section, files_section)
+            cycle_section, at_speed_section, correlation_section, files_section)
 KINEMATIC_SECTIONS = (pose_section, kinematics_section)  # a scene without beams
 
 

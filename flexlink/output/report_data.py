@@ -158,10 +158,12 @@ def steady_response_data(at: AtSpeed) -> dict:
                        for k, p in enumerate(at.forced.points)]}
 
 
-def scene_page(scene: ReportScene, files: dict, out: Path) -> dict:
+def scene_page(scene: ReportScene, files: dict, out: Path, correlation: dict | None = None
+               ) -> dict:
     """Everything the report shows for one scene (``studies.report_scene``), its modes drawn
     on the mesh they were solved on; ``files``: ``export.export_case``'s answer, linked
-    relative to ``out``."""
+    relative to ``out``; ``correlation``: a modal test's correlation with the scene
+    (``output.correlation.correlation.correlation_json``), or None."""
     def relative(paths):
         return [Path(p).relative_to(out).as_posix() for p in paths]
 
@@ -175,6 +177,7 @@ def scene_page(scene: ReportScene, files: dict, out: Path) -> dict:
             "shapes": mode_shapes(mode_set(result, len(summary.frequencies))),
             "cycle": cycle_data(scene.cycle, result.pose.crank_angle, scene.cycle_unavailable),
             "at_speed": at_speed_data(scene.at_speed),
+            "correlation": correlation,
             "files": {"vtu": relative(files.get("vtu", [])),
                       "pvd": relative(files.get("pvd", []))}}
 

@@ -61,6 +61,43 @@ class PrbOptions:
     K_theta: float
 
 
+@dataclasses.dataclass(frozen=True)
+class ModalTestFrame:
+    """The scene's [test] table: a test point (x, y) in ``unit`` (None: the file's own) lands
+    at ``offset`` [m] + R(``rotation`` [rad]) (x, y) in the scene's frame; a sensor farther
+    than ``max_distance`` [m] from every link's axis is refused."""
+
+    unit: str | None = None
+    offset: tuple[float, float] = (0.0, 0.0)
+    rotation: float = 0.0
+    max_distance: float = 0.01
+
+    def to_scene(self, points, metres_per_unit: float):
+        """(P, 2) scene coordinates [m] of test points (P, >= 2) in the file's unit."""
+        c, s = math.cos(self.rotation), math.sin(self.rotation)
+        p = np.asarray(points, dtype=float)[:, :2] * metres_per_unit
+        return np.column_stack([c * p[:, 0] - s * p[:, 1], s * p[:, 0] + c * p[:, 1]]) + self.offset
+
+    def to_test(self, points, metres_per_unit: float):
+        """(P, 2) test-frame coordinates in the file's unit of scene points (P, 2) [m]: the
+        inverse of ``to_scene``."""
+        c, s = math.cos(self.rotation), math.sin(self.rotation)
+        p = np.asarray(points, dtype=float) - self.offset
+        return np.column_stack([c * p[:, 0] + s * p[:, 1], -s * p[:, 0] + c * p[:, 1]]) / metres_per_unit
+
+    def direction_to_test(self, directions):
+        """Unit directions (C, 3) of the scene's frame turned into the test frame."""
+        c, s = math.cos(self.rotation), math.sin(self.rotation)
+        d = np.asarray(directions, dtype=float).reshape(-1, 3)
+        return np.column_stack([c * d[:, 0] + s * d[:, 1], -s * d[:, 0] + c * d[:, 1], d[:, 2]])
+
+    def direction_to_scene(self, directions):
+        """Unit directions (C, 3) of the test frame turned into the scene's frame."""
+        c, s = math.cos(self.rotation), math.sin(self.rotation)
+        d = np.asarray(directions, dtype=float).reshape(-1, 3)
+        return np.column_stack([c * d[:, 0] - s * d[:, 1], s * d[:, 0] + c * d[:, 1], d[:, 2]])
+
+
 class Plausibility(enum.StrEnum):
     """What a model outside its range of validity does: refuse (ERROR) or warn."""
 
@@ -80,6 +117,7 @@ class Options:
     variants: tuple[Variant, ...] = ()
     tilt: dict[str, float] = dataclasses.field(default_factory=dict)  # joint -> Ktilt [N m/rad]
     damping: ModalDamping | None = None  # declared modal damping; None: the loss factors
+    test: ModalTestFrame = ModalTestFrame()  # where a modal test's geometry sits (``[test]``)
 
 
 @dataclasses.dataclass(frozen=True)

@@ -13,7 +13,7 @@ from flexlink.fe.motions import ModelFamily
 from flexlink.materials.mixtures import (BeamMaterial, LossFactor, isotropic, load_constituent,
                                          woven_composite)
 from flexlink.scene import schema
-from flexlink.scene.contract import (Composite, ModalDamping, Options, PrbOptions,
+from flexlink.scene.contract import (Composite, ModalDamping, ModalTestFrame, Options, PrbOptions,
                                      Reference, Variant)
 from flexlink.scene.source import Assumption, SceneSource
 
@@ -276,7 +276,9 @@ def options(src: SceneSource, sf: schema.SceneFile, joint_names: list[str]) -> O
     return Options(family=sf.model.family, crank_speed=sf.operation.crank_speed,
                    crank_acceleration=sf.operation.crank_acceleration,
                    plausibility=sf.checks.plausibility, prb=prb, variants=variants,
-                   tilt=tilt(sf, joint_names), damping=modal_damping(sf.damping))
+                   tilt=tilt(sf, joint_names), damping=modal_damping(sf.damping),
+                   test=ModalTestFrame(sf.test.unit, tuple(sf.test.offset), sf.test.rotation,
+                                  sf.test.max_distance))
 
 
 def modal_damping(table: schema.DampingTable | None) -> ModalDamping | None:

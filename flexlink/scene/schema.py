@@ -29,7 +29,7 @@ from flexlink.fe.motions import ModelFamily
 from flexlink.kinematics import Branch
 from flexlink.materials.mixtures import ShearSource
 from flexlink.scene.contract import LoadFrame, LoadKind, Plausibility, SceneKind
-from flexlink.units import parse_quantity, quantity_pattern
+from flexlink.units import UNITS, parse_quantity, quantity_pattern
 
 
 @dataclasses.dataclass(frozen=True)
@@ -630,6 +630,24 @@ class ReferenceTable(Table):
         return self
 
 
+class ModalTestTable(Table):
+    """Where a modal test's geometry sits in the scene (``flexlink correlate``, ``calibrate
+    --test``): a test point (x, y, z) in the file's unit lands at offset + R(rotation) (x, y)
+    in the scene's frame; z is out of the mechanism plane and not used for placing it."""
+
+    unit: Literal[tuple(UNITS["length"])] | None = doc(
+        "Length unit of the test file's coordinates. A unit the file states itself (UFF "
+        "dataset 164, a CSV column header such as 'x [mm]') must agree. Absent: the file's "
+        "own unit; a file that states none is refused.", default=None)
+    offset: Point = doc("The test frame's origin in the scene's frame, [x, y] as two unit "
+                        "strings, e.g. ['0 mm', '0 mm'].", default=(0.0, 0.0))
+    rotation: ANGLE = doc("Angle of the test frame's x axis from the scene's x axis, "
+                          "counter-clockwise; measuring directions turn with it.", default=0.0)
+    max_distance: LENGTH = doc(
+        "Farthest a sensor may sit from a link's axis (in the plane) and still be placed on "
+        "that link; a sensor farther from every link is an error naming it.", default=0.01)
+
+
 class SceneFile(Table):
     """A scene: a linkage, its pose, materials, sections, joints and what to report."""
 
@@ -655,6 +673,8 @@ class SceneFile(Table):
     loads: list[LoadTable] = doc("External loads on the bodies, for the driving torque "
                                  "(``flexlink torque``).", default=[])
     prb: PrbTable | None = doc("Pseudo-rigid-body comparison.", default=None)
+    test: ModalTestTable = doc("How a modal test's geometry sits in the scene's frame.",
+                               default=ModalTestTable())
     family: list[VariantTable] = doc("Variants of the scene: one key over several values "
                                 "(``flexlink kinematics``).", default=[])
 

@@ -1,4 +1,4 @@
-"""Claims of the fe stage that the mutation runs found unguarded (docs/testing.md, fourth
+"""Claims of the fe stage that the mutation runs found unguarded (notes/history.md, fourth
 round): scaling laws and the conventions the docstrings state, each against an independent
 value."""
 

@@ -115,7 +115,7 @@ def test_swing_angle_closed_form_equals_sampled_cycle(case):
 
 def test_swing_angles_differ_from_the_paper_as_reported():
     """The paper prints 46.8, 66.9, 33.9, 50.7 deg; the geometry of Table II gives 47.20, 68.27,
-    35.94, 54.43 deg (checked two ways above). Kept here so the README's statement is tested."""
+    35.94, 54.43 deg (checked two ways above). Kept here so docs/table2.md's statement is tested."""
     ours = [round(math.degrees(fourbar(c).rocker_swing()), 2) for c in (1, 2, 3, 4)]
     assert ours == [47.20, 68.27, 35.94, 54.43]
 

@@ -28,6 +28,8 @@ ARGS = {
                   "planar", "--jobs", "1", "--free", "L1=100 mm:1 m"],
     "campbell": [CASE1, "--speeds", "0:3000 rev/min", "--poses", "6", "-e", "2", "-n", "2"],
     "converge": [CASE1, "-n", "2", "--max-elements", "8", "--repeats", "1"],
+    "correlate": [str(SCENES_DIR / "tests" / "case3_timoshenko.toml"),
+                  str(SCENES_DIR / "tests" / "case3_synthetic.uff"), "-e", "2", "-n", "8"],
     "cycle": [CASE1, "--poses", "6", "-e", "2", "-n", "2"],
     "export": [CASE1, "--no-pictures", "-e", "2", "-n", "2", "--phases", "2"],
     "kinematics": [CASE1, "--poses", "8"],
@@ -37,7 +39,9 @@ ARGS = {
     "report": [CASE1, "-e", "2", "-n", "2", "--cycle-poses", "0"],
     "response": [CASE1, "--speed", "1200 rev/min", "-n", "1"],
     "schema": [],
-    "stability": [CASE1],
+    "sensors": [CASE1, "--count", "3", "--modes", "2", "-e", "2"],
+    "verify": [CASE1],
+    "stability": [CASE1],  # the old name of verify, kept for one release
     "stability-map": [CASE1, "--speeds", "0:600 rev/min", "--count", "3", "-n", "2", "--poses", "13"],
     "torque": [CASE1, "--speed", "600 rev/min", "--poses", "8"],
 }

@@ -20,7 +20,7 @@ CORPUS = {
     "unreachable_pose": RATIOS + '[pose]\ntransmission_angle = "20 deg"\n',
     "not_toml": "[linkage\nR2 = ",
 }
-COMMANDS = (["modes"], ["export", "--no-pictures"], ["stability"], ["converge"],
+COMMANDS = (["modes"], ["export", "--no-pictures"], ["verify"], ["converge"],
             ["cycle", "--poses", "8"], ["kinematics", "--poses", "8"], ["prb"],
             ["calibrate", "--starts", "1", "--samples", "2"], ["report", "--cycle-poses", "0"],
             ["campbell", "--speeds", "0:3000 rev/min", "--poses", "8"])

@@ -205,7 +205,7 @@ def test_every_command_takes_a_general_scene_or_refuses_it_clearly(tmp_path):
     from flexlink.analysis.modal import analyze
     expected = analyze(load_scene(wiper), 4, 4).elastic_frequencies(4)
     assert [m["computed_Hz"] for m in case["modes"]] == pytest.approx(expected, rel=1e-12)
-    for command in (["stability"], ["calibrate", "--starts", "1"]):
+    for command in (["verify"], ["calibrate", "--starts", "1"]):
         run = CliRunner().invoke(main, [command[0], wiper, *command[1:], "--out", str(tmp_path)])
         assert run.exit_code == 2 and "general scene" in run.stderr, run.output
         assert run.stderr.count("\n") == 1

@@ -1,4 +1,4 @@
-"""Claims of the scene stage that the mutation runs found unguarded (docs/testing.md, fourth
+"""Claims of the scene stage that the mutation runs found unguarded (notes/history.md, fourth
 round): the messages' stated contents and the scene's conventions."""
 
 import math

@@ -238,16 +238,31 @@ def test_penalty_switch_is_logged_and_exact(scene, caplog):
     assert (rigid_threshold(model)[translational] < 1e30).all()
 
 
-def test_stability_command(tmp_path, monkeypatch):
+def test_verify_command(tmp_path, monkeypatch):
     """The command's output and exit code (the checks are judged above)."""
     monkeypatch.setattr(st, "FAST", (st.repeated, st.units))
-    result = CliRunner().invoke(main, ["stability", str(CASE1), "--json", "--out", str(tmp_path)])
+    result = CliRunner().invoke(main, ["verify", str(CASE1), "--json", "--out", str(tmp_path)])
     doc = json.loads(result.stdout)
     assert result.exit_code == 0 and doc["passed"] == doc["total"] == 5
     assert [c["id"] for c in doc["checks"]] == [
         "repeated-eigenvalues", "unit-mm-as-m", "unit-gpa-as-pa", "unit-section-mm-as-m",
         "unit-bare-number"]
-    assert json.loads((tmp_path / "case1" / "stability.json").read_text()) == doc
+    written = json.loads((tmp_path / "case1" / "verify.json").read_text())
+    assert written["checks"] == doc["checks"] and written["command"] == "verify"
     monkeypatch.setattr(st, "ELEMENTS", 2)  # makes the repeated-eigenvalue check fail
-    result = CliRunner().invoke(main, ["stability", str(CASE1), "--out", str(tmp_path)])
-    assert result.exit_code == 1 and "[FAIL] repeated-eigenvalues:" in result.output
+    result = CliRunner().invoke(main, ["verify", str(CASE1), "--out", str(tmp_path)])
+    assert result.exit_code == 1 and "[FAIL] repeated-eigenvalues:" in result.stdout
+
+
+def test_the_old_command_name_still_runs_the_checks_and_says_it_is_renamed(tmp_path, monkeypatch):
+    """``flexlink stability`` is kept for one release as the old name of ``verify``: the same
+    document on stdout, and a note on stderr naming the new command and ``stability-map``."""
+    monkeypatch.setattr(st, "FAST", (st.units,))
+    old = CliRunner().invoke(main, ["stability", str(CASE1), "--json", "--out", str(tmp_path)])
+    new = CliRunner().invoke(main, ["verify", str(CASE1), "--json", "--out", str(tmp_path)])
+    assert old.exit_code == new.exit_code == 0
+    verdicts = [[(c["id"], c["passed"], c["got"]) for c in json.loads(run.stdout)["checks"]]
+                for run in (old, new)]
+    assert verdicts[0] == verdicts[1] and verdicts[0]
+    assert "`flexlink verify`" in old.stderr and "stability-map" in old.stderr
+    assert "stability" not in new.stderr

@@ -2,7 +2,7 @@
 got, and whether it passed. All start from one scene (a four-bar), changed one input at a time.
 
 Fast checks run in the test suite (tests/studies/test_stability.py); the slow one (1e5 DOFs) runs from
-``flexlink stability --slow`` and scripts/stability-slow.sh.
+``flexlink stability --slow`` and scripts/verify-slow.sh.
 """
 
 from __future__ import annotations

@@ -1,0 +1,1 @@
+"""Renderings of the correlation studies (module for module as ``studies.correlation``)."""
