@@ -18,19 +18,30 @@ cross a lightly damped frozen frequency); H is set by how fast the coefficients 
 response vary over the turn, not by the stiffest frequency of the system over the speed, as
 the steps of a time integration over the turn are (~ omega_max / Omega).
 
-Solved by GMRES on the full Hill matrix. q is real, so Q_-k = conj Q_k: the unknowns are the
-harmonics k = 0..H (Q_0 real), a real vector space (GMRES with real coefficients and the inner
-product that counts each k > 0 twice, so norms are those of all 2H + 1 harmonics). The
-product with the Hill matrix is done in the angle domain: q and q' are synthesised by real FFTs
-on a grid of more than 2H + P angles, multiplied pointwise by the real S(theta) and D(theta),
-and analysed back (exact: the product's harmonics up to H alias nowhere). It is right
-preconditioned by the banded LU of the Hill matrix with the coefficients' harmonics cut to
-|d| <= BAND (exact at constant coefficients), over the harmonics -BAND..H only: the rows below
-0 stand in for the conjugate half. That LU is the cost, about 2 (H + BAND) n ((BAND + 1) n)^2
-complex operations (half the whole -H..H band's), and its solves read it whole at every GMRES
-step; so it is done in single precision (half the time and memory), scaled into that range,
-and in double only if GMRES stalls with it. GMRES, in double, corrects the preconditioner's
-round-off: its residual is that of the double-precision product, whatever the preconditioner.
+Solved by scipy's GMRES on the full Hill matrix. q is real, so Q_-k = conj Q_k: the unknowns
+are the harmonics k = 0..H (Q_0 real), a real vector space (GMRES in real arithmetic). The
+product with the Hill matrix is done in the angle domain: q and q' are synthesised by real
+FFTs on a grid of more than 2H + P angles, multiplied pointwise by the real S(theta) and
+D(theta), and analysed back (exact: the product's harmonics up to H alias nowhere). It is
+right preconditioned by LAPACK's band LU (double precision) of the Hill matrix with the
+coefficients' harmonics cut to |d| <= band (exact at constant coefficients), over the
+harmonics -band..H only: the rows below 0 stand in for the conjugate half. That LU is the
+cost, about 2 (H + band) n ((band + 1) n)^2 complex operations (half the whole -H..H band's).
+
+The band starts at BAND, enough where the coefficients vary gently over the turn (Table II
+case 3: 5 to 8 GMRES steps). Where they vary fast, the cut coefficients misplace the frozen
+frequencies (on the aluminium four-bar at |d| <= 4 by up to 200 %, at |d| <= 16 by 0.5 %), and
+a lightly damped harmonic near them makes the cut Hill matrix a poor inverse: GMRES stagnates.
+Then the band doubles, up to the coefficients' whole band P (the Hill matrix itself, but for
+its rows below -P), and the band that served is kept for the larger H.
+
+GMRES aims at a relative residual of RTOL; a solve is accepted on its estimated error, the
+preconditioner applied to the residual (|P^-1 r| <= SOLVE_ERROR |Q|, P^-1 being near A^-1
+where GMRES converges), not on the residual alone: where the basis holds vectors far stiffer
+than those the response lies along, the residual of the answer rounded to double precision is
+already above RTOL (on the aluminium four-bar at 300 rev/min and 36 harmonics a pivoted band
+LU of the whole Hill matrix leaves 3e-9; GMRES stops at 1.8e-9, its error estimated at 9e-12).
+A NaN fails the test.
 
 H doubles from 2P until the estimate of the truncation error (``_tail``: the last harmonics
 summed) is below the tolerance: a NumericalError if it is not by ``max_harmonics``.
@@ -43,7 +54,8 @@ import logging
 
 import numpy as np
 from scipy.fft import irfft, next_fast_len, rfft
-from scipy.linalg import lapack, solve_triangular
+from scipy.linalg import lapack
+from scipy.sparse.linalg import LinearOperator, gmres
 
 from flexlink.errors import NumericalError
 
@@ -51,8 +63,10 @@ log = logging.getLogger(__name__)
 
 BAND = 4  # coefficient harmonics in the preconditioner: 5-8 GMRES steps on case 3 (3: 11-19)
 MAX_HARMONICS = 400  # the largest H tried by default
-ITERATIONS = 100  # GMRES iterations at most per H (case 1 at 300 rev/min needs over 40)
-PRECISIONS = (np.complex64, np.complex128)  # of the preconditioner's LU, in the order tried
+ITERATIONS = 20  # GMRES iterations at most per band (case 3 takes 5 to 8 at BAND)
+RTOL = 1e-12  # GMRES' relative residual
+SOLVE_ERROR = 1e-8  # the largest estimated relative error of a solve: a tenth of the
+# default tolerance
 
 
 @dataclasses.dataclass(frozen=True)
@@ -60,7 +74,7 @@ class HarmonicSolution:
     """The periodic solution: coefficients (H + 1, n) complex, Q_k for k = 0..H (Q_-k =
     conj Q_k), in the units of q; error [-]: the estimated truncation error (the tail
     beyond H) relative to max over theta of |q(theta)| (Euclidean norm over the n
-    coordinates); residual [-]: GMRES' final |g - A Q| / |g|."""
+    coordinates); residual [-]: the final |g - A Q| / |g| (over harmonics k = 0..H)."""
 
     coefficients: np.ndarray
     error: float
@@ -91,9 +105,9 @@ def harmonic_balance(stiffness: np.ndarray, damping: np.ndarray, forcing: np.nda
     if damping.shape != stiffness.shape or forcing.shape != (P + 1, n):
         raise ValueError(f"damping {damping.shape} and forcing {forcing.shape} must match "
                          f"stiffness {stiffness.shape}")
-    H, guess = max(2 * P, 8), None
+    H, guess, band = max(2 * P, 8), None, min(BAND, P)
     while True:
-        Q, residual = _solve(stiffness, damping, forcing, speed, H, guess)
+        Q, residual, band = _solve(stiffness, damping, forcing, speed, H, guess, band)
         error = _tail(Q, P)
         if error <= tolerance:
             return HarmonicSolution(coefficients=Q, error=error, residual=residual)
@@ -126,33 +140,43 @@ def _tail(Q: np.ndarray, P: int) -> float:
     return 2.0 * size[H - window + 1:].sum() / peak if peak > 0.0 else 0.0
 
 
-def _solve(stiffness, damping, forcing, speed, H, guess):
-    """Q (H + 1, n), k = 0..H, and the relative residual, by preconditioned GMRES over the
-    real vector space of the real functions' harmonics k >= 0 (Q_0 real). The preconditioner
-    in single precision first (half the LU's work and memory; GMRES, in double, corrects
-    it: its residual is the true one), in double if its LU is singular or GMRES stalls."""
+def _solve(stiffness, damping, forcing, speed, H, guess, band):
+    """Q (H + 1, n), k = 0..H, the relative residual and the preconditioner's band that
+    reached it, by GMRES right preconditioned by the band LU of ``_band_preconditioner``
+    over the real vector space of the real functions' harmonics k >= 0 (Q_0 real). From
+    ``band`` the bands of ``_bands`` are tried in turn, the next where GMRES' answer is
+    refused (NumericalError where it is with the last, the coefficients' whole band)."""
     P, n = stiffness.shape[0] - 1, stiffness.shape[-1]
-    weights = np.full((H + 1, n, 2), 2.0)  # |Q_-k| = |Q_k|: k > 0 counts twice
-    weights[0] = 1.0
     product = _hill_product(stiffness, damping, speed, H)
     rhs = np.zeros((H + 1, n), complex)
     m = min(P, H)
     rhs[:m + 1] = forcing[:m + 1]
     rhs[0] = rhs[0].real
     b = rhs.view(float).ravel()
-    for precision in PRECISIONS:
+    x0 = np.zeros_like(b) if guess is None else guess.view(float).ravel()
+    bands = _bands(P, band)
+    for band in bands:
+        last = band == bands[-1]
+        precondition = _band_preconditioner(stiffness, damping, speed, H, band)
         try:
-            precondition = _band_preconditioner(stiffness, damping, speed, H, min(BAND, P),
-                                                precision)
-            x0 = precondition(b) if guess is None else guess.view(float).ravel()
-            x, residual = _gmres(product, precondition, b, x0, weights.ravel())
+            x, residual = _gmres(product, precondition, b, x0)
         except NumericalError as error:
-            if precision is PRECISIONS[-1]:
+            if last:
                 raise
-            log.info("%s with the %s preconditioner at %d harmonics: again in %s", error,
-                     np.dtype(precision).name, H, np.dtype(PRECISIONS[-1]).name)
+            log.info("%s with the band %d preconditioner at %d harmonics: band %d next",
+                     error, band, H, bands[bands.index(band) + 1])
             continue
-        return x.view(complex).reshape(H + 1, n), residual
+        return x.view(complex).reshape(H + 1, n), residual, band
+
+
+def _bands(P: int, first: int) -> list[int]:
+    """The coefficient harmonics kept in the preconditioner, in the order tried: ``first``,
+    then doubling, up to all P (the preconditioner is then the Hill matrix but for its rows
+    below k = -P)."""
+    bands = [min(first, P)]
+    while bands[-1] < P:
+        bands.append(min(2 * bands[-1], P))
+    return bands
 
 
 def _hill_product(stiffness, damping, speed, H):
@@ -181,46 +205,36 @@ def _synthesis(coefficients, M):
     return irfft(coefficients, n=M, axis=0) * M
 
 
-def _band_preconditioner(stiffness, damping, speed, H, band, precision):
+def _band_preconditioner(stiffness, damping, speed, H, band):
     """The preconditioner: a function of the real view of harmonics k = 0..H giving the
     solution of the Hill matrix with coefficient harmonics |d| <= band over the harmonics
     -band..H (the conjugates of the right-hand side's below 0), kept for k = 0..H with Q_0
-    made real; factored and solved in ``precision`` (a complex dtype). The rows below k = 0
-    stand for the conjugates of those above it, cut at -band: on case 3 no more GMRES steps
-    than the whole band matrix over -H..H."""
+    made real; LAPACK's band LU (gbtrf, double precision), factored once, solved at every
+    GMRES step. The rows below k = 0 stand for the conjugates of those above it, cut at
+    -band: on case 3 no more GMRES steps than the whole band matrix over -H..H."""
     n = stiffness.shape[-1]
     low = min(band, H)
-    gbtrf, gbtrs = lapack.get_lapack_funcs(("gbtrf", "gbtrs"), dtype=precision)
-    ab, kl, unit = _band_matrix(stiffness, damping, speed, np.arange(-low, H + 1), band,
-                                precision)
+    gbtrf, gbtrs = lapack.get_lapack_funcs(("gbtrf", "gbtrs"), dtype=complex)
+    ab, kl = _band_matrix(stiffness, damping, speed, np.arange(-low, H + 1), band)
     lu, pivots, info = gbtrf(ab, kl, kl, overwrite_ab=True)
     if info != 0:
-        raise NumericalError("harmonic balance: the banded preconditioner is singular "
-                             f"({gbtrf.typecode}gbtrf info {info})")
+        raise NumericalError(f"harmonic balance: the band {band} preconditioner is singular "
+                             f"(zgbtrf info {info})")
 
     def precondition(x):
         r = x.view(complex).reshape(H + 1, n)
-        scale = _power_of_two(np.abs(x).max())  # r / scale in range, exactly
-        rhs = (np.concatenate([np.conj(r[low:0:-1]), r]) / scale).astype(precision).ravel()
-        y, _ = gbtrs(lu, kl, kl, rhs, pivots, overwrite_b=True)
-        Q = y.reshape(-1, n)[low:].astype(complex) * (scale / unit)
+        y, _ = gbtrs(lu, kl, kl, np.concatenate([np.conj(r[low:0:-1]), r]).ravel(), pivots,
+                     overwrite_b=True)
+        Q = y.reshape(-1, n)[low:]
         Q[0] = Q[0].real
         return Q.view(float).ravel()
     return precondition
 
 
-def _power_of_two(size: float) -> float:
-    """The power of two nearest above ``size`` > 0 (1 at 0): a scale that divides exactly."""
-    return float(np.ldexp(1.0, int(np.frexp(size)[1])))
-
-
-def _band_matrix(stiffness, damping, speed, harmonics, band, precision):
+def _band_matrix(stiffness, damping, speed, harmonics, band):
     """The Hill matrix over ``harmonics`` (consecutive) with the coefficients' harmonics cut
-    to |d| <= band, in LAPACK's band storage for gbtrf ((3 kl + 1, n len(harmonics)), the
-    first kl rows free for the LU's fill) in ``precision``, kl = ku, and the power of two
-    ``unit`` it is divided by (its largest entry between 1/2 and 1: in single precision's
-    range whatever the units). The diagonal is summed in double and rounded once: -(Omega
-    k)^2 + S_0 cancels near a frozen frequency."""
+    to |d| <= band, in LAPACK's band storage for gbtrf ((3 kl + 1, n len(harmonics)) complex,
+    the first kl rows free for the LU's fill), and kl = ku."""
     n = stiffness.shape[-1]
     K, kl = len(harmonics), n * (band + 1) - 1
     d = np.arange(-band, band + 1)
@@ -233,19 +247,12 @@ def _band_matrix(stiffness, damping, speed, harmonics, band, precision):
     S = S.reshape(-1, n).T.copy()  # (n, (2 band + 1) n): column j of the stacked blocks
     D = D.reshape(-1, n).T.copy()
     rate = 1j * speed * harmonics
-    diagonal = S[:, band * n:(band + 1) * n].diagonal()[:, None] \
-        + D[:, band * n:(band + 1) * n].diagonal()[:, None] * rate - (speed * harmonics) ** 2
-    unit = _power_of_two(max(np.abs(diagonal).max(), np.abs(S).max()
-                             + np.abs(D).max() * np.abs(rate).max()))
-    diagonal = diagonal / unit
-    S, D, rate = (S / unit).astype(precision), (D / unit).astype(precision), \
-        rate.astype(precision)
-    ab = np.empty((3 * kl + 1, K * n), precision, order="F")
+    ab = np.empty((3 * kl + 1, K * n), complex, order="F")
     for j in range(n):
         top = 2 * kl - band * n - j
         column = np.multiply.outer(D[j], rate)
         column += S[j][:, None]
-        column[band * n + j] = diagonal[j]  # summed in double, rounded once
+        column[band * n + j] -= (speed * harmonics) ** 2
         ab[kl:top, j::n] = 0.0
         ab[top:top + column.shape[0], j::n] = column
         ab[top + column.shape[0]:, j::n] = 0.0
@@ -254,56 +261,32 @@ def _band_matrix(stiffness, damping, speed, harmonics, band, precision):
             top = 2 * kl - band * n - j
             ab[top + (band - shift) * n:top + (band - shift + 1) * n, j:shift * n:n] = 0.0
             ab[top + (band + shift) * n:top + (band + shift + 1) * n, (K - shift) * n + j::n] = 0.0
-    return ab, kl, unit
+    return ab, kl
 
 
-def _gmres(product, precondition, b, x0, weights, rtol: float = 1e-12,
-           iterations: int = ITERATIONS):
-    """x with |b - A x| <= rtol |b| by GMRES right preconditioned (A P^-1 y = r, x = x0 +
-    P^-1 y), and the relative residual reached, over real vectors with the inner product
-    sum(weights u v). NumericalError if it stalls above 1e3 rtol."""
-    def norm(v):
-        return np.sqrt(weights @ (v * v))
-    scale = norm(b)
+def _gmres(product, precondition, b, x0, rtol: float = RTOL, iterations: int = ITERATIONS):
+    """x with |b - A x| <= rtol |b| and the relative residual reached, by scipy's GMRES
+    right preconditioned (A P^-1 y = b - A x0, x = x0 + P^-1 y) in ``iterations`` steps at
+    most. The residual r is recomputed from x, and the error of x estimated as |P^-1 r|
+    (P^-1 near A^-1 where GMRES converges): NumericalError where that is above SOLVE_ERROR
+    |x|, or not a number (an overflow)."""
+    scale = np.linalg.norm(b)
     if scale == 0.0:  # no forcing: the periodic solution is rest
         return np.zeros_like(b), 0.0
-    r = b - product(x0)
-    beta = norm(r)
-    if beta <= rtol * scale:
-        return x0, beta / scale
-    # the Krylov vectors and their preconditioned images, grown as needed (a few steps are
-    # usual: ITERATIONS rows up front cost the heap its reuse of the LU's memory)
-    V, Z = np.empty((2, min(16, iterations + 1), b.size))
-    R = np.zeros((iterations + 1, iterations))  # the Hessenberg matrix, Givens-rotated
-    turns = np.zeros((iterations, 2))  # (cos, sin) of each rotation
-    g = np.zeros(iterations + 1)  # beta e1 rotated alike: |g[m + 1]| / scale is the residual
-    g[0] = beta
-    V[0] = r / beta
-    for m in range(iterations):
-        Z[m] = precondition(V[m])
-        w = product(Z[m])
-        for _ in range(2):  # classical Gram-Schmidt twice: orthogonal to round-off
-            c = V[:m + 1] @ (weights * w)
-            R[:m + 1, m] += c
-            w = w - c @ V[:m + 1]
-        below = norm(w)
-        for i, (cos, sin) in enumerate(turns[:m]):
-            R[i, m], R[i + 1, m] = cos * R[i, m] + sin * R[i + 1, m], \
-                cos * R[i + 1, m] - sin * R[i, m]
-        rho = np.hypot(R[m, m], below)
-        if not rho > 0.0:  # 0: A P^-1 V[m] in the span of V[:m], singular; NaN: overflow
-            m -= 1
-            break
-        turns[m] = R[m, m] / rho, below / rho
-        R[m, m] = rho
-        g[m], g[m + 1] = turns[m, 0] * g[m], -turns[m, 1] * g[m]
-        if abs(g[m + 1]) <= rtol * scale or below == 0.0:
-            break
-        if m + 1 == len(V):
-            V, Z = (np.concatenate([X, np.empty_like(X)]) for X in (V, Z))
-        V[m + 1] = w / below
-    residual = abs(g[m + 1]) / scale
-    if not residual <= 1e3 * rtol:  # NaN too (a preconditioner out of its precision's range)
+    operator = LinearOperator((b.size, b.size), dtype=float,
+                              matvec=lambda y: product(precondition(y)))
+    steps = []  # one entry per GMRES iteration
+    y, _ = gmres(operator, b - product(x0) if x0.any() else b, rtol=0.0,
+                 atol=rtol * scale, restart=iterations, maxiter=1, callback=steps.append,
+                 callback_type="pr_norm")
+    x = x0 + precondition(y)
+    r = b - product(x)
+    residual = np.linalg.norm(r) / scale
+    error = np.linalg.norm(precondition(r)) / np.linalg.norm(x)
+    if not error <= SOLVE_ERROR:
         raise NumericalError(f"harmonic balance: GMRES stalled at relative residual "
-                             f"{residual:.2g} after {m + 1} iterations")
-    return x0 + solve_triangular(R[:m + 1, :m + 1], g[:m + 1]) @ Z[:m + 1], residual
+                             f"{residual:.2g} after {len(steps)} iterations (estimated "
+                             f"relative error {error:.2g})")
+    log.debug("GMRES: relative residual %.2g after %d iterations, estimated relative error "
+              "%.2g", residual, len(steps), error)
+    return x, residual

@@ -40,13 +40,27 @@ def run_folder(out: Path, arguments) -> Path:
     return prepare_out_dir(Path(out) / name)
 
 
+# More files than this in one folder (a ParaView series' frames) are said in one line.
+FILES_LISTED_ONE_BY_ONE = 5
+
+
 def announce(paths, quiet: bool) -> list[str]:
     """Say on stderr which files were written (not with ``--json``, whose document lists
-    them); returns them as strings for that document."""
+    them all); a folder that received more than ``FILES_LISTED_ONE_BY_ONE`` of them is one
+    line with the count, the first and the last. Returns the paths as strings for that
+    document."""
     paths = [str(p) for p in paths]
     if not quiet:
+        folders: dict[Path, list[str]] = {}
         for p in paths:
-            click.echo(f"wrote {p}", err=True)
+            folders.setdefault(Path(p).parent, []).append(p)
+        for folder, inside in folders.items():
+            if len(inside) > FILES_LISTED_ONE_BY_ONE:
+                click.echo(f"wrote {len(inside)} files in {folder}/ ({Path(inside[0]).name} "
+                           f"... {Path(inside[-1]).name})", err=True)
+            else:
+                for p in inside:
+                    click.echo(f"wrote {p}", err=True)
     return paths
 
 

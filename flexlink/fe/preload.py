@@ -34,12 +34,14 @@ from flexlink.fe.timoshenko import WEIGHTS, XI, shape_functions
 RESIDUAL_TOL = 1e-10  # backward error of K u = f beyond which the static solve is refused
 
 
-def inertia_loads(model, node_accelerations: np.ndarray, alpha) -> np.ndarray:
-    """d'Alembert nodal loads (n_dofs,) [N, N m] of ``model`` (a FrameModel) whose nodes have
-    the rigid accelerations ``node_accelerations`` (N, 2) [m/s^2, global] and whose links turn
-    with angular accelerations ``alpha`` (per link) [rad/s^2]."""
+def element_inertia_loads(model, node_accelerations: np.ndarray, alpha) -> tuple[np.ndarray, ...]:
+    """Per link of ``model`` (a FrameModel) the consistent d'Alembert loads (e, 6) [N, N m] of
+    each element in the link frame, DOF order (u1, v1, rz1, u2, v2, rz2), for the rigid node
+    accelerations ``node_accelerations`` (N, 2) [m/s^2, global] and the links' angular
+    accelerations ``alpha`` (per link) [rad/s^2]. Joint masses are not in them (they act at
+    nodes)."""
     acc = np.asarray(node_accelerations, dtype=float)
-    parts = []
+    out = []
     for link, a_link in zip(model.links, np.asarray(alpha, dtype=float)):
         s, h = link.section, link.length / link.elements
         phi = shear_parameter(s, h)
@@ -54,6 +56,19 @@ def inertia_loads(model, node_accelerations: np.ndarray, alpha) -> np.ndarray:
         if s.beam is BeamTheory.TIMOSHENKO:
             _, _, Npsi, _ = shape_functions(XI, h, phi)
             fe[:, [1, 2, 4, 5]] += -s.rotary_inertia * a_link * h * (Npsi @ WEIGHTS)
+        out.append(fe)
+    return tuple(out)
+
+
+def inertia_loads(model, node_accelerations: np.ndarray, alpha) -> np.ndarray:
+    """d'Alembert nodal loads (n_dofs,) [N, N m] of ``model`` (a FrameModel) whose nodes have
+    the rigid accelerations ``node_accelerations`` (N, 2) [m/s^2, global] and whose links turn
+    with angular accelerations ``alpha`` (per link) [rad/s^2]: the elements' own
+    (``element_inertia_loads``) summed at the nodes, and the joint masses'."""
+    acc = np.asarray(node_accelerations, dtype=float)
+    parts = []
+    for link, fe in zip(model.links, element_inertia_loads(model, acc, alpha)):
+        c, sn = math.cos(link.angle), math.sin(link.angle)
         # local (u, v, rz) -> global (ux, uy, rz): R^T per node; ends k = 0, 1 of each element
         for k, nodes in ((0, link.nodes[:-1]), (1, link.nodes[1:])):
             parts.append((3 * nodes, c * fe[:, 3 * k] - sn * fe[:, 3 * k + 1]))

@@ -48,12 +48,17 @@ from flexlink.units import parse_quantity
 def shipped_materials() -> Traversable:
     """The folder of shipped material files: the package data ``flexlink.materials.data``,
     which pyproject.toml maps from the repository's ``materials/`` folder (in a wheel and in an
-    editable install; ``materials/__init__.py`` makes it a package the editable finder maps). A source checkout used without installing (PYTHONPATH) has no such
-    package, so the repository folder is read directly."""
+    editable install; ``materials/__init__.py`` makes it a package the editable finder maps). A
+    source checkout (a ``pyproject.toml`` beside the package) reads its own ``materials/``
+    folder: code run from one git worktree with another's editable install must not read the
+    other's files."""
+    checkout = Path(__file__).resolve().parents[2]
+    if (checkout / "pyproject.toml").is_file() and (checkout / "materials").is_dir():
+        return checkout / "materials"  # a source checkout: its own files, not another's install
     try:
         return resources.files("flexlink.materials.data")
     except ModuleNotFoundError:
-        return Path(__file__).resolve().parents[2] / "materials"
+        return checkout / "materials"
 
 def shipped_names() -> list[str]:
     """Names of the shipped materials (``materials/<name>.toml``), sorted."""
@@ -132,6 +137,12 @@ def load_constituent(name_or_path: str | Path) -> Constituent:
         raise InputError(f"{what}; shipped materials: {', '.join(shipped_names())}",
                          expected="a shipped material's name or a path to a material .toml file")
     return _read_constituent(path)  # e.g. inside a zipped package: read it every time
+
+
+def material_path(name_or_path: str) -> Traversable:
+    """The file ``load_constituent`` reads for ``name_or_path``: a .toml path as given, else
+    the shipped ``materials/<name>.toml``."""
+    return _material_path(str(name_or_path))
 
 
 @functools.lru_cache(maxsize=64)

@@ -365,6 +365,51 @@ def _steady_response_part(page: dict, figures: list, response: dict | None) -> s
                      numeric_from=1))
 
 
+def life_section(page: dict, figures: list) -> str:
+    """Stress and life at the operating speed (``flexlink life`` with its default conditions),
+    for a scene that declares a speed and whose materials give strengths; "" otherwise."""
+    life = page.get("life")
+    if life is None:
+        return ""
+    if "unavailable" in life:
+        return f"<h3>Stress and life</h3><p>Not available: {_e(life['unavailable'])}</p>"
+    data = [{"type": "scatter", "mode": "lines", "x": life["crank_deg"], "y": c["stress_MPa"],
+             "name": c["link"], "hovertemplate": "%{x:.1f} deg: %{y:.4g} MPa<extra></extra>"}
+            for c in life["curves"]]
+    layout = {"xaxis": {"title": {"text": "crank angle [deg]"}, "range": [0, 360], "dtick": 60},
+              "yaxis": {"title": {"text": "stress at the link's peak point [MPa]"}},
+              "legend": {"orientation": "h", "y": -0.25}}
+    rows = []
+    for link in life["links"]:
+        p = link["peak"]
+        if link["kind"] == "metal":
+            margin = _number(link["safety_factor"], 3) if link["safety_factor"] else "inf"
+            hours = ("unlimited" if link["unlimited_life"]
+                     else _number(link["life_hours"], 3))
+        else:
+            margin = _number(min(link["max_stress_ratio"], link["tsai_wu_ratio"]), 3) + "*"
+            hours = "none*"
+        rows.append([_e(link["link"]), _number(p["stress_MPa"], 4),
+                     f"{_number(p['position_m'] * 1e3, 4)} mm, {_e(p['fibre'])}, "
+                     f"{_number(p['crank_deg'], 1)} deg",
+                     _number(link["range"]["stress_MPa"], 4), _number(link["range_mean_MPa"], 4),
+                     margin, hours])
+    c = life["conditions"]
+    composite = any(link["kind"] == "composite" for link in life["links"])
+    return ("<h3>Stress and life</h3>"
+            + f"<p>At {_number(life['speed_rev_per_min'], 1)} rev/min. Included: "
+              f"{_e(life['included'])}. Assumed: {_e(life['assumptions'])}. Parts: "
+              f"{_e(c['surface'])} surface, {_number(c['temperature_C'], 1)} C, reliability "
+              f"{_number(c['reliability'], 3)}, {_e(c['mean_stress'])} mean-stress correction "
+              "(docs/life.md).</p>"
+            + _figure(page, figures, "life", data, layout)
+            + _table(["link (worst first)", "peak [MPa]", "where, when", "range [MPa]",
+                      "mean [MPa]", "safety factor", "life [h]"], rows, numeric_from=1)
+            + (f'<p class="note">* composite: the smaller ply strength ratio (maximum stress, '
+               f"Tsai-Wu); {_e(next(k['note'] for k in life['links'] if k['kind'] == 'composite'))}</p>"
+               if composite else ""))
+
+
 def correlation_section(page: dict, figures: list) -> str:
     """A modal test correlated with the scene (``flexlink report --test``): the MAC heat map,
     the pairs with their frequency errors, the unpaired modes and aliasing warnings; "" (no
@@ -435,7 +480,8 @@ def kinematics_section(page: dict, figures: list) -> str:
 
 SECTIONS = (pose_section, frequency_section, assumptions_section, sensitivity_section,
             mesh_section, modes_section,
-            cycle_section, at_speed_section, correlation_section, files_section)
+            cycle_section, at_speed_section, life_section, correlation_section,
+            files_section)
 KINEMATIC_SECTIONS = (pose_section, kinematics_section)  # a scene without beams
 
 

@@ -158,6 +158,31 @@ def steady_response_data(at: AtSpeed) -> dict:
                        for k, p in enumerate(at.forced.points)]}
 
 
+def life_data(scene: ReportScene) -> dict | None:
+    """Stress and life at the operating speed (``ReportScene.life``): the ``life`` command's
+    document and, per link, the stress over the turn at its peak's point; {"unavailable":
+    reason} where it could not be made; None for a scene without a speed or strengths."""
+    if scene.life is None:
+        return None if scene.life_unavailable is None else {"unavailable": scene.life_unavailable}
+    from flexlink.output.life.life import life_document
+
+    study = scene.life
+    field = study.field
+    order = np.argsort(np.degrees(field.angles) % 360.0)
+    curves = []
+    for link in study.links:
+        index = field.points.of(link.link)
+        at = field.points.position[index]
+        fibre = np.where(field.points.fibre[index] == 0, 1, -1)
+        k = index[np.flatnonzero((np.abs(at - link.peak.position) < 1e-12)
+                                 & (fibre == link.peak.fibre))[0]]
+        curves.append({"link": link.link,
+                       "stress_MPa": [float(x) / 1e6 for x in field.total[order, k]]})
+    document = life_document(scene.summary.case.scene, study)
+    return {**document, "crank_deg": _rounded(np.degrees(field.angles[order]) % 360.0),
+            "curves": curves}
+
+
 def scene_page(scene: ReportScene, files: dict, out: Path, correlation: dict | None = None
                ) -> dict:
     """Everything the report shows for one scene (``studies.report_scene``), its modes drawn
@@ -177,6 +202,7 @@ def scene_page(scene: ReportScene, files: dict, out: Path, correlation: dict | N
             "shapes": mode_shapes(mode_set(result, len(summary.frequencies))),
             "cycle": cycle_data(scene.cycle, result.pose.crank_angle, scene.cycle_unavailable),
             "at_speed": at_speed_data(scene.at_speed),
+            "life": life_data(scene),
             "correlation": correlation,
             "files": {"vtu": relative(files.get("vtu", [])),
                       "pvd": relative(files.get("pvd", []))}}

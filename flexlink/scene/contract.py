@@ -52,6 +52,21 @@ class Composite:
 
 
 @dataclasses.dataclass(frozen=True)
+class LinkMaterial:
+    """Where a link's material comes from, for the data a section does not hold (strengths):
+    ``field`` the scene key ("material" or "links.<link>.material") in ``source`` (its file);
+    ``isotropic`` the named material file, or ``composite`` the constituents, or neither (E and
+    density written in the scene: no material file, so no strength data); ``plies`` the
+    section's ply count, where given."""
+
+    field: str
+    source: str
+    isotropic: str | None = None
+    composite: Composite | None = None
+    plies: int | None = None
+
+
+@dataclasses.dataclass(frozen=True)
 class PrbOptions:
     strip: str
     pivot: str
@@ -222,6 +237,7 @@ class Scene:
     composite: Composite | None = None  # the shared material, where it is a composite
     loads: tuple[LoadSpec, ...] = ()  # external loads for the driving torque
     loss_factors: dict[str, float] = dataclasses.field(default_factory=dict)  # link -> eta [-]
+    materials: dict[str, LinkMaterial] = dataclasses.field(default_factory=dict)  # per link
     origin: dict[str, str] = dataclasses.field(default_factory=dict, repr=False, compare=False)
 
     @property

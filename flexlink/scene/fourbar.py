@@ -57,5 +57,6 @@ def build_four_bar(src: SceneSource, sf: schema.SceneFile) -> Scene:
         drive=parts.drive(src, sf, {n: (a, b) for n, a, b in LINKS}, GROUND),
         elements_per_link=sf.mesh.elements_per_link, reference=parts.reference(sf),
         assumptions=parts.unique(assumptions + parts.default_assumptions(src, sf, list(JOINTS))), options=parts.options(src, sf, list(JOINTS)),
-        composite=parts.composite(sf), loss_factors=loss, origin=dict(src.origin))
+        composite=parts.composite(sf), loss_factors=loss, origin=dict(src.origin),
+        materials={name: parts.link_material(src, sf, name) for name, _, _ in LINKS})
 

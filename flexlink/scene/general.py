@@ -206,4 +206,5 @@ def build_general(src: SceneSource, sf: schema.SceneFile) -> Scene:
         elements_per_link=sf.mesh.elements_per_link, reference=parts.reference(sf),
         assumptions=parts.unique(assumptions + parts.default_assumptions(src, sf, used)), options=parts.options(src, sf, used),
         synthesis=synthesis, composite=parts.composite(sf), loss_factors=loss,
-        origin=dict(src.origin))
+        origin=dict(src.origin), materials={l.name: parts.link_material(src, sf, l.name)
+                                            for l in links})

@@ -13,7 +13,8 @@ from flexlink.fe.motions import ModelFamily
 from flexlink.materials.mixtures import (BeamMaterial, LossFactor, isotropic, load_constituent,
                                          woven_composite)
 from flexlink.scene import schema
-from flexlink.scene.contract import (Composite, ModalDamping, ModalTestFrame, Options, PrbOptions,
+from flexlink.scene.contract import (Composite, LinkMaterial, ModalDamping, ModalTestFrame,
+                                     Options, PrbOptions,
                                      Reference, Variant)
 from flexlink.scene.source import Assumption, SceneSource
 
@@ -117,6 +118,20 @@ def loss_factor(src: SceneSource, sf: schema.SceneFile, link: str,
         f"{default.low:g} to {default.high:g} ({default.source}); loss_factor is not given",
         src.file_of(field)))  # no sampled range: frequencies do not depend on it
     return default.value
+
+
+def link_material(src: SceneSource, sf: schema.SceneFile, link: str) -> LinkMaterial:
+    """Where ``link``'s material comes from (``contract.LinkMaterial``)."""
+    own = sf.links.get(link)
+    field = f"links.{link}.material" if own is not None and own.material else "material"
+    m = own.material if own is not None and own.material else sf.material
+    keys, _ = merged_section(sf, link)
+    c = m.composite if m is not None else None
+    return LinkMaterial(
+        field=field, source=src.file_of(field), isotropic=m.isotropic if m is not None else None,
+        composite=None if c is None else Composite(c.fiber, c.matrix, c.fiber_volume_fraction,
+                                                   c.shear_modulus),
+        plies=keys.get("plies"))
 
 
 def merged_section(sf: schema.SceneFile, link: str) -> tuple[dict, dict[str, str]]:

@@ -14,6 +14,8 @@ from flexlink.scene import Scene, load_scene
 from flexlink.studies.array_shapes import check_shape
 from flexlink.studies.cycle.modal_map import ModalMap, modal_map
 from flexlink.studies.cycle.rigid_motion import MotionStudy, motion_study
+from flexlink.studies.life.life import LifeStudy, check_strengths, life_study
+from flexlink.studies.life.stress_field import stress_field, stress_model
 from flexlink.studies.running.modes_at_speed import OperatingPoint, operating_modes
 from flexlink.studies.pose.scene_summary import SceneSummary, SensitivityRun, scene_summary
 from flexlink.studies.running.steady_response import ForcedModel, SteadyResponse, forced_model, steady_response
@@ -96,6 +98,8 @@ class ReportScene:
     cycle: ModalMap | None
     cycle_unavailable: str | None = None
     at_speed: AtSpeed | None = None
+    life: LifeStudy | None = None  # stress and life at the operating speed (``life_at_speed``)
+    life_unavailable: str | None = None
     motion: MotionStudy | None = None  # a scene without beams: its rigid motion instead
 
     def __post_init__(self):
@@ -124,4 +128,24 @@ def report_scene(path, n_modes: int, elements: int | None, tol: float | None, so
         cycle = modal_map(scene, cycle_poses, n_modes, elements) if cycle_poses else None
     except FlexlinkError as exc:
         unavailable = str(exc)
-    return ReportScene(summary, cycle, unavailable, at_speed(scene, n_modes, elements))
+    life, life_unavailable = life_at_speed(scene, elements)
+    return ReportScene(summary, cycle, unavailable, at_speed(scene, n_modes, elements), life,
+                       life_unavailable)
+
+
+def life_at_speed(scene: Scene, elements_per_link: int) -> tuple[LifeStudy | None, str | None]:
+    """Each link's stress and life at the scene's operating speed (``studies.life``, its
+    default conditions), or (None, the reason) where it cannot be made; (None, None) for a
+    scene that declares no speed or whose materials give no strength data."""
+    if scene.options.crank_speed is None:
+        return None, None
+    try:
+        check_strengths(scene)
+    except FlexlinkError:
+        return None, None
+    try:
+        model = stress_model(scene, elements_per_link=elements_per_link)
+        field = stress_field(model, scene.options.crank_speed)
+        return life_study(scene, model, field), None
+    except FlexlinkError as exc:
+        return None, str(exc)

@@ -91,3 +91,17 @@ def test_converge_and_kinematics_commands_hold_no_study_logic():
         assert used & study_names == set(), name
         defs = [n.name for n in tree.body if isinstance(n, ast.FunctionDef)]
         assert defs == ["command"], name
+
+
+def test_a_folder_of_many_written_files_is_said_in_one_line(capsys, tmp_path):
+    """A ParaView series' frames are one stderr line (count, first, last), the files beside
+    them one line each, and the returned list (the JSON's ``files``) still has every path."""
+    from flexlink.commands._written import FILES_LISTED_ONE_BY_ONE, announce
+
+    frames = [tmp_path / "life" / f"angle{i:03d}.vtu" for i in range(FILES_LISTED_ONE_BY_ONE + 1)]
+    listed = announce([tmp_path / "life.csv", *frames, tmp_path / "life.pvd"], quiet=False)
+    assert listed == [str(p) for p in [tmp_path / "life.csv", *frames, tmp_path / "life.pvd"]]
+    assert capsys.readouterr().err.splitlines() == [
+        f"wrote {tmp_path / 'life.csv'}", f"wrote {tmp_path / 'life.pvd'}",
+        f"wrote {len(frames)} files in {tmp_path / 'life'}/ (angle000.vtu ... "
+        f"angle{len(frames) - 1:03d}.vtu)"]

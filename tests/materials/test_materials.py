@@ -63,7 +63,7 @@ def test_unknown_material_names_the_shipped_ones():
     message = str(info.value)
     # the shipped names as a user writes them, and no install path to puzzle over
     assert message.startswith("unknown material 'unobtainium'; shipped materials: "
-                              "carbon_fiber, polyester, steel"), message
+                              "aisi_1020_cd, aisi_1080, carbon_fiber, polyester, steel"), message
     assert "/" not in message.split("(expected")[0], message
 
 

@@ -33,6 +33,7 @@ ARGS = {
     "cycle": [CASE1, "--poses", "6", "-e", "2", "-n", "2"],
     "export": [CASE1, "--no-pictures", "-e", "2", "-n", "2", "--phases", "2"],
     "kinematics": [CASE1, "--poses", "8"],
+    "life": [CASE1, "--speed", "600 rev/min", "-n", "2", "--elements", "2", "--no-estimate"],
     "mac": [CASE1, CASE2, "-e", "2", "-n", "2"],
     "modes": [CASE1, "-e", "2", "-n", "2"],
     "prb": [str(SCENES_DIR / "compliant_wiper.toml"), "-e", "2", "-n", "2"],

@@ -89,3 +89,16 @@ def test_the_scene_crank_acceleration_reaches_torque_and_modes(tmp_path):
     at_top = [line[-1] for line in data["modes"]["frequencies_Hz"]]
     assert at_top == pytest.approx(list(op.frequencies), rel=1e-12)
     assert at_top != pytest.approx(list(steady.frequencies), rel=1e-6)
+
+
+def test_stress_and_life_for_the_scene_with_a_speed_and_strengths(page):
+    """Case 3 with a speed declares strengths (the constituents'): its page has the "Stress
+    and life" section, its three composite links with strength ratios and no life; case 1
+    declares no speed and has none."""
+    section = _scene(page, "case3_speed")
+    assert "<h3>Stress and life</h3>" in section
+    assert 'id="fig-case3_speed-life"' in page
+    table = section[section.index("link (worst first)"):]
+    assert table.count("none*") == 3
+    assert "no life is given without a measured fatigue curve" in section
+    assert "Stress and life" not in _scene(page, "case1")

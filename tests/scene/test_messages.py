@@ -84,7 +84,7 @@ def test_an_unknown_material_lists_the_shipped_ones(tmp_path):
                  '[material]\nisotropic = "aluminium"\n')
     line = error_line(run("modes", path, "--out", str(tmp_path / "out")))
     assert (f"{path}: material.isotropic: unknown material 'aluminium'; shipped materials: "
-            "carbon_fiber, polyester, steel") in line, line
+            "aisi_1020_cd, aisi_1080, carbon_fiber, polyester, steel") in line, line
     assert "material: material" not in line and "materials/" not in line, line
 
 

@@ -134,14 +134,14 @@ class PeriodicModel:
 
     @functools.cached_property
     def energy_scale(self) -> np.ndarray:
-        """R (n, n) [rad/s]: the symmetric square root of the turn's mean M^-1 K at rest
-        (positive definite: the model refuses an indefinite stiffness at rest). In the
-        coordinates (R q, q') the stiffness and velocity parts of the state weigh alike, so
-        A's norm is near its spectral radius there (in (q, q') it is up to 65 times larger
-        on Table II case 1, and each doubling is one more squaring in every step's
-        exponential)."""
-        mean = self._first_order_samples[:, 2].mean(axis=0)
-        values, vectors = np.linalg.eigh(0.5 * (mean + mean.T))
+        """R (n, n) [rad/s]: the symmetric square root of the turn's mean mass-weighted
+        stiffness at rest, L sym(K) L^T (L L^T = M^-1, ``_floor_pencil``: positive definite
+        at every point, as the model refuses it otherwise; the symmetric part of M^-1 K need
+        not be, on the wiper it is not). In the coordinates (R q, q') the stiffness and
+        velocity parts of the state weigh alike, so A's norm is near its spectral radius
+        there (in (q, q') it is up to 65 times larger on Table II case 1, and each doubling
+        is one more squaring in every step's exponential)."""
+        values, vectors = np.linalg.eigh(self._floor_pencil[0].mean(axis=0))
         return (vectors * np.sqrt(values)) @ vectors.T
 
     @property

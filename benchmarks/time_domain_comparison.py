@@ -1,0 +1,34 @@
+"""flexlink's steady response against the time-domain record of Table II case 3
+(tests/data/exudyn_case3.json): per link, speed and damping law, the peak midspan strain of
+each and their differences, as tests/studies/test_time_domain_record.py judges them.
+
+    PYTHONPATH=. python benchmarks/time_domain_comparison.py [--json]
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests" / "studies"))
+
+from test_time_domain_record import RECORD, comparison_rows, table  # noqa: E402
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("--json", action="store_true", help="the rows as one JSON document")
+    rows = comparison_rows()
+    if parser.parse_args().json:
+        print(json.dumps(rows, indent=1))
+        return
+    print(f"{RECORD['scene']}: flexlink response against Exudyn {RECORD['exudyn']} "
+          f"({RECORD['model']['elements_per_link']} ANCF elements a link, "
+          f"{RECORD['integration']['steps_per_turn']} steps a turn)")
+    print(table(rows))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,1 @@
+"""Renderings of ``studies.life``: text, JSON, CSV, ParaView series and pictures."""

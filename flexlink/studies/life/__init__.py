@@ -1,0 +1,1 @@
+"""Stress over the crank turn and the fatigue life of every link."""
