@@ -10,6 +10,8 @@ from __future__ import annotations
 import math
 import re
 
+import numpy as np
+
 from flexlink.errors import InputError
 
 RPM = 2 * math.pi / 60.0  # [rad/s] per rev/min: the one definition of the factor
@@ -37,6 +39,7 @@ UNITS: dict[str, dict[str, float]] = {
 
 _NUMBER = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?"
 _QUANTITY = re.compile(rf"^\s*({_NUMBER})\s*(.*?)\s*$")
+_NOT_FINITE = re.compile(r"^\s*([-+]?(?:inf(?:inity)?|nan))\b", re.IGNORECASE)
 
 
 def parse_quantity(text: object, dimension: str, *, source: str | None = None,
@@ -56,6 +59,10 @@ def parse_quantity(text: object, dimension: str, *, source: str | None = None,
         return math.inf
     match = _QUANTITY.match(text)
     if not match:
+        word = _NOT_FINITE.match(text)
+        if word:  # "inf rev/min": float() reads the word, the number pattern does not
+            raise InputError(f"{word.group(1)} is not a finite number", source=source,
+                             field=field, expected=expected)
         raise InputError(f"cannot read {text!r} as a number with a unit", source=source,
                          field=field, expected=expected)
     number, unit = float(match.group(1)), match.group(2)
@@ -85,13 +92,18 @@ def parse_range(text: object, dimension: str, *, source: str | None = None,
     low_read, high_read = _QUANTITY.match(low), _QUANTITY.match(high)
     if low_read and not low_read.group(2) and high_read and high_read.group(2):
         low = f"{low} {high_read.group(2)}"
-    return (parse_quantity(low, dimension, source=source, field=field),
-            parse_quantity(high, dimension, source=source, field=field))
+    # the high end first: a bare low end takes its unit, so an unreadable high end is the fault
+    upper = parse_quantity(high, dimension, source=source, field=field)
+    return parse_quantity(low, dimension, source=source, field=field), upper
 
 
-def rev_per_min(omega: float) -> float:
-    """An angular speed ``omega`` [rad/s] in rev/min."""
-    return omega / RPM
+def rev_per_min(omega):
+    """An angular speed ``omega`` [rad/s] (a number or an array) in rev/min, to 12
+    significant digits: a speed given in rev/min comes back as written (2900, not the
+    2900.0000000000005 of the round trip through rad/s)."""
+    values = np.asarray(omega, dtype=float) / RPM
+    rounded = np.array([float(f"{v:.12g}") for v in values.ravel()]).reshape(values.shape)
+    return float(rounded) if rounded.ndim == 0 else rounded
 
 
 def percent_error(computed, reference):
@@ -99,12 +111,19 @@ def percent_error(computed, reference):
     return 100.0 * (computed - reference) / reference
 
 
-def quantity_pattern(dimension: str, *, signed: bool = True, words: tuple[str, ...] = ()) -> str:
+# a number with a non-zero digit before its exponent: > 0 when unsigned (no look-ahead, which
+# the editors' regular expressions may lack)
+_POSITIVE = r"\+?(?:0*[1-9]\d*\.?\d*|0*\.0*[1-9]\d*)(?:[eE][-+]?\d+)?"
+
+
+def quantity_pattern(dimension: str, *, signed: bool = True, positive: bool = False,
+                     words: tuple[str, ...] = ()) -> str:
     """A regular expression for text ``parse_quantity`` reads as ``dimension``: a number then
     one of the dimension's units (for editors' JSON Schema). ``signed=False`` refuses a minus
-    sign (a quantity that must not be negative); ``words`` are whole-value alternatives such
-    as "rigid"."""
-    number = _NUMBER if signed else _NUMBER.replace("[-+]?", r"\+?", 1)
+    sign (a quantity that must not be negative), ``positive=True`` zero as well; ``words`` are
+    whole-value alternatives such as "rigid"."""
+    number = (_POSITIVE if positive else _NUMBER if signed
+              else _NUMBER.replace("[-+]?", r"\+?", 1))
     units = "|".join(re.escape(u).replace(r"\ ", " ")
                      for u in sorted(UNITS[dimension], key=len, reverse=True))
     alternatives = [rf"\s*{number}\s*(?:{units})\s*"] + [rf"\s*{w}\s*" for w in words]

@@ -157,3 +157,18 @@ def deformation_damping(scene: Scene, given: float | None, mass: np.ndarray,
         MPhi = M @ Phi
         out[p] = (MPhi * (2.0 * ratios * omegas)) @ MPhi.T
     return out
+
+
+def overdamped_note(ratios: np.ndarray) -> str | None:
+    """A sentence naming the modes whose damping ratio [-] is 1 or more (overdamped: they
+    decay without vibrating, so their undamped frequencies are no frequencies of the damped
+    linkage), or None."""
+    ratios = np.asarray(ratios, dtype=float)
+    over = np.flatnonzero(ratios >= 1.0)
+    if not len(over):
+        return None
+    modes = ", ".join(str(i + 1) for i in over)
+    return (f"mode(s) {modes} overdamped (damping ratio {ratios[over].min():.3g} to "
+            f"{ratios[over].max():.3g}, at least 1): they decay without vibrating, and their "
+            "frequencies are the undamped ones only; a structure's damping ratio is 0.001 to "
+            "0.1 (for Rayleigh damping zeta_i = alpha / (2 omega_i) + beta omega_i / 2)")

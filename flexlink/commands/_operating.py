@@ -11,6 +11,7 @@ def run_operating(files, folders, n_modes, elements, tol, at, as_json) -> None:
 
     from flexlink.output.running.modes_at_speed import operating_files, operating_text
     from flexlink.scene import load_scene
+    from flexlink.scene.plausibility import check_speeds
     from flexlink.studies.running.modes_at_speed import scene_operating_modes
 
     from ._analysed import each_scene
@@ -20,6 +21,8 @@ def run_operating(files, folders, n_modes, elements, tol, at, as_json) -> None:
 
     def operating(path):
         scene = load_scene(path)
+        if at.speed is not None:
+            check_speeds(scene, [at.speed], "--speed")
         speed, acceleration = operating_speed(scene, at.speed, at.crank_acceleration)
         resolved = dataclasses.replace(at, speed=speed, crank_acceleration=acceleration)
         return scene_operating_modes(scene, n_modes, elements, tol, resolved)

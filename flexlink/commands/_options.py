@@ -124,6 +124,22 @@ def map_parallel_options(sorted_map: bool):
     return stacked(options)
 
 
+def refuse_unless(option: str, needs: str, present: bool) -> None:
+    """InputError when the option whose parameter is ``option`` was given on the command line
+    (not left at its default) although what it acts on, ``needs`` (another option, e.g.
+    "--speeds"), is not ``present``: an option silently ignored would mislead."""
+    from click.core import ParameterSource
+
+    from flexlink.errors import InputError
+
+    source = click.get_current_context().get_parameter_source(option)
+    if present or source in (None, ParameterSource.DEFAULT, ParameterSource.DEFAULT_MAP):
+        return
+    flag = "--" + option.replace("_", "-")
+    raise InputError(f"{flag} acts only with {needs}, which is not given", source="command line",
+                     field=flag, expected=f"{needs} with {flag}, or no {flag}")
+
+
 def odd_count(ctx, param, value: int) -> int:
     """Click callback: the option's count must be odd (every harmonic sampled with its pair)."""
     if value % 2 == 0:

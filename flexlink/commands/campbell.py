@@ -6,7 +6,7 @@ import click
 
 from flexlink.commands._failures import names_scene
 from flexlink.commands._options import (harmonics_option, json_option, map_parallel_options,
-                                       mesh_options, out_option)
+                                       mesh_options, out_option, refuse_unless)
 from flexlink.commands._speeds import crank_acceleration_option, speeds_option
 
 
@@ -46,6 +46,7 @@ def command(scene_path, speeds, n_modes, poses, elements, tol, margin, harmonics
     from ._speeds import parse_acceleration, parse_speeds
     from ._written import folder_and_scene, publish
 
+    refuse_unless("speed_steps", "--dynamic", dynamic)
     if acceleration is not None and not dynamic:
         raise InputError("a crank acceleration is for the bands at speed: give --dynamic too",
                          source="command line", field="--crank-acceleration",

@@ -53,6 +53,8 @@ def command(scenes, n_modes, elements, tol, solver, cycle_poses, sensitivity, sa
 
     def page(path):  # with the scene's .vtu and .pvd files, which the page links to
         scene = report_scene(path, n_modes, elements, tol, solver, cycle_poses, run)
+        if scene.summary is None:  # kinematics only: no modes to export or correlate
+            return scene_page(scene, {}, out)
         return scene_page(scene, export_case(scene.summary, out, ExportSettings(
             n_modes=n_modes, pictures=False, plot=False)), out, _correlation(scene, measured))
 

@@ -5,7 +5,8 @@ from __future__ import annotations
 import click
 
 from flexlink.commands._failures import names_scene
-from flexlink.commands._options import json_option, out_option, periodic_basis_options
+from flexlink.commands._options import (json_option, out_option, periodic_basis_options,
+                                       refuse_unless)
 from flexlink.commands._speeds import speed_option, speeds_option
 
 
@@ -39,6 +40,7 @@ def command(scene_path, speed, speeds, count, n_modes, damping_ratio, elements, 
     if speed is not None and speeds is not None:
         raise InputError("give --speed or --speeds, not both", source="command line",
                          field="--speeds")
+    refuse_unless("count", "--speeds", speeds is not None)
     sweep = None if speeds is None else np.linspace(*parse_speeds(speeds), count)
     one = parse_speed(speed)
     at = tuple(parse_point(p) for p in points) or None

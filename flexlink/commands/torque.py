@@ -26,15 +26,21 @@ def command(scene_path, speed, acceleration, poses, as_json, out_dir):
     speed, from the links' mass and inertia and the scene's [[loads]]. Writes torque.csv,
     torque.png and torque.json to OUT/<scene>/."""
     from flexlink.output.running.torque import torque_document, torque_text, write_torque
+    from flexlink.scene.plausibility import check_speeds
     from flexlink.studies.running.torque import torque_study
     from ._progress import progress_bar
     from ._speeds import operating_speed, parse_acceleration, parse_speed
     from ._written import folder_and_scene, publish
 
-    omega, qdd = parse_speed(speed), parse_acceleration(acceleration)
+    given = parse_speed(speed), parse_acceleration(acceleration)
     folder, scene = folder_and_scene(out_dir, scene_path)
-    omega, qdd = operating_speed(scene, omega, qdd)
-    curve = torque_study(scene, omega, qdd, poses, progress_bar("torque", as_json))
+    if given[0] is not None:
+        check_speeds(scene, [given[0]], "--speed")
+    fields = tuple(("command line: " + name) if value is not None else name for value, name in
+                   zip(given, ("--speed", "--crank-acceleration")))
+    omega, qdd = operating_speed(scene, *given)
+    curve = torque_study(scene, omega, qdd, poses, progress_bar("torque", as_json),
+                         fields=fields)
     document = torque_document(curve, [f"{a.field}: {a.note}" for a in scene.assumptions])
     publish(folder / "torque.json", document, write_torque(curve, folder),
             torque_text(document), as_json)

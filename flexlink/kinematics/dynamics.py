@@ -86,8 +86,15 @@ def rigid_motion(linkage: Linkage, state: State, speed: float,
     w, a = float(speed), float(crank_acceleration)
     points = {j: np.asarray(p, float) for j, p in state.points.items()}
     velocities = {j: np.asarray(state.dpoints[j], float) * w for j in points}
-    accelerations = {j: np.asarray(state.ddpoints[j], float) * w * w
-                     + np.asarray(state.dpoints[j], float) * a for j in points}
+    with np.errstate(over="ignore", invalid="ignore"):  # an overflow is refused below
+        accelerations = {j: np.asarray(state.ddpoints[j], float) * w * w
+                         + np.asarray(state.dpoints[j], float) * a for j in points}
+    squared = w * w
+    if not (math.isfinite(squared) and all(np.isfinite(v).all() for v in accelerations.values())):
+        raise InputError(f"a crank speed of {w:g} rad/s with an acceleration of {a:g} rad/s^2 "
+                         f"overflows the rigid-body accelerations (Omega^2 = {squared:g})",
+                         field="speed" if squared > abs(a) else "crank_acceleration",
+                         expected="a crank speed and acceleration a machine can have")
     return RigidMotion(
         q=float(state.q), speed=w, crank_acceleration=a,
         bodies=tuple(b.name for b in linkage.bodies),

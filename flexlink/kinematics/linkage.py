@@ -30,6 +30,10 @@ import numpy as np
 from flexlink.errors import InputError, KinematicsError
 
 SINGULAR_TOL = 1e-9  # sigma_min / sigma_max of the scaled Jacobian below this: a dead centre
+# ... and below this, a pose whose velocity coefficients are not determined: a pose solved to
+# NEWTON_TOL sits within round-off of a dead centre (a change-point linkage's flat pose comes
+# out at 1e-7, its poses a degree away at 3e-3), where K and L take one of the branches' values
+NEAR_SINGULAR = 1e-6
 NEWTON_TOL = 1e-13  # residual relative to the linkage size [-]
 NEWTON_STEPS = 30
 
@@ -199,6 +203,13 @@ class Linkage:
                     quadratic.append(lambda dp: 0.0)
         return np.array(rows), np.array(jac), np.array(phi_q), quadratic
 
+    def conditioning(self, state: State) -> float:
+        """sigma_min / sigma_max of the scaled loop Jacobian at ``state``: 0 at a dead centre,
+        below NEAR_SINGULAR where the pose's velocity coefficients are not determined."""
+        x = np.concatenate([np.asarray(state.points[j], float) for j in self.moving])
+        s = np.linalg.svd(self._equations(x, state.q)[1] * self.size, compute_uv=False)
+        return float(s[-1] / s[0])
+
     def _check_jacobian(self, J, q):
         s = np.linalg.svd(J * self.size, compute_uv=False)
         if s[-1] < SINGULAR_TOL * s[0]:
@@ -272,7 +283,16 @@ class Linkage:
                 h = qi - prev.q
                 guess = {j: np.asarray(prev.points[j]) + prev.dpoints[j] * h
                          + 0.5 * prev.ddpoints[j] * h * h for j in self.moving}
-            states.append(self.solve(qi, guess))
+            try:
+                states.append(self.solve(qi, guess))
+            except KinematicsError as exc:
+                if not states:
+                    raise
+                reason = "a dead centre" if "dead centre" in str(exc) else "the loop does not close"
+                raise KinematicsError(
+                    f"the crank cannot turn fully: at q = {math.degrees(qi):.4f} deg, "
+                    f"{reason} (the last pose reached is at q = "
+                    f"{math.degrees(states[-1].q):.4f} deg)") from None
         angles = np.unwrap(np.array([s.angles for s in states]), axis=0)
         return Cycle(q=q, angles=angles, K=np.array([s.K for s in states]),
                      L=np.array([s.L for s in states]), states=tuple(states),

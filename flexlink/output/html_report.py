@@ -513,11 +513,25 @@ def _failures(messages) -> str:
             + "".join(f"<li>{_e(m)}</li>" for m in messages) + "</ul></div>")
 
 
+def kinematics_section(page: dict, figures: list) -> str:
+    """A scene without beams: why there are no modes, its rigid motion as ``flexlink
+    kinematics`` prints it, and its transmission angles over the cycle."""
+    kin = page["kinematics"]
+    data = [{"type": "scatter", "mode": "lines", "x": kin["crank_deg"], "y": values,
+             "name": f"mu {pair}"} for pair, values in kin["transmission_deg"].items()]
+    figure = _figure(page, figures, "transmission", data, {
+        "xaxis": {"title": {"text": "crank angle [deg]"}},
+        "yaxis": {"title": {"text": "transmission angle [deg]"}}, "height": 300}) if data else ""
+    return (f"<h3>Rigid motion</h3><p class=\"note\">{_e(kin['note'])}.</p>"
+            f"<pre>{_e(kin['text'])}</pre>" + figure)
+
+
 SECTIONS = (pose_section, frequency_section, assumptions_section, sensitivity_section,
             mesh_section, modes_section,
             cycle_section, at_speed_section, life_section, kinetostatics_section,
             correlation_section,
             files_section)
+KINEMATIC_SECTIONS = (pose_section, kinematics_section)  # a scene without beams
 
 
 def render_page(pages: list[dict], plotly_js: str, title: str = "flexlink report",
@@ -528,7 +542,8 @@ def render_page(pages: list[dict], plotly_js: str, title: str = "flexlink report
     figures: list = []
     scenes = []
     for page in pages:
-        parts = [section(page, figures) for section in SECTIONS]
+        sections = KINEMATIC_SECTIONS if "kinematics" in page else SECTIONS
+        parts = [section(page, figures) for section in sections]
         summary = page["summary"]
         scenes.append(f'<section class="scene" id="scene-{_e(page["id"])}">'
                       f'<h2>{_e(summary["scene"])}</h2><p class="file">{_e(summary["file"])}</p>'

@@ -20,8 +20,10 @@ from flexlink.analysis.modal import CaseResult
 from flexlink.output.counts import counted
 from flexlink.output.export_vtk import ModeSet, mode_set
 from flexlink.output.kinetostatics.outputs import outputs_report_data
-from flexlink.output.pose.scene_summary import summary_document
-from flexlink.studies.cycle.modal_map import ModalMap
+from flexlink.output.cycle.rigid_motion import motion_text
+from flexlink.output.pose.scene_summary import linkage_summary, summary_document
+from flexlink.studies.cycle.modal_map import ModalMap, transmission_angles
+from flexlink.studies.cycle.rigid_motion import MotionStudy
 from flexlink.studies.running.modes_at_speed import ASSUMPTIONS
 from flexlink.studies.report_scene import AtSpeed, ReportScene
 
@@ -116,7 +118,9 @@ def at_speed_data(at: AtSpeed | None) -> dict | None:
         curve = at.torque
         order = np.argsort(np.degrees(curve.q) % 360.0)
         out["torque"] = {"crank_deg": _rounded(np.degrees(curve.q[order]) % 360.0),
-                         "torque_N_m": [float(t) for t in curve.torque[order]],
+                         # a singular pose's torque is not determined: a gap in the curve
+                         "torque_N_m": [None if math.isnan(t) else float(t)
+                                        for t in curve.torque[order]],
                          "summary": curve.summary()}
     out["response"] = steady_response_data(at)
     if at.points_unavailable is not None:
@@ -189,6 +193,8 @@ def scene_page(scene: ReportScene, files: dict, out: Path, correlation: dict | N
     def relative(paths):
         return [Path(p).relative_to(out).as_posix() for p in paths]
 
+    if scene.summary is None:
+        return kinematics_page(scene.motion)
     summary = scene.summary
     result, mesh = summary.case, summary.mesh
     return {"id": Path(result.scene.path).stem, "summary": summary_document(summary),
@@ -205,6 +211,35 @@ def scene_page(scene: ReportScene, files: dict, out: Path, correlation: dict | N
                       "pvd": relative(files.get("pvd", []))}}
 
 
+def kinematics_page(study: MotionStudy) -> dict:
+    """The page of a scene without beams (kinematics only): its pose and drawing (each body
+    as lines from its first joint to the others), its rigid motion as ``flexlink
+    kinematics`` prints it, and its transmission angles over the cycle [deg]."""
+    scene = study.scene
+    pose = scene.rigid_pose()
+    links = [{"name": b.name, "points": _rounded(np.array(
+        [pose.joints[j] for j in (b.joints[0], b.joints[k])]) * MM)}
+        for b in scene.linkage.bodies for k in range(1, len(b.joints))]
+    mu = transmission_angles(scene, study.cycle)
+    return {"id": Path(scene.path).stem,
+            "summary": {"scene": scene.name, "file": scene.path,
+                        "linkage": linkage_summary(scene),
+                        "pose": {"theta2_deg": math.degrees(pose.crank_angle),
+                                 "mu_deg": None if pose.mu is None else math.degrees(pose.mu),
+                                 "branch": pose.branch}},
+            "kinematics": {"note": "the scene has no [links] beams: kinematics only, no modes",
+                           "text": motion_text(study),
+                           "crank_deg": _rounded(np.degrees(study.cycle.q)),
+                           "transmission_deg": {pair: _rounded(np.degrees(v))
+                                                for pair, v in mu.items()}},
+            "drawing": {"links": links,
+                        "joints": {n: _rounded(np.asarray(xy) * MM)
+                                   for n, xy in pose.joints.items()},
+                        "ground": sorted(scene.linkage.ground)},
+            "mesh": None, "shapes": {"modes": []}, "cycle": None, "at_speed": None,
+            "files": {"vtu": [], "pvd": []}}
+
+
 def report_document(report: Path, page: str, pages: list[dict], out: Path,
                     failures: list[dict]) -> dict:
     """The JSON document of ``flexlink report``: the page written to ``report`` and its size,
@@ -212,6 +247,10 @@ def report_document(report: Path, page: str, pages: list[dict], out: Path,
     whether it has a cycle map, every file written, and the scenes that failed."""
     def scene(p: dict) -> dict:
         summary, cycle = p["summary"], p["cycle"]
+        if "kinematics" in p:
+            return {"scene": summary["scene"], "file": summary["file"], "mesh": None,
+                    "frequencies_Hz": [], "cycle_map": False,
+                    "note": p["kinematics"]["note"]}
         entry = {"scene": summary["scene"], "file": summary["file"],
                  "mesh": p["mesh"]["elements_per_link"],
                  "frequencies_Hz": [r["computed_Hz"] for r in summary["modes"]],

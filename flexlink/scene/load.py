@@ -121,6 +121,8 @@ def _problem(src: SceneSource, error: dict) -> tuple[str, str]:
     if isinstance(cause, schema.MissingKey):
         dotted = f"{dotted}.{cause.key}" if dotted != "scene" else cause.key
         message = "missing" + (f" ({cause.hint})" if cause.hint else "")
+    elif isinstance(cause, schema.ClashingKey):
+        dotted, message = f"{dotted}.{cause.key}", cause.reason
     elif isinstance(cause, schema.UnknownKey):
         dotted = f"{dotted}.{cause.key}"
         near = parts.near(cause.key, cause.known)

@@ -27,6 +27,9 @@ COLUMNS = {"torque": ("torque",), "force": ("Fx", "Fy")}
 
 def _rows(path: Path, field: str, width: int) -> tuple[list[str], np.ndarray]:
     expected = f"a header row, then crank_angle_deg and {width} value column(s) per row"
+    if path.is_dir():
+        raise InputError("this is a folder, not a file", source=str(path), field=field,
+                         expected=f"a CSV file beside the scene: {expected}")
     if not path.is_file():
         raise InputError("no such file", source=str(path), field=field,
                          expected=f"a CSV file beside the scene: {expected}")

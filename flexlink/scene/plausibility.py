@@ -14,7 +14,8 @@ import math
 
 from flexlink.errors import InputError
 from flexlink.fe.beams import BeamTheory, euler_bernoulli_pinned, timoshenko_pinned
-from flexlink.scene.contract import Plausibility
+from flexlink.scene.contract import LoadKind, Plausibility
+from flexlink.units import RPM
 
 log = logging.getLogger(__name__)
 
@@ -24,7 +25,10 @@ RANGES = {
     "section": (1e-6, 10.0, "m", "a section size, 1 um to 10 m"),
     "E": (1e5, 2e12, "Pa", "soft elastomers (0.1 MPa) to diamond (1.2 TPa)"),
     "density": (1.0, 3e4, "kg/m^3", "foams (10 kg/m^3) to osmium (22600 kg/m^3)"),
+    "crank speed": (0.0, 1e6 * RPM, "rad/s",
+                    "up to 1e6 rev/min, past the fastest dental turbines (4e5 rev/min)"),
 }
+LOAD_REACH = 10.0  # a load point farther than this many body sizes from its body: a unit slip
 # prefixes tried for a "did you mean" hint: (factor from the slip to SI, spelling); every
 # spelling is one units.py reads (a test checks), so the hint can be pasted into the file
 HINTS = {"m": ((1e-3, "mm"), (1e-2, "cm")), "Pa": ((1e9, "GPa"), (1e6, "MPa")),
@@ -52,7 +56,7 @@ def _range_finding(kind, value, source, field) -> Finding | None:
             hint = f"; did you mean {value:g} {spelling}?"
             break
     else:
-        for slip in SLIPS:
+        for slip in SLIPS if unit in HINTS else ():  # a speed's slip is no factor 1000
             if low <= value * slip <= high:
                 hint = f"; did you mean {value * slip:g} {unit}?"
                 break
@@ -92,6 +96,10 @@ def scene_findings(scene) -> list[Finding]:
                 fields = (f"links.{link}.material.{key}", f"links.{link}.material",
                           f"material.{key}", "material")
             found.append(_range_finding(kind, value, *where(*fields)))
+    if scene.options.crank_speed is not None:
+        found.append(_range_finding("crank speed", scene.options.crank_speed,
+                                    *where("operation.crank_speed")))
+    found += [load_finding(scene, load) for load in scene.loads]
     unique = {}
     for f in found:
         if f is not None:
@@ -99,10 +107,41 @@ def scene_findings(scene) -> list[Finding]:
     return list(unique.values())
 
 
+def load_finding(scene, load) -> Finding | None:
+    """A force's point ``at`` more than LOAD_REACH body sizes (the largest distance between
+    the body's joints) from the body's first joint: a unit slip, not a lever."""
+    if load.kind is not LoadKind.FORCE:
+        return None
+    body = scene.linkage.body(load.body)
+    size = max(math.dist(a, b) for a in body.shape for b in body.shape)
+    reach = math.hypot(*load.at)
+    if reach <= LOAD_REACH * size:
+        return None
+    return Finding(scene.file_of("loads"), f"{load.field}.at",
+                   f"the point is {reach:g} m from body {load.body}'s first joint, more than "
+                   f"{LOAD_REACH:g} times the body's size ({size:g} m): outside the plausible "
+                   "range for a point of the body")
+
+
+def check_speeds(scene, speeds, field: str) -> None:
+    """Crank speeds [rad/s] given on the command line (``field``, e.g. "--speed") against the
+    plausible range, refused or logged as the scene's [checks] plausibility says."""
+    for speed in speeds:
+        finding = _range_finding("crank speed", abs(float(speed)), "command line", field)
+        if finding is not None:
+            _report([finding], scene)
+            return
+
+
 def check_scene(scene) -> None:
     """Raise InputError on the first implausible value, or log them all when the scene says
     ``[checks] plausibility = "warn"``."""
-    findings = scene_findings(scene)
+    _report(scene_findings(scene), scene)
+
+
+def _report(findings: list[Finding], scene) -> None:
+    """Raise InputError on the first of ``findings``, or log them all when ``scene`` says
+    ``[checks] plausibility = "warn"``."""
     if not findings:
         return
     if scene.options.plausibility is Plausibility.WARN:

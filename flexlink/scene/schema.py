@@ -72,7 +72,7 @@ def quantity(kind: str, low: float | None = None, high: float | None = None, *,
         return _check_range(value, low, high, low_open, high_open, shown)
 
     pattern = quantity_pattern(kind, signed=low is None or low < 0,
-                               words=("rigid",) if rigid else ())
+                               positive=low == 0 and low_open, words=("rigid",) if rigid else ())
     return Annotated[float, BeforeValidator(parse), AfterValidator(check),
                      WithJsonSchema({"type": "string", "pattern": pattern}),
                      Unit(kind, shown + (" or 'rigid'" if rigid else ""), low, high, low_open,
@@ -131,6 +131,14 @@ class MissingKey(ValueError):
     def __init__(self, key: str, hint: str = ""):
         self.key, self.hint = key, hint
         super().__init__(f"{key}: missing" + (f" ({hint})" if hint else ""))
+
+
+class ClashingKey(ValueError):
+    """A key given together with another that excludes it; ``key`` names it, ``reason`` why."""
+
+    def __init__(self, key: str, reason: str):
+        self.key, self.reason = key, reason
+        super().__init__(f"{key}: {reason}")
 
 
 class UnknownKey(ValueError):
@@ -580,7 +588,10 @@ class LoadTable(Table):
         own, other = ("torque", "force") if self.kind == "torque" else ("force", "torque")
         if getattr(self, other) is not None:
             raise ValueError(f"a {self.kind} load takes '{own}' (or csv), not '{other}'")
-        if (getattr(self, own) is None) == (self.csv is None):
+        if getattr(self, own) is not None and self.csv is not None:
+            raise ClashingKey(own, f"give a constant '{own}' or a csv file, exactly one, "
+                                   "not both")
+        if getattr(self, own) is None and self.csv is None:
             raise MissingKey(own, "give a constant value or a csv file, exactly one")
         if (self.csv is None) != (self.unit is None):
             raise MissingKey("unit" if self.csv else "csv", "a csv file and its unit go together")

@@ -10,10 +10,11 @@ import dataclasses
 import numpy as np
 
 from flexlink.errors import FlexlinkError
-from flexlink.scene import Scene
+from flexlink.scene import Scene, load_scene
 from flexlink.studies.array_shapes import check_shape
 from flexlink.studies.cycle.modal_map import ModalMap, modal_map
 from flexlink.studies.kinetostatics.outputs import OutputCurve, output_study
+from flexlink.studies.cycle.rigid_motion import MotionStudy, motion_study
 from flexlink.studies.life.life import LifeStudy, check_strengths, life_study
 from flexlink.studies.life.stress_field import stress_field, stress_model
 from flexlink.studies.running.modes_at_speed import OperatingPoint, operating_modes
@@ -21,6 +22,7 @@ from flexlink.studies.pose.scene_summary import SceneSummary, SensitivityRun, sc
 from flexlink.studies.running.steady_response import ForcedModel, SteadyResponse, forced_model, steady_response
 from flexlink.studies.running.torque import TorqueCurve, torque_study
 
+KINEMATIC_POSES = 120  # crank angles of a kinematics-only scene's motion without a cycle map
 SPEED_STEPS = 11  # crank speeds from rest to the operating speed in the frequency diagram
 TORQUE_POSES = 72
 OUTPUT_POSES = 360  # output torques over the turn: 1-degree steps, to show the dead points
@@ -95,7 +97,7 @@ class ReportScene:
     speed, None when it declares none; ``kinetostatics``: the output torques for the input
     torque the scene declares (None without one; ``kinetostatics_unavailable``: why not)."""
 
-    summary: SceneSummary
+    summary: SceneSummary | None
     cycle: ModalMap | None
     cycle_unavailable: str | None = None
     at_speed: AtSpeed | None = None
@@ -103,11 +105,15 @@ class ReportScene:
     life_unavailable: str | None = None
     kinetostatics: OutputCurve | None = None  # for a scene declaring an input torque
     kinetostatics_unavailable: str | None = None
+    motion: MotionStudy | None = None  # a scene without beams: its rigid motion instead
 
     def __post_init__(self):
         if self.cycle is not None and self.cycle_unavailable is not None:
             raise ValueError("ReportScene has a cycle map and a reason it is unavailable, "
                              "expected at most one")
+        if (self.summary is None) == (self.motion is None):
+            raise ValueError("ReportScene needs a summary of the modes or, for a scene "
+                             "without beams, its rigid motion, expected exactly one")
 
 
 def report_scene(path, n_modes: int, elements: int | None, tol: float | None, solver,
@@ -115,6 +121,10 @@ def report_scene(path, n_modes: int, elements: int | None, tol: float | None, so
     """The scene file at ``path`` summarised (``scene_summary``, its in-plane modes) with its
     modal map over ``cycle_poses`` crank angles (none for 0) and its operating speed, on the
     same mesh."""
+    own = load_scene(path)
+    if not own.links:  # kinematics only: what the page can show is the rigid motion
+        poses = cycle_poses or KINEMATIC_POSES
+        return ReportScene(None, None, motion=motion_study(own, poses, own.options.crank_speed))
     summary = scene_summary(path, n_modes, elements, tol, solver, in_plane_only="this page",
                             sensitivity=sensitivity)
     scene, elements = summary.case.scene, summary.mesh.elements

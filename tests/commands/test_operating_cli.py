@@ -38,7 +38,7 @@ def test_text_names_a_divergence(tmp_path):
     result = run(SCENES_DIR / "kineto_aluminium.toml", "--speed", "2000 rev/min", "--out",
                  tmp_path)
     assert result.exit_code == 0, result.output
-    assert "diverges" in result.output and "warning: divergence" in result.output
+    assert "diverges" in result.output and "warning: negative stiffness" in result.output
 
 
 @pytest.mark.parametrize("args, words", [

@@ -39,8 +39,11 @@ def test_csv_columns_follow_the_document_and_the_chain_rule(run):
     rows = list(csv.reader(io.StringIO(table)))
     bodies = list(document["bodies"])
     assert document["scene"] == load_scene(SCENES_DIR / "extended_rocker.toml").name
+    # a body named "crank" has its angle under crank_body_angle_deg: the first column is the
+    # input's crank_angle_deg, and two columns of one name cannot both be read by name
+    angle = {b: "body_angle_deg" if b == "crank" else "angle_deg" for b in bodies}
     assert rows[0] == ["crank_angle_deg"] + [f"{b}_{q}" for b in bodies for q in
-                                             ("angle_deg", "K", "L", "omega_rad_s",
+                                             (angle[b], "K", "L", "omega_rad_s",
                                               "alpha_rad_s2")]
     values = np.array(rows[1:], dtype=float)
     assert values[:, 0] == pytest.approx(np.arange(12) * 30.0 + values[0, 0], abs=1e-6)

@@ -70,6 +70,10 @@ TYPOS = {
     "key of the other kind": (FOUR_BAR + 'grond = "1 m"\n', "'grond' was unexpected"),
     "typo inside a noted value": (BASED + '[section]\nwidth = { value = "3 mm", nte = "x" }\n',
                                   "'nte' was unexpected"),
+    # flexlink refuses a zero where the schema says > 0: so does the editor
+    "zero crank speed": (FOUR_BAR + '[operation]\ncrank_speed = "0 rev/min"\n',
+                         '"0 rev/min" does not match'),
+    "zero length": (FOUR_BAR.replace('"100 mm"', '"0.0 mm"'), '"0.0 mm" does not match'),
     "pair of the wrong kind": ('[linkage]\ntype = "general"\n[linkage.guess]\na = ["1 mm", "2 kg"]\n',
                                '"2 kg" does not match'),
 }

@@ -138,8 +138,9 @@ def motion_csv(cycle: Cycle, crank_speed: float | None = None) -> str:
     """One row per pose: crank angle [deg], then per body angle [deg], K, L (and omega,
     alpha at the crank speed)."""
     cols = ["crank_angle_deg"]
-    for b in cycle.body_names:
-        cols += [f"{b}_angle_deg", f"{b}_K", f"{b}_L"]
+    for b in cycle.body_names:  # a body named "crank" must not repeat the input's heading
+        angle = f"{b}_angle_deg" if f"{b}_angle_deg" not in cols else f"{b}_body_angle_deg"
+        cols += [angle, f"{b}_K", f"{b}_L"]
         if crank_speed:
             cols += [f"{b}_omega_rad_s", f"{b}_alpha_rad_s2"]
     lines = [",".join(cols)]

@@ -161,6 +161,8 @@ def format_case(summary: SceneSummary) -> str:
         for r in refs:
             if i < len(summary.reference[r]):
                 line += f" {summary.reference[r][i]:>9.1f} {summary.errors[r][i]:>+8.1f}"
+            else:  # blank cells keep the columns to the right under their headings
+                line += f" {'':>9} {'':>8}"
         if summary.kinds is not None:
             line += f"  {summary.kinds[i]}"
         if summary.identity:

@@ -10,23 +10,29 @@ import io
 import math
 from pathlib import Path
 
-from flexlink.studies.running.modes_at_speed import ASSUMPTIONS, OperatingPoint
+from flexlink.analysis.instability import Cause, RootKind
+from flexlink.studies.running.modes_at_speed import ASSUMPTIONS, PAIRING_MAC, OperatingPoint
 from flexlink.units import percent_error, rev_per_min
 
 
-
 def operating_summary(op: OperatingPoint) -> dict:
-    """Everything the text, CSV and JSON show, in SI and plain types."""
+    """Everything the text, CSV and JSON show, in SI and plain types. A real root has no
+    frequency and no static partner; a vibration whose MAC with every static mode is below
+    PAIRING_MAC keeps its nearest static mode but no change."""
     modes = []
-    static = op.static_frequencies
-    for i, (f, rate, grows, mac, j) in enumerate(zip(op.frequencies, op.modes.growth_rates,
-                                                    op.modes.growing, op.mac, op.static_index)):
+    for i, (kind, paired) in enumerate(zip(op.kinds, op.paired)):
+        s, j, mac = op.modes.eigenvalues[i], int(op.static_index[i]), float(op.mac[i])
+        vibrating = kind is RootKind.VIBRATING
+        f, f0 = float(op.frequencies[i]), float(op.static.elastic_frequencies[j])
         modes.append({
-            "mode": i + 1, "frequency_Hz": float(f), "growth_rate_1_s": float(rate),
-            "growing": bool(grows), "static_mode": int(j) + 1, "static_Hz": float(static[i]),
-            "divergent": bool(abs(op.modes.eigenvalues[i].imag) <= 1e-8 * abs(op.modes.eigenvalues[i])),
-            "change_Hz": float(f - static[i]), "change_pct": float(percent_error(f, static[i])),
-            "mac": float(mac), "backward_error": float(op.modes.backward_errors[i])})
+            "mode": i + 1, "kind": str(kind), "frequency_Hz": f if vibrating else None,
+            "growth_rate_1_s": float(s.real), "growing": bool(op.modes.growing[i]),
+            "static_mode": j + 1 if vibrating else None,
+            "static_Hz": f0 if vibrating else None, "mac": mac if vibrating else None,
+            "paired": bool(paired),
+            "change_Hz": f - f0 if paired else None,
+            "change_pct": float(percent_error(f, f0)) if paired else None,
+            "backward_error": float(op.modes.backward_errors[i])})
     largest = op.largest_axial
     terms = op.terms
     return {
@@ -39,9 +45,11 @@ def operating_summary(op: OperatingPoint) -> dict:
                   "geometric_stiffness": terms.geometric.value},
         "assumptions": list(ASSUMPTIONS),
         "elements_per_link": op.elements_per_link, "dofs": op.static.n_dofs,
+        "pairing_mac": PAIRING_MAC,
         "modes": modes,
         "stable": bool(op.modes.stable),
         "negative_stiffness_eigenvalues": op.modes.negative_stiffness,
+        "instability_causes": [str(c) for c in op.causes],
         "stability": stability_note(op),
         "largest_axial_force": {"N": largest.value, "link": largest.link,
                                 "element": largest.element + 1,
@@ -55,21 +63,44 @@ def operating_summary(op: OperatingPoint) -> dict:
     }
 
 
+CAUSES = {
+    Cause.PRELOAD: "buckling under the inertia preload (the frame's stiffness with the preload "
+                   "alone has negative eigenvalues: compression from the links' inertia loads)",
+    Cause.CENTRIFUGAL: "the centrifugal softening (the frame's stiffness with it alone has "
+                       "negative eigenvalues)",
+    Cause.COMBINED: "the inertia preload and the centrifugal softening together (neither "
+                    "alone makes the stiffness negative)",
+}
+
+
 def stability_note(op: OperatingPoint) -> str | None:
-    """One sentence on divergence or growing modes; None when every mode is neutral."""
+    """One sentence on the negative stiffness and the growing modes, naming the cause
+    ``analysis.instability`` judged from the matrices; None when every mode is neutral."""
     notes = []
     if op.modes.negative_stiffness:
-        notes.append(f"divergence: the effective stiffness has {op.modes.negative_stiffness} "
-                     "negative eigenvalue(s) at this speed (the preload or the centrifugal "
-                     "softening overcomes the frame's stiffness)")
-    grows = [i + 1 for i, g in enumerate(op.modes.growing) if g]
-    if grows:
-        circulatory = op.terms.acceleration and bool(abs(op.link_alpha).max() > 0)
-        notes.append(f"mode(s) {', '.join(map(str, grows))} grow in the frozen configuration "
-                     "(positive real part)" + (
-                         "; the links' angular acceleration (circulatory term with the Coriolis "
-                         "coupling) causes it, and its sign changes over a cycle"
-                         if circulatory else ""))
+        named = [CAUSES[c] for c in op.causes if c in CAUSES]
+        notes.append(f"negative stiffness: the effective stiffness has "
+                     f"{op.modes.negative_stiffness} negative eigenvalue(s) at this speed, from "
+                     + "; ".join(named))
+    diverging = [i + 1 for i, k in enumerate(op.kinds) if k is RootKind.DIVERGING]
+    if diverging:
+        notes.append(f"mode(s) {', '.join(map(str, diverging))} diverge (a real root: they "
+                     "leave the pose without oscillating)")
+    flutter = [i + 1 for i, (g, k) in enumerate(zip(op.modes.growing, op.kinds))
+               if g and k is RootKind.VIBRATING]
+    if flutter and Cause.CIRCULATORY in op.causes:
+        notes.append(f"mode(s) {', '.join(map(str, flutter))} grow while vibrating: the "
+                     "circulatory term of the links' angular acceleration (alpha S, skew: it "
+                     "does work) causes it"
+                     + (" with the Coriolis coupling" if op.terms.coriolis else "")
+                     + ", and its sign changes over a cycle")
+    elif flutter and not op.modes.negative_stiffness:
+        notes.append(f"mode(s) {', '.join(map(str, flutter))} grow with a positive-definite "
+                     "stiffness and no circulatory term, which a conservative system cannot: "
+                     "round-off of the eigen solve (see the backward errors)")
+    elif flutter:
+        notes.append(f"mode(s) {', '.join(map(str, flutter))} grow while vibrating: the "
+                     "negative stiffness coupled by the Coriolis term")
     return "; ".join(notes) or None
 
 
@@ -101,8 +132,21 @@ def operating_text(ops: list[OperatingPoint]) -> str:
     return "".join(format_operating(operating_summary(op)) + "\n\n" for op in ops)
 
 
-def _frequency(row: dict) -> str:
-    return "diverges" if row["divergent"] else f"{row['frequency_Hz']:.2f}"
+def _cells(row: dict) -> str:
+    """The frequency, static, change and MAC cells of a mode row: a real root by its kind and
+    growth only, an unpaired vibration without its change, named as such at the end."""
+    growth = f"{row['growth_rate_1_s']:>11.3g}"
+    if row["kind"] != "vibrating":
+        word = "diverges" if row["kind"] == "diverging" else "decays"
+        return f"{word:>12} {'':>10} {'':>10} {'':>9} {growth} {'':>6}  (real root: no frequency)"
+    cells = f"{row['frequency_Hz']:>12.2f} {row['static_Hz']:>10.2f} "
+    if not row["paired"]:
+        return (cells + f"{'':>10} {'':>9} {growth} {row['mac']:>6.3f}  unpaired (MAC "
+                f"{row['mac']:.2f} with static mode {row['static_mode']}, below "
+                f"{PAIRING_MAC:g})")
+    return (cells + f"{row['change_Hz']:>+10.3f} {row['change_pct']:>+9.3f} {growth} "
+            f"{row['mac']:>6.3f}" + (f"  (static mode {row['static_mode']})"
+                                     if row["static_mode"] != row["mode"] else ""))
 
 
 def format_operating(summary: dict) -> str:
@@ -119,12 +163,7 @@ def format_operating(summary: dict) -> str:
              + (f"; terms off: {', '.join(off)}" if off else ""),
              f"{'mode':>4} {'at speed Hz':>12} {'static Hz':>10} {'change Hz':>10} "
              f"{'change %':>9} {'growth 1/s':>11} {'MAC':>6}"]
-    for r in summary["modes"]:
-        lines.append(f"{r['mode']:>4} {_frequency(r):>12} {r['static_Hz']:>10.2f} "
-                     f"{r['change_Hz']:>+10.3f} {r['change_pct']:>+9.3f} "
-                     f"{r['growth_rate_1_s']:>11.3g} {r['mac']:>6.3f}"
-                     + (f"  (static mode {r['static_mode']})" if r["static_mode"] != r["mode"]
-                        else ""))
+    lines += [f"{r['mode']:>4} {_cells(r)}" for r in summary["modes"]]
     big = summary["largest_axial_force"]
     kind = "tension" if big["N"] >= 0 else "compression"
     lines.append(f"largest axial force: {abs(big['N']):.4g} N {kind} in link {big['link']} "
@@ -137,15 +176,20 @@ def format_operating(summary: dict) -> str:
 
 
 def operating_csv(summaries: list[dict]) -> str:
-    """One row per mode and scene."""
+    """One row per mode and scene; a value there is none of (a real root's frequency, an
+    unpaired mode's change) is an empty cell."""
+    def cell(value, fmt):
+        return "" if value is None else format(value, fmt)
     out = io.StringIO()
     w = csv.writer(out, lineterminator="\n")
-    w.writerow(["scene", "speed_rev_per_min", "crank_angle_deg", "mode", "frequency_Hz",
-                "static_Hz", "change_Hz", "change_pct", "growth_rate_1_s", "mac", "static_mode"])
+    w.writerow(["scene", "speed_rev_per_min", "crank_angle_deg", "mode", "kind", "frequency_Hz",
+                "static_Hz", "change_Hz", "change_pct", "growth_rate_1_s", "mac", "static_mode",
+                "paired"])
     for s in summaries:
         for r in s["modes"]:
             w.writerow([s["scene"], f"{s['speed_rev_per_min']:.10g}", f"{s['crank_angle_deg']:.10g}",
-                        r["mode"], f"{r['frequency_Hz']:.10g}", f"{r['static_Hz']:.10g}",
-                        f"{r['change_Hz']:.10g}", f"{r['change_pct']:.10g}",
-                        f"{r['growth_rate_1_s']:.10g}", f"{r['mac']:.6f}", r["static_mode"]])
+                        r["mode"], r["kind"], cell(r["frequency_Hz"], ".10g"),
+                        cell(r["static_Hz"], ".10g"), cell(r["change_Hz"], ".10g"),
+                        cell(r["change_pct"], ".10g"), f"{r['growth_rate_1_s']:.10g}",
+                        cell(r["mac"], ".6f"), cell(r["static_mode"], "d"), r["paired"]])
     return out.getvalue()

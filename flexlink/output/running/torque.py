@@ -23,7 +23,7 @@ def torque_csv(curve) -> str:
                curve.load_power[i]]
         for f in curve.forces.values():
             row += [f[i, 0], f[i, 1], math.hypot(*f[i])]
-        lines.append(",".join(f"{v:.10g}" for v in row))
+        lines.append(",".join("" if math.isnan(v) else f"{v:.10g}" for v in row))
     return "\n".join(lines) + "\n"
 
 
@@ -32,7 +32,7 @@ def torque_document(curve, assumptions) -> dict:
     the model's assumptions and the scene's."""
     peaks = {}
     for key, f in curve.forces.items():
-        magnitude = np.hypot(f[:, 0], f[:, 1])
+        magnitude = np.where(curve.singular, -1.0, np.hypot(f[:, 0], f[:, 1]))
         i = int(np.argmax(magnitude))
         peaks[key] = {"peak_N": float(magnitude[i]),
                       "at_deg": float(math.degrees(curve.q[i]) % 360.0)}
@@ -40,9 +40,51 @@ def torque_document(curve, assumptions) -> dict:
             "crank_speed_rev_per_min": rev_per_min(curve.speed),
             "crank_acceleration_rad_s2": curve.crank_acceleration, "poses": len(curve.q),
             **curve.summary(), "joint_forces": peaks,
+            "singular_poses_deg": [float(math.degrees(q) % 360.0)
+                                   for q in curve.q[curve.singular]],
+            "at_pose": at_pose_json(curve),
+            "loads": [load_json(load) for load in curve.loads],
             "bodies": [{"body": m.body, "mass_kg": m.mass, "centroid_m": list(m.centroid),
                         "inertia_kg_m2": m.inertia} for m in curve.masses],
             "model": list(curve.model), "assumptions": list(assumptions)}
+
+
+def at_pose_json(curve) -> dict | None:
+    """The torque at the scene's own pose (None where the pose is singular)."""
+    at = curve.at_pose
+    if at is None:
+        return None
+    return {"crank_angle_deg": float(math.degrees(at.q) % 360.0), "torque_N_m": at.torque,
+            "power_W": at.torque * curve.speed, "kinetic_energy_J": at.kinetic_energy}
+
+
+def load_json(load) -> dict:
+    """A [[loads]] table as it was applied: SI values, a CSV load by its sampled range."""
+    unit = "N*m" if load.kind == "torque" else "N"
+    doc = {"field": load.field, "kind": str(load.kind), "link": load.body, "unit": unit}
+    if load.angles is None:
+        doc["value"] = [float(v) for v in load.values[0]] if load.kind != "torque" \
+            else float(load.values[0][0])
+    else:
+        doc["samples"] = len(load.angles)
+        doc["range"] = [float(load.values.min()), float(load.values.max())]
+    if load.kind != "torque":
+        doc["at_m"] = [float(v) for v in load.at]
+        doc["frame"] = str(load.frame)
+    return doc
+
+
+def _load_line(load: dict) -> str:
+    if "value" in load:
+        v = load["value"]
+        value = (f"({v[0]:g}, {v[1]:g}) {load['unit']}" if isinstance(v, list)
+                 else f"{v:g} {load['unit']}")
+    else:
+        value = (f"from {load['samples']} CSV samples, {load['range'][0]:g} to "
+                 f"{load['range'][1]:g} {load['unit']}")
+    where = (f" at ({1e3 * load['at_m'][0]:g}, {1e3 * load['at_m'][1]:g}) mm"
+             f"{', body frame' if load.get('frame') == 'body' else ''}" if "at_m" in load else "")
+    return f"  load {load['field']}: {load['kind']} {value} on {load['link']}{where}"
 
 
 def torque_text(doc: dict) -> str:
@@ -58,7 +100,18 @@ def torque_text(doc: dict) -> str:
              "  joint forces (peak |F| on the body at the joint):"]
     lines += [f"    {k:<16} {v['peak_N']:.6g} N at {v['at_deg']:.1f} deg"
               for k, v in doc["joint_forces"].items()]
+    at = doc["at_pose"]
+    if at is not None:
+        lines.append(f"  at the scene's pose (crank {at['crank_angle_deg']:.4f} deg): torque "
+                     f"{at['torque_N_m']:.6g} N m, power {at['power_W']:.6g} W")
+    lines += [_load_line(load) for load in doc["loads"]]
     lines += ["  model: " + m for m in doc["model"]]
+    if doc["singular_poses_deg"]:
+        where = ", ".join(f"{a:g}" for a in doc["singular_poses_deg"])
+        lines.append(f"warning: singular pose at crank {where} deg (a dead centre or flat pose: "
+                     "the motion and the pin forces are not determined there); left out of "
+                     "the peaks and means, blank in torque.csv; choose --poses so that no pose "
+                     "lands on it")
     return "\n".join(lines)
 
 
@@ -71,9 +124,9 @@ def torque_plot(curve, size=(8.0, 6.0), dpi: int = 120) -> bytes:
     fig = Figure(figsize=size, dpi=dpi, layout="constrained")
     FigureCanvasAgg(fig)
     top, bottom = fig.subplots(2, 1, sharex=True)
+    mean = float(np.nanmean(curve.torque))  # singular poses are NaN: gaps in the curves
     top.plot(deg, curve.torque, color="#1f77b4")
-    top.axhline(curve.torque.mean(), color="grey", ls="--", lw=1,
-                label=f"mean {curve.torque.mean():.4g} N m")
+    top.axhline(mean, color="grey", ls="--", lw=1, label=f"mean {mean:.4g} N m")
     top.set_ylabel("driving torque [N m]")
     top.set_title(f"{curve.scene}: {rev_per_min(curve.speed):.4g} rev/min ({curve.speed:.4g} rad/s)"
                   + (f", {curve.crank_acceleration:.4g} rad/s^2" if curve.crank_acceleration

@@ -16,7 +16,7 @@ import dataclasses
 
 import numpy as np
 
-from flexlink.analysis.damping import damping_source, modal_damping_ratios
+from flexlink.analysis.damping import damping_source, modal_damping_ratios, overdamped_note
 from flexlink.analysis.eigensolver import DEFAULT_SOLVER, EigenSolver
 from flexlink.analysis.families import elastic_modes, in_plane_only_note, scene_family
 from flexlink.analysis.identity import (DIRECTIONS, ModeIdentity, mode_identity,
@@ -167,7 +167,8 @@ def summary_of(case: CaseResult, n_modes: int, mesh: MeshRule,
         damping_ratio=damping, damping_source=damping_source(scene.options.damping),
         mechanism=mechanism, mass=total_mass(case.model),
         participating=np.asarray(participating_mass(case.model), dtype=float),
-        reference=reference, errors=errors, mesh=mesh, warnings=tuple(case.warnings),
+        reference=reference, errors=errors, mesh=mesh,
+        warnings=tuple(case.warnings) + tuple(w for w in [overdamped_note(damping)] if w),
         note=in_plane_only_note(scene, in_plane_only) if in_plane_only else None,
         alternatives=_alternatives(case, n_modes, mesh.elements) if alternatives else None,
         sensitivity=None if sensitivity is None else sensitivity_study(

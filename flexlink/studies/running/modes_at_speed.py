@@ -23,6 +23,7 @@ import numpy as np
 from flexlink.analysis.eigensolver import AUTO_DENSE_MAX
 from flexlink.analysis.frame_motion import link_motion, pose_speed_terms
 from flexlink.analysis.mac import complex_mac
+from flexlink.analysis.instability import Cause, RootKind, instability_causes, root_kinds
 from flexlink.analysis.mesh import choose_mesh
 from flexlink.analysis.modal import pose_system
 from flexlink.analysis.quadratic import QuadraticModes, quadratic_modes
@@ -31,10 +32,10 @@ from flexlink.errors import NumericalError
 from flexlink.fe.assembly import eliminating_assembler, reduced_columns
 from flexlink.fe.energy import twice_strain_energy
 from flexlink.fe.model import FrameModel
-from flexlink.fe.speed_terms import ALL_TERMS, Terms
+from flexlink.fe.speed_terms import ALL_TERMS, Terms, speed_quadratic
 from flexlink.kinematics.dynamics import RigidMotion, check_speed, rigid_motion
 from flexlink.scene import Scene, load_scene
-from flexlink.scene.contract import RigidPose, pose_transmission_angles
+from flexlink.scene.contract import LoadKind, RigidPose, pose_transmission_angles
 from flexlink.scene.plausibility import model_warnings, pose_warnings
 from flexlink.studies.array_shapes import check_shape
 
@@ -47,6 +48,9 @@ ASSUMPTIONS = (
     ("frozen configuration: each link's turning rate and the preload are those of this "
      "instant, and the pins tie the links' turning frames at this instant"),
 )
+
+
+PAIRING_MAC = 0.8  # a mode at speed whose MAC with every static mode is lower: unpaired
 
 
 @dataclasses.dataclass(frozen=True)
@@ -92,12 +96,25 @@ class OperatingPoint:
     elements_per_link: int
     loads: np.ndarray  # the preload's nodal loads, d'Alembert and external (n_dofs,) [N, N m]
     warnings: tuple[str, ...] = ()  # model outside its range (``scene.plausibility``)
+    causes: tuple[Cause, ...] = ()  # why the point is unstable (``analysis.instability``)
 
     def __post_init__(self):
         k, links = len(self.modes.eigenvalues), len(self.model.links)
         for name, shape in (("static_index", (k,)), ("mac", (k,)), ("link_omega", (links,)),
                             ("link_alpha", (links,)), ("loads", (self.model.n_dofs,))):
             check_shape("OperatingPoint", name, getattr(self, name), shape)
+
+    @property
+    def kinds(self) -> tuple[RootKind, ...]:
+        """Per mode: a vibration, or a real root (diverging or decaying: no frequency)."""
+        return root_kinds(self.modes.eigenvalues)
+
+    @property
+    def paired(self) -> np.ndarray:
+        """Per mode: a vibration whose shape is its static partner's, MAC >= PAIRING_MAC;
+        only a paired mode has a change from the static frequency."""
+        vibrating = np.array([k is RootKind.VIBRATING for k in self.kinds])
+        return vibrating & (self.mac >= PAIRING_MAC)
 
     @property
     def frequencies(self) -> np.ndarray:
@@ -153,12 +170,23 @@ def operating_modes(scene: Scene, speed: float, n_modes: int = 4,
     modes = quadratic_modes(Mr, G, Kr + K_extra, n_modes, guess, stiffness)
     mac = complex_mac(static_shapes, modes.shapes, Mr)
     pair = mac.argmax(axis=0)
+    accelerating = crank_acceleration != 0.0
+    parts = {Cause.PRELOAD: speed_quadratic(
+                 speed, unit.external_preload, unit.preload, crank_acceleration,
+                 unit.start_preload if accelerating else None) if terms.preload else None,
+             Cause.CENTRIFUGAL: speed_quadratic(speed, 0.0, unit.centrifugal)
+             if terms.centrifugal else None}
+    circulatory = speed_quadratic(speed, 0.0, unit.circulatory, crank_acceleration,
+                                  unit.start_circulatory if accelerating else None)
+    causes = instability_causes(Kr, parts, circulatory if terms.acceleration else None,
+                                modes.negative_stiffness, modes.growing,
+                                root_kinds(modes.eigenvalues))
     return OperatingPoint(
         scene=scene, motion=motion, terms=terms, model=model, static=static, modes=modes,
         static_index=pair, mac=mac[pair, np.arange(len(pair))], link_omega=omega,
         link_alpha=alpha, axial_forces={l.name: f for l, f in zip(model.links, forces)},
         largest_axial=_largest(model, forces), elements_per_link=topology.links[0].elements,
-        loads=loads, warnings=warnings)
+        loads=loads, warnings=warnings, causes=causes)
 
 
 def scene_operating_modes(path, n_modes: int = 4, elements: int | None = None,
