@@ -29,7 +29,7 @@ import scipy.linalg as sla  # noqa: E402
 
 from flexlink.analysis import adiabatic, floquet  # noqa: E402
 from flexlink.scene import load_scene  # noqa: E402
-from flexlink.studies.running.stability_map import (  # noqa: E402
+from flexlink.analysis.periodic import (  # noqa: E402
     Integrator,
     periodic_model,
     speed_multipliers,

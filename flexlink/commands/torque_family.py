@@ -27,18 +27,16 @@ def command(scene_path, speed, poses, as_json, out_dir):
     from flexlink.output.kinetostatics.families import (families_csv, families_document,
                                                         families_text)
     from flexlink.studies.kinetostatics.families import family_torques
-    from flexlink.studies.running.torque import operating_point
-    from flexlink.units import parse_quantity
     from ._progress import progress_bar
+    from ._speeds import operating_speed, parse_speed
     from ._written import folder_and_scene, publish
 
-    omega = None if speed is None else parse_quantity(speed, "angular speed",
-                                                      source="command line", field="--speed")
+    omega = parse_speed(speed)
     folder, scene = folder_and_scene(out_dir, scene_path)
     if not scene.options.variants:
         raise InputError("no [[family]] table: nothing to vary", source=scene.path,
                          field="family")
-    omega, _ = operating_point(scene, omega, None)
+    omega, _ = operating_speed(scene, omega, None)
     result = family_torques(scene_path, scene, omega, poses,
                             progress_bar("torque-family", as_json, "member"))
     document = families_document(result, [])

@@ -44,7 +44,7 @@ def series(coefficients, theta, derivative=0):
 
 
 def test_the_steady_response_at_300_rev_min_converges(model, caplog):
-    S, D, g = model.harmonic_equations(SPEED)
+    S, D, g = model.periodic.harmonic_equations(SPEED)
     with caplog.at_level(logging.INFO, logger="flexlink.analysis.harmonic_balance"):
         solution = periodic_solution(model, SPEED)
     assert "with the band 4 preconditioner" in caplog.text  # the path under test: widened
