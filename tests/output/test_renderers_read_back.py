@@ -315,13 +315,13 @@ def _at_speed() -> Rendered:
     op = operating_modes(_case1(), speed, 2, 4)
     summary = operating_summary(op)
     f, static = op.frequencies, op.static_frequencies
-    columns = {"speed_rev_min": (np.full(2, 2000.0), 10),
+    columns = {"speed_rev_per_min": (np.full(2, 2000.0), 10),
                "crank_angle_deg": (np.full(2, op.motion.q * DEG), 10),
                "mode": (np.arange(1, 3), 0), "frequency_Hz": (f, 10), "static_Hz": (static, 10),
                "change_Hz": (f - static, 10), "change_pct": (100 * (f - static) / static, 10),
                "growth_rate_1_s": (op.modes.growth_rates, 10), "mac": (op.mac, -6),
                "static_mode": (op.static_index + 1, 0)}
-    numbers = {("cases", 0, "speed_rad_s"): speed, ("cases", 0, "speed_rev_min"): 2000.0,
+    numbers = {("cases", 0, "speed_rad_s"): speed, ("cases", 0, "speed_rev_per_min"): 2000.0,
                ("cases", 0, "crank_angle_deg"): op.motion.q * DEG}
     for i in range(2):
         numbers[("cases", 0, "modes", i, "frequency_Hz")] = f[i]
