@@ -26,6 +26,7 @@ from flexlink.studies.cycle.modal_map import ModalMap, transmission_angles
 from flexlink.studies.cycle.rigid_motion import MotionStudy
 from flexlink.studies.running.modes_at_speed import ASSUMPTIONS
 from flexlink.studies.report_scene import AtSpeed, ReportScene
+from flexlink.units import rev_per_min
 
 MM = 1e3  # m -> mm
 DIGITS = 5  # significant digits kept in the page's coordinates: far below a pixel
@@ -110,7 +111,7 @@ def at_speed_data(at: AtSpeed | None) -> dict | None:
     when the scene declares no speed. A part the scene cannot give is {"unavailable": reason}."""
     if at is None:
         return None
-    out = {"rev_per_min": at.speed * 30 / math.pi, "rad_per_s": at.speed,
+    out = {"rev_per_min": rev_per_min(at.speed), "rad_per_s": at.speed,
            "crank_acceleration_rad_s2": at.crank_acceleration, "assumptions": ASSUMPTIONS}
     if at.torque is None:
         out["torque"] = {"unavailable": at.torque_unavailable}
@@ -135,7 +136,7 @@ def at_speed_data(at: AtSpeed | None) -> dict | None:
             line.append(float(p.frequencies[j]) if s.imag > 1e-9 * abs(s) else None)
         lines.append(line)
     last = points[-1]
-    out["modes"] = {"rev_per_min": [float(w * 30 / math.pi) for w in at.speeds],
+    out["modes"] = {"rev_per_min": [float(rev_per_min(w)) for w in at.speeds],
                     "frequencies_Hz": lines,
                     "static_Hz": [float(f) for f in last.static_frequencies],
                     "diverges": bool(last.modes.negative_stiffness),

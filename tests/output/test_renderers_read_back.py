@@ -199,7 +199,7 @@ def _torque() -> Rendered:
         numbers[("joint_forces", key, "peak_N")] = magnitude.max()
         numbers[("joint_forces", key, "at_deg")] = (Q[np.argmax(magnitude)] * DEG) % 360
     return Rendered(csv=torque_csv(curve), columns=columns,
-                    document=torque_document(curve, (), {}), numbers=numbers)
+                    document=torque_document(curve, ()), numbers=numbers)
 
 
 def _dynamic() -> Rendered:

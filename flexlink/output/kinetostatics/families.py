@@ -3,14 +3,13 @@ table and a CSV with one row per member."""
 
 from __future__ import annotations
 
-import math
+from flexlink.units import rev_per_min
 
-RPM = 60 / (2 * math.pi)  # [rev/min] per [rad/s]
 
 
 def families_document(result, files) -> dict:
     return {"command": "torque-family", "scene": result.scene,
-            "crank_speed_rad_s": result.speed, "crank_speed_rev_per_min": result.speed * RPM,
+            "crank_speed_rad_s": result.speed, "crank_speed_rev_per_min": rev_per_min(result.speed),
             "members": [{"family": m.family, "field": m.field, "value": m.value,
                          **m.summary, "lengths_m": m.lengths,
                          "pivot_inertia_kg_m2": m.pivot_inertia} for m in result.members],

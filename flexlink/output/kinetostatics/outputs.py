@@ -11,8 +11,8 @@ import math
 import numpy as np
 
 from flexlink.studies.kinetostatics.outputs import angle_index, crank_deg
+from flexlink.units import rev_per_min
 
-RPM = 60 / (2 * math.pi)  # [rev/min] per [rad/s]
 QUOTED_DEG = (0.0, 90.0, 180.0, 240.0)  # crank angles the text quotes row by row
 
 
@@ -79,7 +79,7 @@ def outputs_document(curve, assumptions, files) -> dict:
     lost = curve.loss_power[np.isfinite(curve.loss_power)]
     return {
         "command": "outputs", "scene": curve.scene, "crank_speed_rad_s": curve.speed,
-        "crank_speed_rev_per_min": curve.speed * RPM,
+        "crank_speed_rev_per_min": rev_per_min(curve.speed),
         "crank_acceleration_rad_s2": curve.crank_acceleration, "poses": len(curve.q),
         "input_torque_N_m": {"min": float(curve.input_torque.min()),
                              "max": float(curve.input_torque.max())},
@@ -169,7 +169,7 @@ def outputs_plot(curve, size=(8.0, 7.0), dpi: int = 120) -> bytes:
     top.set_ylabel("torque [N m]")
     bottom.set_ylabel("transmission ratio [-]")
     bottom.set_xlabel("crank angle [deg] (red: dead points; gaps: unbounded next to them)")
-    top.set_title(f"{curve.scene}: {curve.speed * RPM:.4g} rev/min, m = {curve.losses.friction:g},"
+    top.set_title(f"{curve.scene}: {rev_per_min(curve.speed):.4g} rev/min, m = {curve.losses.friction:g},"
                   f" eta = {curve.losses.efficiency:g}")
     buffer = io.BytesIO()
     fig.savefig(buffer, format="png")

@@ -28,6 +28,7 @@ from flexlink.studies.array_shapes import check_shape
 from flexlink.studies.cycle.modal_map import kinematic_cycle
 from flexlink.studies.kinetostatics.outputs import output_study
 from flexlink.studies.running.torque import scene_masses
+from flexlink.units import RPM, rev_per_min
 
 MATTERS = 1.0  # [%] spread of a ratio's median over a factor's range that counts as an effect
 SPEEDS_RPM = (0.0, 500.0, 1000.0, 1500.0, 2000.0, 2500.0, 3000.0)
@@ -112,7 +113,7 @@ def parametric_study(scene: Scene, speed: float = 0.0, poses: int = 120,
         return medians
 
     base = run(speed)
-    plan = [(Factor.SPEED, SPEEDS_RPM, lambda v: run(v * 2 * math.pi / 60)),
+    plan = [(Factor.SPEED, SPEEDS_RPM, lambda v: run(v * RPM)),
             (Factor.TORQUE, TORQUES_N_M, lambda v: run(speed, torque=v)),
             (Factor.FRICTION, FRICTIONS, lambda v: run(speed, friction=v)),
             (Factor.EFFICIENCY, EFFICIENCIES, lambda v: run(speed, efficiency=v))]
@@ -129,6 +130,6 @@ def parametric_study(scene: Scene, speed: float = 0.0, poses: int = 120,
             effect[name] = (float(100 * (ok.max() - ok.min()) / abs(base[name]))
                             if ok.size and base[name] else math.nan)
         sweeps.append(FactorSweep(f, np.array(levels, float), medians, effect))
-    return ParametricStudy(scene=scene.name, base_speed_rpm=speed * 60 / (2 * math.pi),
+    return ParametricStudy(scene=scene.name, base_speed_rpm=rev_per_min(speed),
                            base_torque=base_torque, base_friction=spec.losses.friction,
                            efficiency=spec.losses.efficiency, base=base, sweeps=tuple(sweeps))
