@@ -33,7 +33,10 @@ from contents import csv_columns
 
 DEG = 180 / math.pi  # [deg] per [rad]
 REV_MIN = 60 / (2 * math.pi)  # [rev/min] per [rad/s], written out for the oracle
-JSON_RTOL = 1e-15
+# a JSON number is the float itself, except speeds in rev/min, which units.rev_per_min rounds
+# to 12 significant digits (so a speed given in rev/min reads back as written): half a unit in
+# the 12th digit
+JSON_RTOL = 5e-12
 RNG = np.random.default_rng(7)
 Q = np.sort(RNG.uniform(0, 2 * math.pi, 7))  # crank angles [rad]
 
@@ -183,7 +186,7 @@ def _torque() -> Rendered:
     energy, load = spread(n, low=0.1, high=0.5), spread(n, low=-1, high=1)
     curve = TorqueCurve(scene="synthetic", speed=31.5, crank_acceleration=2.5, q=Q,
                         torque=torque, power=power, kinetic_energy=energy, load_power=load,
-                        forces=forces, masses=())
+                        forces=forces, masses=(), singular=np.zeros(len(Q), dtype=bool))
     columns = {"crank_angle_deg": (Q * DEG, 10), "torque_N_m": (torque, 10),
                "power_W": (power, 10), "kinetic_energy_J": (energy, 10),
                "load_power_W": (load, 10)}
@@ -232,7 +235,9 @@ def _motion() -> Rendered:
     w = 12.5
     columns = {"crank_angle_deg": (Q * DEG, 10)}
     for j, b in enumerate(names):
-        columns[f"{b}_angle_deg"] = (angles[:, j] * DEG, 10)
+        # a body named "crank" would repeat the crank angle's header: its own is renamed
+        angle = f"{b}_body_angle_deg" if f"{b}_angle_deg" == "crank_angle_deg" else f"{b}_angle_deg"
+        columns[angle] = (angles[:, j] * DEG, 10)
         columns[f"{b}_K"], columns[f"{b}_L"] = (K[:, j], 10), (L[:, j], 10)
         columns[f"{b}_omega_rad_s"] = (K[:, j] * w, 10)
         columns[f"{b}_alpha_rad_s2"] = (L[:, j] * w * w, 10)

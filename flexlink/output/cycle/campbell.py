@@ -15,7 +15,6 @@ from flexlink.studies.cycle.bands import Band, CriticalSpeed
 from flexlink.units import rev_per_min
 from flexlink.studies.cycle.campbell import CampbellStudy
 from flexlink.studies.cycle.tracking import unsampled_note
-from flexlink.units import rev_per_min
 
 
 def campbell_document(scene, study: CampbellStudy) -> dict:

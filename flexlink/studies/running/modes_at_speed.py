@@ -35,7 +35,7 @@ from flexlink.fe.model import FrameModel
 from flexlink.fe.speed_terms import ALL_TERMS, Terms, speed_quadratic
 from flexlink.kinematics.dynamics import RigidMotion, check_speed, rigid_motion
 from flexlink.scene import Scene, load_scene
-from flexlink.scene.contract import LoadKind, RigidPose, pose_transmission_angles
+from flexlink.scene.contract import RigidPose, pose_transmission_angles
 from flexlink.scene.plausibility import model_warnings, pose_warnings
 from flexlink.studies.array_shapes import check_shape
 

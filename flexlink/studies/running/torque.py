@@ -15,12 +15,12 @@ from flexlink.kinematics.inverse import (
     Bar,
     BodyMass,
     InverseDynamics,
-    Wrench,
     body_masses,
     inverse_dynamics,
 )
 from flexlink.kinematics.linkage import NEAR_SINGULAR, Linkage, State
 from flexlink.scene import Scene
+from flexlink.scene.contract import LoadSpec
 from flexlink.scene.loads import wrench
 from flexlink.studies.array_shapes import check_shape
 from flexlink.studies.cycle.modal_map import kinematic_cycle
