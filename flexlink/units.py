@@ -97,13 +97,19 @@ def parse_range(text: object, dimension: str, *, source: str | None = None,
     return parse_quantity(low, dimension, source=source, field=field), upper
 
 
+ROUND_TRIP_ULPS = 8  # a value this close to a 12-digit decimal is that decimal
+
+
 def rev_per_min(omega):
-    """An angular speed ``omega`` [rad/s] (a number or an array) in rev/min, to 12
-    significant digits: a speed given in rev/min comes back as written (2900, not the
-    2900.0000000000005 of the round trip through rad/s)."""
+    """An angular speed ``omega`` [rad/s] (a number or an array) in rev/min; a value within
+    ROUND_TRIP_ULPS of a decimal of 12 significant digits is that decimal: a speed given in
+    rev/min comes back as written (2900, not the 2900.0000000000005 of the round trip through
+    rad/s), any other keeps every digit."""
     values = np.asarray(omega, dtype=float) / RPM
-    rounded = np.array([float(f"{v:.12g}") for v in values.ravel()]).reshape(values.shape)
-    return float(rounded) if rounded.ndim == 0 else rounded
+    short = np.array([float(f"{v:.12g}") for v in values.ravel()]).reshape(values.shape)
+    near = np.abs(short - values) <= ROUND_TRIP_ULPS * np.spacing(np.abs(values))
+    out = np.where(near, short, values)
+    return float(out) if out.ndim == 0 else out
 
 
 def percent_error(computed, reference):

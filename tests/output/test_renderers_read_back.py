@@ -33,10 +33,10 @@ from contents import csv_columns
 
 DEG = 180 / math.pi  # [deg] per [rad]
 REV_MIN = 60 / (2 * math.pi)  # [rev/min] per [rad/s], written out for the oracle
-# a JSON number is the float itself, except speeds in rev/min, which units.rev_per_min rounds
-# to 12 significant digits (so a speed given in rev/min reads back as written): half a unit in
-# the 12th digit
-JSON_RTOL = 5e-12
+# a JSON number is the float itself, except a speed in rev/min within 8 ulps of a 12-digit
+# decimal, which units.rev_per_min rounds to it (a speed given in rev/min reads back as
+# written): 8 ulps, 1.8e-15 relative
+JSON_RTOL = 2e-15
 RNG = np.random.default_rng(7)
 Q = np.sort(RNG.uniform(0, 2 * math.pi, 7))  # crank angles [rad]
 
