@@ -98,8 +98,13 @@ def test_campbell_dynamic_command(tmp_path):
         == pytest.approx(np.ravel(edges), rel=1e-12)
     first = at_speed["bands_at_speed"][0]
     assert first["min_Hz"] == pytest.approx([b["min_Hz"] for b in document["bands"]], rel=1e-12)
-    assert [s["rev_per_min"] for s in at_speed["bands_at_speed"]] == pytest.approx(
-        [0, 1000, 2000])
+    # the grid: 3 speeds across the window, and each frozen critical range's ends (and
+    # middle), so that a range narrower than the step is sampled where it is looked for
+    grid = [s["rev_per_min"] for s in at_speed["bands_at_speed"]]
+    wanted = [0, 1000, 2000] + [x for c in document["critical_speeds"]
+                                for x in (c["from_rev_per_min"], c["to_rev_per_min"])]
+    assert all(min(abs(g - w) for g in grid) <= 1e-6 * max(w, 1.0) for w in wanted), grid
+    assert grid == sorted(grid)
     assert (tmp_path / "case1" / "campbell_at_speed.csv").exists()
     assert all(s["frozen_rev_per_min"] or s["at_speed_rev_per_min"]
                for s in at_speed["critical_speeds"])

@@ -57,6 +57,15 @@ class CampbellStudy:
         return dict(enumerate(self.tracked.labels, start=1))
 
 
+def speed_grid(window: tuple[float, float], steps: int, critical) -> np.ndarray:
+    """The diagram at speed's crank speeds [rad/s]: ``steps`` across the ``window``, and the
+    ends and middle of every frozen critical range in it, so that a range narrower than the
+    grid's step is still sampled where it is looked for."""
+    inside = [x for c in critical for x in (c.low, 0.5 * (c.low + c.high), c.high)
+              if window[0] <= x <= window[1]]
+    return np.unique(np.concatenate([np.linspace(*window, steps), inside]))
+
+
 def campbell_study(scene: Scene, window: tuple[float, float], n_modes: int, poses: int,
                    elements: int | None, tol: float | None, margin: float, harmonics: int,
                    speed_steps: int | None = None, n_jobs: int = 1, progress=None,
@@ -73,7 +82,7 @@ def campbell_study(scene: Scene, window: tuple[float, float], n_modes: int, pose
     critical = critical_speeds(found, window, margin, harmonics)  # checks the window first
     nearest = nearest_margin(found, window, harmonics)
     at_speed = None if speed_steps is None else dynamic_campbell(
-        scene, np.linspace(*window, speed_steps), poses, n_modes, mesh.elements,
+        scene, speed_grid(window, speed_steps, critical), poses, n_modes, mesh.elements,
         progress=progress_at_speed, crank_acceleration=crank_acceleration)
     return CampbellStudy(
         tracked=tracked, mesh=mesh, poses=poses, window=window, margin=margin,
