@@ -30,7 +30,8 @@ from flexlink.fe.model import FrameModel
 from flexlink.scene import Scene
 from flexlink.scene.contract import ModalDamping
 
-# light structural damping of a bolted metal frame; plausible 0.002 to 0.05
+# light structural damping of a frame of links and pins, whatever their material: the joints
+# dissipate more than a bare material's loss factor says; plausible 0.002 to 0.05
 DEFAULT_DAMPING_RATIO = 0.01
 
 
@@ -123,15 +124,27 @@ def basis_damping(scene: Scene, given: float | None, omegas: np.ndarray,
                             f"--damping-ratio {given:g} for every basis vector")
     declared = scene.options.damping
     if declared is not None:
-        return BasisDamping(declared_ratios(declared, omegas), damping_source(declared))
+        ratios = declared_ratios(declared, omegas)
+        if ratios.size and ratios[0] >= 1.0:  # only Rayleigh's can: a ratio is below 1
+            lowest = float(omegas[0])
+            field = ("damping.rayleigh_beta" if declared.beta * lowest / 2.0
+                     >= declared.alpha / (2.0 * lowest) else "damping.rayleigh_alpha")
+            raise InputError(f"gives the lowest mode ({lowest / (2.0 * np.pi):.4g} Hz) a damping "
+                             f"ratio of {ratios[0]:.3g}: overdamped, it decays without "
+                             "vibrating, and the running linkage's studies follow vibrating "
+                             "modes", source=scene.file_of(field), field=field,
+                             expected="Rayleigh coefficients that leave the lowest mode below "
+                                      "critical: zeta_1 = alpha / (2 omega_1) + beta omega_1 / 2 < 1")
+        return BasisDamping(ratios, damping_source(declared))
     if declares_loss_factors(scene):
         return BasisDamping(damping_ratios(model, shapes, scene.loss_factors),
                             "material loss factors written in the scene, weighted by each "
                             "basis vector's strain energy")
     return BasisDamping(np.full(omegas.size, DEFAULT_DAMPING_RATIO),
                         f"default {DEFAULT_DAMPING_RATIO:g} for every basis vector (the scene "
-                        "declares no damping; light structural damping of a bolted metal "
-                        "frame, plausible 0.002 to 0.05)")
+                        "declares no damping and writes no loss factor; light structural "
+                        "damping of a frame of links and pins, whose joints dissipate more "
+                        "than its material, plausible 0.002 to 0.05)")
 
 
 def deformation_damping(scene: Scene, given: float | None, mass: np.ndarray,

@@ -49,6 +49,7 @@ from flexlink.fe.co_rotating import co_rotating_turn, link_angles
 from flexlink.fe.model_at_pose import pose_model
 from flexlink.fe.speed_terms import speed_linear, speed_quadratic
 from flexlink.scene import Scene
+from flexlink.units import rev_per_min
 
 log = logging.getLogger(__name__)
 ADIABATIC_GRID = 2048  # crank angles of the adiabatic basis per turn: 1024 steps at most
@@ -56,6 +57,11 @@ ADIABATIC_STEPS = 64  # equal adiabatic steps a turn at least, then halved where
 # ln |mu| per turn within the map's 1e-3 (docs/critical-speeds.md, "Convergence")
 FLOOR_POINTS = 4  # crank angles per sampled pose where the stiffness floor is sought
 STEP_PHASE = 2.0  # h omega_max bound [rad]: ln|mu| within 1.3e-4 per turn of h omega_max 0.5
+MAGNUS_BUDGET = 1 << 21  # Magnus steps a turn at most (about a minute): more is refused
+# every frozen mode losing this many e-folds a turn (|mu| below 2e-9): at such a speed a
+# parametric resonance would need a harmonic of order 2 omega / Omega, far above the
+# coefficients' own (poses / 2), so the adiabatic limit holds and no steps are needed
+QUASI_STATIC_DECAY = 20.0
 
 
 class Integrator(enum.StrEnum):
@@ -63,10 +69,13 @@ class Integrator(enum.StrEnum):
     interaction-picture steps of ``analysis.adiabatic``, whose count does not follow the
     stiffest frequency; MAGNUS, the fourth-order Magnus steps of ``analysis.floquet`` (h
     omega_max <= step_phase), as accurate and many times slower below a few thousand rev/min
-    (docs/critical-speeds.md, "Speed")."""
+    (docs/critical-speeds.md, "Speed"); QUASI_STATIC, no steps: a speed so slow that every
+    frozen mode decays by more than QUASI_STATIC_DECAY e-folds a turn (``quasi_static_
+    multipliers``), taken where the adiabatic steps are refused."""
 
     ADIABATIC = "adiabatic"
     MAGNUS = "magnus"
+    QUASI_STATIC = "quasi-static"
 
 
 @dataclasses.dataclass(frozen=True)
@@ -244,7 +253,9 @@ class PeriodicModel:
         a2[:, n:, :n] = -fourier_series(samples[:, 3], theta)
         try:
             return adiabatic.adiabatic_basis(self.angles[0] + theta, a0, a0_prime, a1, a2)
-        except NumericalError as refusal:
+        except NumericalError as refusal:  # the same at every speed: said once, without one
+            log.warning("adiabatic steps refused at every speed (%s): Magnus steps instead",
+                        refusal)
             return refusal
 
     def system(self, speed: float, *, energy_coordinates: bool = False):
@@ -331,11 +342,25 @@ def periodic_model(scene: Scene, n_modes: int = 6, poses: int = 37,
                                                               shapes))
     floor = model.stiffness_floor(0.0)
     if floor <= 0.0:
+        singular = _singular_poses(scene)
+        advice = (f"the linkage passes a singular pose at crank {singular} deg (a flat pose or "
+                  "dead centre, where its assembly and the frame's stiff directions turn "
+                  "abruptly): the periodic equations cannot follow it, and more poses do not "
+                  "help") if singular else ("the basis' stiff directions change faster than the "
+                                            "poses resolve; use more poses")
         raise NumericalError(
             f"{scene.path}: between the {poses} sampled poses the interpolated stiffness is "
-            f"indefinite (lowest eigenvalue {floor:.3g} (rad/s)^2 at rest): the basis' stiff "
-            "directions change faster than the poses resolve; use more poses")
+            f"indefinite (lowest eigenvalue {floor:.3g} (rad/s)^2 at rest): {advice}")
     return model
+
+
+def _singular_poses(scene: Scene) -> str:
+    """The crank angles [deg] of a four-bar's flat poses and dead centres as text, or ""."""
+    if scene.four_bar is None:
+        return ""
+    angles = sorted({round(float(np.degrees(a)), 3) for a in
+                     scene.four_bar.flat_poses() + scene.four_bar.dead_centres()})
+    return ", ".join(f"{a:g}" for a in angles)
 
 
 def speed_multipliers(model: PeriodicModel, speed: float, steps: int = 200,
@@ -360,16 +385,54 @@ def multipliers_by(model: PeriodicModel, speed: float, steps: int = 200,
     """``speed_multipliers`` and the integrator that gave them."""
     if integrator is Integrator.ADIABATIC:
         try:
-            return (adiabatic.adiabatic_monodromy(model.adiabatic, speed, adiabatic_steps),
+            basis = model.adiabatic  # its refusal does not depend on the speed: logged once
+            return (adiabatic.adiabatic_monodromy(basis, speed, adiabatic_steps),
                     Integrator.ADIABATIC)
         except NumericalError as error:
-            log.warning("adiabatic steps refused at %.6g rad/s (%s): Magnus steps there",
-                        speed, error)
+            quasi = quasi_static_multipliers(model, speed)
+            if quasi is not None:
+                return quasi, Integrator.QUASI_STATIC
+            if not isinstance(model._adiabatic_or_refusal, NumericalError):
+                log.warning("adiabatic steps refused at %.6g rev/min (%s): Magnus steps there",
+                            rev_per_min(speed), error)
     period = 2.0 * np.pi / speed
     system = model.system(speed, energy_coordinates=True)
     size = np.abs(np.linalg.eigvals(system((model.angles - model.angles[0]) / speed))).max()
-    scaled = monodromy(system, period, max(steps, int(np.ceil(period * size / step_phase))))
+    count = max(steps, int(np.ceil(period * size / step_phase)))
+    if count > MAGNUS_BUDGET:
+        raise NumericalError(_too_many_steps(model, speed, count, size))
+    scaled = monodromy(system, period, count)
     n = len(model.frequencies)
     scale = np.eye(2 * n)
     scale[:n, :n] = model.energy_scale
     return floquet(np.linalg.solve(scale, scaled.monodromy @ scale), period), Integrator.MAGNUS
+
+
+def quasi_static_multipliers(model: PeriodicModel, speed: float) -> FloquetResult | None:
+    """The adiabatic limit of the multipliers at a crank ``speed`` [rad/s] so slow that one
+    turn spans many decay times of every frozen mode: with lambda_j(theta) the eigenvalues of
+    the first-order matrix A frozen at each sampled pose, the slowest decay rate over the turn
+    r(theta) = max_j Re lambda_j(theta) < 0 bounds each multiplier by exp(T mean(r)) (the
+    adiabatic theorem: the slow variation changes the exponent by O(Omega / gap), while it is
+    at least QUASI_STATIC_DECAY here). None where that does not hold (a pose whose frozen mode
+    does not decay, or too little decay a turn): the steps are needed there."""
+    period = 2.0 * np.pi / speed
+    frozen = model.system(speed)((model.angles - model.angles[0]) / speed)
+    slowest = np.linalg.eigvals(frozen).real.max(axis=1)  # per pose [1/s]
+    if slowest.max() >= 0.0 or -period * slowest.mean() < QUASI_STATIC_DECAY:
+        return None
+    bound = np.exp(period * slowest.mean())  # the largest |mu|, an upper bound
+    return floquet(np.diag(np.full(frozen.shape[-1], bound)), period)
+
+
+def _too_many_steps(model: PeriodicModel, speed: float, count: int, size: float) -> str:
+    """Why a speed needs more than MAGNUS_BUDGET Magnus steps, naming an overdamped basis
+    vector where one sets the step."""
+    over = np.flatnonzero(model.damping_ratio >= 1.0)
+    listed = ", ".join(str(i + 1) for i in over[:6]) + (", ..." if len(over) > 6 else "")
+    cause = (f"basis vector(s) {listed} are overdamped "
+             f"(damping ratio up to {model.damping_ratio.max():.3g}: {model.damping_source}), "
+             "and the fastest decay rate sets the step"
+             if len(over) else "one turn spans that many periods of the stiffest basis vector")
+    return (f"{count} Magnus steps a turn are needed at {rev_per_min(speed):.6g} rev/min "
+            f"(largest rate {size:.3g} 1/s), above the {MAGNUS_BUDGET} this run allows: {cause}")

@@ -41,6 +41,7 @@ def stability_document(scene_name: str, result, model, mesh=None) -> dict:
         "damping_ratio": model.damping_ratio.tolist(), "damping_source": model.damping_source,
         "poses": len(model.angles), "integrator": result.integrator.value,
         "magnus_fallback_rev_per_min": (rev_per_min(result.speeds[result.magnus_fallback])).tolist(),
+        "quasi_static_rev_per_min": rev_per_min(result.speeds[result.quasi_static]).tolist(),
         "basis": None if basis is None else {
             "size": basis.size, "modes_checked": int(basis.exact.shape[1]),
             "tolerance": basis.tolerance, "largest_frequency_error": basis.error,
@@ -81,6 +82,12 @@ def stability_lines(document: dict) -> list[str]:
         count = f"{len(fallback)} speed" + ("s" if len(fallback) > 1 else "")
         out.append(f"adiabatic steps refused at {count} ({fallback[0]:g} to {fallback[-1]:g} "
                    "rev/min; the log says why): Magnus steps there")
+    quasi = document["quasi_static_rev_per_min"]
+    if quasi:
+        count = f"{len(quasi)} speed" + ("s" if len(quasi) > 1 else "")
+        out.append(f"quasi-static at {count} ({quasi[0]:g} to {quasi[-1]:g} rev/min): every "
+                   "frozen mode decays by more than 20 e-folds a turn, so no steps were taken; "
+                   "|mu| there is the adiabatic bound")
     if basis is not None:
         out.append(f"basis check: lowest {basis['modes_checked']} frequencies within "
                    f"{100 * basis['largest_frequency_error']:.3g} % of the full model's at "

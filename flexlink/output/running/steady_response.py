@@ -9,6 +9,7 @@ import math
 import numpy as np
 
 from flexlink.output.running.stability_map import damping_line, mesh_json
+from flexlink.studies.running.steady_response import SMALL_DEFLECTION, depth_ratio
 from flexlink.units import rev_per_min
 
 STRAIN_NOTE = ("strain: bending strain at the fibre y = +depth/2 of the link's local frame "
@@ -23,9 +24,11 @@ def _crank_deg(response) -> np.ndarray:
 
 
 def response_document(scene_name: str, response, model, mesh=None) -> dict:
-    """One speed: per point the strain and deflection over the crank angle and their peaks;
-    the mesh (an ``analysis.mesh.MeshRule``, None: not stated)."""
+    """One speed: per point the strain and deflection over the crank angle and their peaks,
+    and whether the peak stays within the small-deflection range; the mesh (an
+    ``analysis.mesh.MeshRule``, None: not stated)."""
     deg = _crank_deg(response)
+    ratio = depth_ratio(model, response.peak_deflection)
     return {
         "command": "response", "scene": scene_name, "caveat": CAVEAT, "note": STRAIN_NOTE,
         "mesh": mesh_json(mesh),
@@ -41,14 +44,39 @@ def response_document(scene_name: str, response, model, mesh=None) -> dict:
              "deflection_m": response.deflection[:, k].tolist(),
              "peak_strain": float(response.peak_strain[k]),
              "peak_strain_at_deg": float(deg[np.argmax(np.abs(response.strain[:, k]))]),
-             "peak_deflection_m": float(response.peak_deflection[k])}
+             "peak_deflection_m": float(response.peak_deflection[k]),
+             "deflection_to_depth": float(ratio[k]),
+             "small_deflection": bool(ratio[k] <= SMALL_DEFLECTION)}
             for k, p in enumerate(model.points)],
+        "small_deflection_limit": SMALL_DEFLECTION,
+        "warnings": deflection_warnings(model.points, ratio),
     }
+
+
+def deflection_warnings(points, ratio, speeds=None) -> list[str]:
+    """One sentence per point whose peak deflection passes SMALL_DEFLECTION times its link's
+    depth (``ratio``: per point, or per speed and point with ``speeds`` [rev/min])."""
+    ratio = np.asarray(ratio, dtype=float)
+    out = []
+    for k, p in enumerate(points):
+        values = ratio[..., k]
+        if not np.nanmax(values, initial=0.0) > SMALL_DEFLECTION:
+            continue
+        where = ""
+        if speeds is not None:
+            first = speeds[int(np.flatnonzero(values > SMALL_DEFLECTION)[0])]
+            where = f" from {first:g} rev/min on the sweep"
+        out.append(f"{p.label}: peak deflection {np.nanmax(values):.3g} times the link's depth"
+                   f"{where}, beyond the small-deflection range (at most {SMALL_DEFLECTION:g} "
+                   "times the depth): the linear model does not hold there")
+    return out
 
 
 def sweep_document(scene_name: str, sweep, model, mesh=None) -> dict:
     """A speed sweep: peak strain and deflection per point against speed; unstable speeds
     (no steady state) as null and listed; the mesh as in ``response_document``."""
+    ratio = depth_ratio(model, sweep.peak_deflection)
+
     def listed(values):
         return [None if math.isnan(v) else float(v) for v in values]
     return {
@@ -62,8 +90,11 @@ def sweep_document(scene_name: str, sweep, model, mesh=None) -> dict:
         "unstable_speeds_rev_per_min": (rev_per_min(sweep.speeds[sweep.unstable])).tolist(),
         "points": [{"label": p.label, "link": p.link, "position_m": p.position,
                     "peak_strain": listed(sweep.peak_strain[:, k]),
-                    "peak_deflection_m": listed(sweep.peak_deflection[:, k])}
+                    "peak_deflection_m": listed(sweep.peak_deflection[:, k]),
+                    "deflection_to_depth": listed(ratio[:, k])}
                    for k, p in enumerate(sweep.points)],
+        "small_deflection_limit": SMALL_DEFLECTION,
+        "warnings": deflection_warnings(sweep.points, ratio, rev_per_min(sweep.speeds)),
     }
 
 
@@ -107,22 +138,28 @@ def response_lines(document: dict) -> list[str]:
             peaks = [(s, v) for s, v in zip(speeds, p["peak_strain"]) if v is not None]
             if peaks:
                 s, v = max(peaks, key=lambda sv: sv[1])
+                ratio = p["deflection_to_depth"][speeds.index(s)]
                 out.append(f"{p['label']:>24}: largest peak strain {v * 1e6:.4g} microstrain "
-                           f"at {s:g} rev/min")
+                           f"at {s:g} rev/min" + (
+                               f", beyond small deflection ({ratio:.3g} x depth)"
+                               if ratio is not None and ratio > document[
+                                   "small_deflection_limit"] else ""))
         unstable = document["unstable_speeds_rev_per_min"]
         if unstable:
             out.append(f"no steady state (|mu| >= 1) at {len(unstable)} speed(s): "
                        + ", ".join(f"{s:g}" for s in unstable[:8])
                        + (" ..." if len(unstable) > 8 else "") + " rev/min")
-        return out
+        return out + [f"warning: {w}" for w in document["warnings"]]
     out.append(f"at {document['speed_rev_per_min']:g} rev/min (largest |mu| "
                f"{document['largest_modulus']:.4g})")
     out.append(f"{'point':>24} {'peak strain [1e-6]':>19} {'at [deg]':>9} "
                f"{'peak deflection [mm]':>21}")
     for p in document["points"]:
         out.append(f"{p['label']:>24} {p['peak_strain'] * 1e6:>19.4g} "
-                   f"{p['peak_strain_at_deg']:>9.1f} {p['peak_deflection_m'] * 1e3:>21.4g}")
-    return out
+                   f"{p['peak_strain_at_deg']:>9.1f} {p['peak_deflection_m'] * 1e3:>21.4g}"
+                   + ("" if p["small_deflection"] else
+                      f"  beyond small deflection ({p['deflection_to_depth']:.3g} x depth)"))
+    return out + [f"warning: {w}" for w in document["warnings"]]
 
 
 def plot_response(response, model, path, title: str) -> None:

@@ -56,7 +56,9 @@ class StabilityMap:
     floor [(rad/s)^2] (``PeriodicModel.stiffness_floor``: negative where the frozen frame is
     quasi-statically divergent at some crank angle); integrator: how the monodromies were
     integrated, and ``magnus_fallback`` (bool per speed): where the adiabatic steps were
-    refused and the Magnus steps taken instead."""
+    refused and the Magnus steps taken instead; ``quasi_static`` (bool per speed): where no
+    steps were needed, every frozen mode decaying fast (``periodic.quasi_static_multipliers``:
+    the modulus there is an upper bound)."""
 
     speeds: np.ndarray
     largest_modulus: np.ndarray
@@ -65,11 +67,15 @@ class StabilityMap:
     stiffness_floor: np.ndarray
     integrator: Integrator
     magnus_fallback: np.ndarray
+    quasi_static: np.ndarray | None = None
 
     def __post_init__(self):
         n = len(self.speeds)
+        if self.quasi_static is None:
+            object.__setattr__(self, "quasi_static", np.zeros(n, dtype=bool))
         check_shape("StabilityMap", "speeds", self.speeds, (n,))
-        for name in ("largest_modulus", "growth_rate", "stiffness_floor", "magnus_fallback"):
+        for name in ("largest_modulus", "growth_rate", "stiffness_floor", "magnus_fallback",
+                     "quasi_static"):
             check_shape("StabilityMap", name, getattr(self, name), (n,))
 
 
@@ -94,25 +100,27 @@ def stability_map(model: PeriodicModel, speeds: np.ndarray, steps: int = 200,
     modulus = np.concatenate([p[0] for p in parts])
     rate = np.concatenate([p[1] for p in parts])
     fallback = np.concatenate([p[2] for p in parts])
+    quasi = np.concatenate([p[3] for p in parts])
     floor = np.array([model.stiffness_floor(w) for w in speeds])
     return StabilityMap(speeds, modulus, rate,
                         _ranges(model, speeds, modulus, rate, floor, harmonics), floor,
-                        integrator, fallback)
+                        integrator, fallback, quasi)
 
 
 def _speed_chunk(model: PeriodicModel, speeds: np.ndarray, steps: int, step_phase: float,
                  integrator: Integrator, adiabatic_steps: int):
-    """(largest modulus, growth rate, Magnus steps taken for refused adiabatic ones) at each
-    of ``speeds`` [rad/s]."""
+    """(largest modulus, growth rate, Magnus steps taken for refused adiabatic ones, no steps
+    needed: quasi-static) at each of ``speeds`` [rad/s]."""
     modulus, rate = np.ones(len(speeds)), np.zeros(len(speeds))
-    fallback = np.zeros(len(speeds), dtype=bool)
+    fallback, quasi = np.zeros(len(speeds), dtype=bool), np.zeros(len(speeds), dtype=bool)
     for i, speed in enumerate(speeds):
         if speed > 0.0:
             result, used = multipliers_by(model, speed, steps, step_phase, integrator,
                                           adiabatic_steps)
             modulus[i], rate[i] = result.largest_modulus, result.growth_rate
-            fallback[i] = used is not integrator
-    return modulus, rate, fallback
+            quasi[i] = used is Integrator.QUASI_STATIC
+            fallback[i] = used is not integrator and not quasi[i]
+    return modulus, rate, fallback, quasi
 
 
 def _ranges(model, speeds, modulus, rate, floor, harmonics):

@@ -86,6 +86,18 @@ class ForcedModel:
         return self.periodic.at(samples, theta)
 
 
+# a peak deflection above this share of the link's depth (in the plane) leaves the
+# small-deflection theory the model rests on: a beam whose ends cannot draw in stiffens by
+# its own stretching, by about (w / h)^2 of its bending stiffness
+SMALL_DEFLECTION = 0.5
+
+
+def depth_ratio(model: ForcedModel, peak_deflection: np.ndarray) -> np.ndarray:
+    """Each point's peak deflection [m] (points,) (or (speeds, points)) over its link's
+    depth in the plane [-]: above SMALL_DEFLECTION the linear model no longer holds."""
+    return np.asarray(peak_deflection) / (2.0 * model.half_depth)
+
+
 def midspans(scene: Scene) -> tuple[StrainPoint, ...]:
     """Each beam link's midspan."""
     lengths = _link_lengths(scene)
