@@ -127,7 +127,9 @@ def _stability() -> Rendered:
 def _forced_model(points):
     periodic = SimpleNamespace(damping_ratio=np.array([0.01, 0.03]), damping_source="given",
                                frequencies=np.array([21.0, 57.0]))
-    return SimpleNamespace(points=points, periodic=periodic)
+    # half depths [m] of the links: the made-up deflections stay small against them
+    return SimpleNamespace(points=points, periodic=periodic,
+                           half_depth=np.full(len(points), 0.5))
 
 
 POINTS = (StrainPoint("coupler", 0.0625), StrainPoint("rocker", 0.1))
