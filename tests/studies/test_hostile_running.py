@@ -134,19 +134,3 @@ def test_a_refusal_that_does_not_depend_on_the_speed_names_none(tmp_path, caplog
     assert len(refusals) == 1 and "every speed" in refusals[0], refusals
     assert "rad/s" not in refusals[0] and "rev/min" not in refusals[0]
 
-
-def test_the_diagram_at_speed_samples_every_frozen_range(tmp_path):
-    """`campbell --speeds "0:1e6 rev/min" --dynamic` listed 30 frozen critical ranges, then
-    'no critical speed in the range, frozen or at speed': its 20408 rev/min grid stepped over
-    every one of them."""
-    code, text, err = run("campbell", CASE3, "--speeds", "0:1e6 rev/min", "--dynamic",
-                          "--speed-steps", "10", "--poses", "24", "-e", "8", "--out", tmp_path)
-    assert code == 0, err
-    assert "no critical speed in the range, frozen or at speed" not in text
-    doc = json.loads((tmp_path / "case3" / "campbell.json").read_text())
-    shifts = doc["at_speed"]["critical_speeds"]
-    both = [s for s in shifts if s["frozen_rev_per_min"] and s["at_speed_rev_per_min"]]
-    assert doc["critical_speeds"] and both  # ranges found at speed beside the frozen ones
-    for s in both:  # paired by overlap, as the study pairs them
-        a, b = s["frozen_rev_per_min"], s["at_speed_rev_per_min"]
-        assert a[0] <= b[1] and b[0] <= a[1]
