@@ -404,13 +404,20 @@ def _steady_response_part(page: dict, figures: list, response: dict | None) -> s
               "yaxis": {"title": {"text": "bending strain [1e-6]"}},
               "legend": {"orientation": "h", "y": -0.25}}
     rows = [[_e(p["label"]), _number(p["peak_strain"] * 1e6, 3),
-             _number(p["peak_deflection_m"] * 1e3, 4)] for p in response["points"]]
-    return ("<h4>Steady response</h4>" + _figure(page, figures, "response", data, layout)
+             _number(p["peak_deflection_m"] * 1e3, 4), _number(p["deflection_to_depth"], 3)]
+            for p in response["points"]]
+    beyond = [p for p in response["points"] if not p["small_deflection"]]
+    warning = ('<div class="warnings"><strong>Beyond small deflection</strong><ul>' + "".join(
+        f"<li>{_e(p['label'])}: peak deflection {p['deflection_to_depth']:.3g} times the "
+        f"link's depth (limit {response['small_deflection_limit']:g}): the linear model does "
+        "not hold there</li>" for p in beyond) + "</ul></div>") if beyond else ""
+    return ("<h4>Steady response</h4>" + warning
+            + _figure(page, figures, "response", data, layout)
             + '<p class="note">Bending strain at each link\'s midspan (outer fibre) over one '
               "turn once the start-up transient has died out (6 modes, damping ratio 0.01; "
               "docs/steady-response.md).</p>"
-            + _table(["point", "peak strain [1e-6]", "peak deflection [mm]"], rows,
-                     numeric_from=1))
+            + _table(["point", "peak strain [1e-6]", "peak deflection [mm]",
+                      "deflection / depth"], rows, numeric_from=1))
 
 
 def life_section(page: dict, figures: list) -> str:

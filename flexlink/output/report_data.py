@@ -151,12 +151,18 @@ def steady_response_data(at: AtSpeed) -> dict:
     state (``AtSpeed.response``), or {"unavailable": reason}."""
     if at.response is None:
         return {"unavailable": at.response_unavailable}
+    from flexlink.studies.running.steady_response import SMALL_DEFLECTION, depth_ratio
+
     result = at.response
     order = np.argsort(np.degrees(result.angles) % 360.0)
+    ratio = depth_ratio(at.forced, result.peak_deflection)
     return {"crank_deg": _rounded(np.degrees(result.angles[order]) % 360.0),
+            "small_deflection_limit": SMALL_DEFLECTION,
             "points": [{"label": p.label, "strain": [float(x) for x in result.strain[order, k]],
                         "peak_strain": float(result.peak_strain[k]),
-                        "peak_deflection_m": float(result.peak_deflection[k])}
+                        "peak_deflection_m": float(result.peak_deflection[k]),
+                        "deflection_to_depth": float(ratio[k]),
+                        "small_deflection": bool(ratio[k] <= SMALL_DEFLECTION)}
                        for k, p in enumerate(at.forced.points)]}
 
 

@@ -102,3 +102,33 @@ def test_stress_and_life_for_the_scene_with_a_speed_and_strengths(page):
     assert table.count("none*") == 3
     assert "no life is given without a measured fatigue curve" in section
     assert "Stress and life" not in _scene(page, "case1")
+
+
+def test_a_response_beyond_small_deflection_is_flagged_on_the_page():
+    """A midspan deflecting more than SMALL_DEFLECTION times its link's depth is named in a
+    warning above the strain plot, with its ratio in the table; one within it is not."""
+    from types import SimpleNamespace
+
+    import numpy as np
+
+    from flexlink.output.html_report import _steady_response_part
+    from flexlink.output.report_data import steady_response_data
+    from flexlink.studies.running.steady_response import SMALL_DEFLECTION, StrainPoint
+
+    points = (StrainPoint("coupler", 0.135), StrainPoint("rocker", 0.06))
+    half_depth = np.array([0.75e-3, 2.0e-3])  # [m]
+    peak = np.array([2.0 * half_depth[0] * 3.0, 2.0 * half_depth[1] * 0.1])  # 3 and 0.1 depths
+    angles = np.radians([0.0, 120.0, 240.0])
+    at = SimpleNamespace(
+        forced=SimpleNamespace(points=points, half_depth=half_depth),
+        response=SimpleNamespace(angles=angles, strain=np.ones((3, 2)) * 1e-4,
+                                 peak_strain=np.array([1e-4, 1e-4]), peak_deflection=peak))
+    data = steady_response_data(at)
+    assert [p["small_deflection"] for p in data["points"]] == [False, True]
+    assert data["points"][0]["deflection_to_depth"] == pytest.approx(3.0, rel=1e-12)
+    assert data["small_deflection_limit"] == SMALL_DEFLECTION
+    html = _steady_response_part({"id": "case3"}, [], data)
+    coupler, rocker = (p["label"] for p in data["points"])
+    assert "Beyond small deflection" in html
+    assert f"{coupler}: peak deflection 3 times the link's depth" in html
+    assert f"{rocker}: peak deflection" not in html
