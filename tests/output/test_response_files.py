@@ -130,6 +130,7 @@ def test_report_page_shows_the_documents_curves_and_peaks_in_its_units():
         assert trace["y"] == pytest.approx(10 * STRAIN[:, k] * 1e6)  # microstrain, as the axis says
     assert figure["layout"]["yaxis"]["title"]["text"] == "bending strain [1e-6]"
     rows = [re.findall(r"<td[^>]*>([^<]*)</td>", row) for row in html.split("<tr>")[2:]]
-    # peak strain [1e-6] and peak deflection [mm], by hand: 3000 and 600 microstrain, 1 and 3 mm
+    # peak strain [1e-6], peak deflection [mm] and deflection over depth, by hand: 3000 and 600
+    # microstrain, 1 and 3 mm, 1 mm / 20 mm and 3 mm / 40 mm
     assert [(r[0], *(float(x.replace(",", "")) for x in r[1:])) for r in rows] == [
-        ("coupler@60mm", 3000.0, 1.0), ("rocker@100mm", 600.0, 3.0)]
+        ("coupler@60mm", 3000.0, 1.0, 0.05), ("rocker@100mm", 600.0, 3.0, 0.075)]
