@@ -8,9 +8,7 @@ import logging
 
 import click
 
-from flexlink.commands._failures import names_scene
-from flexlink.commands._options import json_option, out_option
-from flexlink.commands.verify import SCENE_ARGUMENT, SLOW_OPTION, run_self_checks
+from flexlink.commands.verify import run_self_checks, self_check_options
 
 RENAMED = ("`flexlink stability` is now `flexlink verify` (the numerical "
            "self-checks); the old name will be removed in the next release. For the running "
@@ -18,11 +16,7 @@ RENAMED = ("`flexlink stability` is now `flexlink verify` (the numerical "
 
 
 @click.command("stability")
-@SCENE_ARGUMENT
-@SLOW_OPTION
-@json_option
-@out_option
-@names_scene("scene_path")
+@self_check_options
 def command(scene_path, slow, as_json, out_dir):
     """Deprecated name of `flexlink verify` (the numerical self-checks)."""
     logging.getLogger(__name__).warning(RENAMED)

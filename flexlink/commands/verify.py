@@ -8,7 +8,7 @@ import sys
 import click
 
 from flexlink.commands._failures import names_scene
-from flexlink.commands._options import json_option, out_option
+from flexlink.commands._options import json_option, out_option, stacked
 
 
 def run_self_checks(scene_path, slow: bool, as_json: bool, out_dir) -> None:
@@ -32,18 +32,17 @@ def run_self_checks(scene_path, slow: bool, as_json: bool, out_dir) -> None:
         sys.exit(1)
 
 
-SCENE_ARGUMENT = click.argument("scene_path", metavar="[SCENE]", default="cases/case1.toml",
-                                type=click.Path())
-SLOW_OPTION = click.option("--slow", is_flag=True,
-                           help="Also run the slow checks (1e5 DOFs; about a minute).")
+# the arguments and options of verify and of its old name, stability
+self_check_options = stacked([
+    click.argument("scene_path", metavar="[SCENE]", default="cases/case1.toml",
+                   type=click.Path()),
+    click.option("--slow", is_flag=True,
+                 help="Also run the slow checks (1e5 DOFs; about a minute)."),
+    json_option, out_option, names_scene("scene_path")])
 
 
 @click.command("verify")
-@SCENE_ARGUMENT
-@SLOW_OPTION
-@json_option
-@out_option
-@names_scene("scene_path")
+@self_check_options
 def command(scene_path, slow, as_json, out_dir):
     """Run the numerical self-checks on variants of SCENE (default cases/case1.toml): bearing
     stiffness 0 .. 1e30, free crank, slender to stubby links, toggle and unreachable poses,
