@@ -20,7 +20,9 @@ Only the inputs come from flexlink: the scene's geometry at its pose, the links'
   theta(t) (one constraint, -sin(theta) r'_x + cos(theta) r'_y = 0, which leaves the axial
   stretch free): at rest at the scene's pose, the speed ramped smoothly from 0 to Omega over
   RAMP_SECONDS (d theta/dt = Omega (tau - sin(2 pi tau) / (2 pi)), tau = t / RAMP_SECONDS, so
-  the angular acceleration and its rate start and end at zero), then held for HOLD_SECONDS;
+  the angular acceleration and its rate start and end at zero), then held for HOLD_SECONDS; at
+  SLOW_SPEED (Rayleigh damping only), the quasi-static limit of the faster runs, over
+  SLOW_RAMP_SECONDS and SLOW_HOLD_SECONDS (each ramp a whole number of turns);
 - generalized-alpha (Exudyn's implicit index-3 solver), spectral radius SPECTRAL_RADIUS,
   STEPS_PER_SAMPLE steps per recorded sample, so the last turn's SAMPLES samples fall on steps
   at flexlink's own crank angles (the scene's pose angle + 2 pi k / SAMPLES);
@@ -72,15 +74,19 @@ from flexlink.scene import load_scene  # noqa: E402
 
 SCENE = "cases/case3.toml"
 OUT = ROOT / "tests" / "data" / "exudyn_case3.json"
-SPEEDS = (600.0, 1200.0)  # rev/min
+SPEEDS = (600.0, 1200.0)  # rev/min, with both damping laws
+SLOW_SPEED = 60.0  # rev/min, Rayleigh only: the quasi-static limit the faster runs are
+# compared with (strain times (speed / SLOW_SPEED)^2 where the response is quasi-static)
 ZETA = 0.02  # the constant ratio compared (flexlink --damping-ratio 0.02)
 RAYLEIGH_BETA = 1.1423e-4  # s: zeta 0.02 at flexlink's mode 1 (55.73 Hz)
 ELEMENTS = 32  # per link (the convergence check below)
 STEPS_PER_SAMPLE = 4  # time steps per recorded sample: 720 a turn
 SAMPLES = 180  # per turn, as flexlink's response (2 deg)
 SPECTRAL_RADIUS = 0.8  # generalized-alpha's rho_inf: damps the stiff axial and bearing modes
-RAMP_SECONDS = 0.6  # a whole number of turns at both speeds (3 and 6)
+RAMP_SECONDS = 0.6  # a whole number of turns at both SPEEDS (3 and 6)
 HOLD_SECONDS = 1.0  # mode 1 (zeta 0.02 at 350 rad/s) decays by e^-7 meanwhile
+SLOW_RAMP_SECONDS = 2.0  # one whole turn at SLOW_SPEED
+SLOW_HOLD_SECONDS = 3.0  # three turns: mode 1 decays by e^-21, the last two turns compared
 NEWTON_ABS_TOL = 1e-6  # N: a force residual that moves the coupler's midspan by ~1e-9 m
 CONVERGENCE_RPM = 1200.0
 CONVERGENCE_MESHES = (8, 16, 32)  # at STEPS_PER_SAMPLE
@@ -261,10 +267,9 @@ def constant_ratio_law(scene, theta0, elements, iterations=20, tolerance=1e-4):
 
 # -- one run -----------------------------------------------------------------------------------
 
-def crank_angle(theta0, speed):
+def crank_angle(theta0, speed, ramp=RAMP_SECONDS):
     """theta(t) [rad]: at rest at theta0, d theta/dt = speed (tau - sin(2 pi tau) / (2 pi)) over
-    the ramp (tau = t / RAMP_SECONDS), then ``speed`` [rad/s] held."""
-    ramp = RAMP_SECONDS
+    the ramp (tau = t / ``ramp`` [s]), then ``speed`` [rad/s] held."""
 
     def angle(t):
         if t >= ramp:
@@ -275,19 +280,25 @@ def crank_angle(theta0, speed):
     return angle
 
 
-def steady_turn(scene, theta0, rpm, elements, steps_per_sample, law):
+def steady_turn(scene, theta0, rpm, elements, steps_per_sample, law, ramp=RAMP_SECONDS,
+                hold=HOLD_SECONDS):
     """The last turn's midspan strain [-] per link at SAMPLES crank angles theta0 + 2 pi k /
-    SAMPLES, its change from the turn before (relative to its peak), and the CPU time [s]."""
+    SAMPLES, its change from the turn before (relative to its peak), and the CPU time [s];
+    the speed ramped over ``ramp`` [s] (a whole number of turns), then held for about
+    ``hold`` [s] (whole turns)."""
     speed = rpm * RPM
     turn = 2.0 * math.pi / speed
-    turns = round((RAMP_SECONDS / 2.0 + HOLD_SECONDS) / turn)  # whole turns, ramp included
-    ramp_turns = RAMP_SECONDS * speed / (4.0 * math.pi)
+    turns = round((ramp / 2.0 + hold) / turn)  # whole turns, ramp included
+    ramp_turns = ramp * speed / (4.0 * math.pi)
     if abs(ramp_turns - round(ramp_turns)) > 1e-9:
         raise ValueError(f"the ramp ends between samples at {rpm} rev/min")
+    if turns - ramp_turns < 2:
+        raise ValueError(f"the hold at {rpm} rev/min has fewer than the two turns compared")
     steps_per_turn = SAMPLES * steps_per_sample
-    steps = round((RAMP_SECONDS / turn + turns - ramp_turns) * steps_per_turn)
+    steps = round((ramp / turn + turns - ramp_turns) * steps_per_turn)
     betas, spring_beta = law
-    linkage = Linkage(scene, theta0, elements, betas, spring_beta, crank_angle(theta0, speed))
+    linkage = Linkage(scene, theta0, elements, betas, spring_beta,
+                      crank_angle(theta0, speed, ramp))
     sensors = linkage.midspan_sensors()
     mbs = linkage.mbs
     mbs.Assemble()
@@ -315,7 +326,7 @@ def steady_turn(scene, theta0, rpm, elements, steps_per_sample, law):
         change[name] = float(np.abs(last - before).max() / np.abs(last).max())
     return {"strain": strain, "turn_to_turn_change": change, "cpu_s": cpu,
             "turns": turns + ramp_turns, "time_step_s": turn / steps_per_turn,
-            "ramp_turns": ramp_turns}
+            "ramp_turns": ramp_turns, "ramp_s": ramp, "hold_s": hold}
 
 
 # -- sanity checks against closed forms --------------------------------------------------------
@@ -452,20 +463,23 @@ def record(checks_only=False):
         print(name, json.dumps(damping[name]))
     runs = []
     finest = None
-    for rpm in SPEEDS:
-        for name, law in laws.items():
-            run = steady_turn(scene, theta0, rpm, ELEMENTS, STEPS_PER_SAMPLE, law)
-            if rpm == CONVERGENCE_RPM and name == "constant ratio":
-                finest = run
-            runs.append({"speed_rev_min": rpm, "damping": name,
-                         "strain_microstrain": {k: [float(x * 1e6) for x in v]
-                                                for k, v in run["strain"].items()},
-                         **{k: run[k] for k in ("turn_to_turn_change", "cpu_s", "turns",
-                                                "ramp_turns", "time_step_s")}})
-            print(f"{rpm:g} rev/min, {name}: peaks "
-                  + ", ".join(f"{k} {np.abs(v).max() * 1e6:.3f}" for k, v in
-                              run["strain"].items())
-                  + f" microstrain; {run['cpu_s']:.1f} s CPU", flush=True)
+    schedule = [(rpm, name, RAMP_SECONDS, HOLD_SECONDS) for rpm in SPEEDS for name in laws]
+    schedule.append((SLOW_SPEED, "rayleigh", SLOW_RAMP_SECONDS, SLOW_HOLD_SECONDS))
+    for rpm, name, ramp, hold in schedule:
+        law = laws[name]
+        run = steady_turn(scene, theta0, rpm, ELEMENTS, STEPS_PER_SAMPLE, law, ramp, hold)
+        if rpm == CONVERGENCE_RPM and name == "constant ratio":
+            finest = run
+        runs.append({"speed_rev_min": rpm, "damping": name,
+                     "strain_microstrain": {k: [float(x * 1e6) for x in v]
+                                            for k, v in run["strain"].items()},
+                     **{k: run[k] for k in ("turn_to_turn_change", "cpu_s", "turns",
+                                            "ramp_turns", "ramp_s", "hold_s",
+                                            "time_step_s")}})
+        print(f"{rpm:g} rev/min, {name}: peaks "
+              + ", ".join(f"{k} {np.abs(v).max() * 1e6:.3f}" for k, v in
+                          run["strain"].items())
+              + f" microstrain; {run['cpu_s']:.1f} s CPU", flush=True)
     study = convergence(scene, theta0, laws["constant ratio"], finest)
     print(json.dumps(study, indent=2))
     commit = subprocess.run(["git", "rev-parse", "HEAD"], cwd=ROOT, capture_output=True,
@@ -501,7 +515,8 @@ def record(checks_only=False):
             "steps_per_turn": SAMPLES * STEPS_PER_SAMPLE,
             "newton_absolute_tolerance_N": NEWTON_ABS_TOL,
             "ramp": "d theta/dt = Omega (tau - sin(2 pi tau) / (2 pi)), tau = t / ramp_s",
-            "ramp_s": RAMP_SECONDS, "hold_s": HOLD_SECONDS},
+            "ramp_s": RAMP_SECONDS, "hold_s": HOLD_SECONDS,
+            "slow_speed": "each run's own ramp_s and hold_s"},
         "samples": {"count": SAMPLES, "first_crank_angle_rad": theta0,
                     "step_rad": 2 * math.pi / SAMPLES},
         "closed_form_checks": checks,

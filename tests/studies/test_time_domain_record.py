@@ -4,31 +4,37 @@ Exudyn is not needed here).
 
 Exudyn integrated Table II case 3 in time from rest: ANCF cable links, the bearings as springs,
 the crank angle prescribed (ramped up, then held), generalized-alpha, the last of many turns
-recorded. flexlink's ``steady_response`` solves the same linkage's periodic state directly, as
-``flexlink response`` does (6 static modes in the basis, 37 poses). The two are compared per
-link, at each recorded speed and damping law, on the midspan bending strain over the turn:
-the peak |strain| and the RMS of the difference over the turn, both relative to the recorded
-peak.
+recorded, at 600 and 1200 rev/min with two damping laws and at 60 rev/min (Rayleigh) for the
+quasi-static limit. flexlink's periodic solution (``steady_response``'s, as ``flexlink
+response`` gives it: 6 static modes in the basis, 37 poses) is compared per link on the midspan
+bending strain over the turn: the peak |strain| and the RMS of the difference over the turn,
+both relative to the recorded peak, within 1 % and 2 % where the damping laws are the same.
+
+The laws. Rayleigh (C = beta K) is the same in both. The record's "constant ratio" is not
+flexlink's ``--damping-ratio 0.02``: strain-rate damping cannot give every mode one ratio, so
+the record fits each link's own stiffness-proportional beta to that link's first mode (its
+mode 3 gets 0.077, mode 5 0.18). flexlink is compared with it twice: under the record's own
+law (``record_law_damping``, Law.RECORD_LAW: a like-for-like comparison), and with 0.02 for
+every vector (Law.RATIO, what a user would write; it meets the record where the higher modes'
+damping does not matter, and departs at 1200 rev/min where it does: ``LAW_MISMATCH``).
 
 Why they need not agree to round-off: flexlink's model is linear about the rigid motion in a
 reduced basis (16 vectors, the Fourier series of 37 poses, 16 elements a link with the strain
 read on one side of the midspan node), Exudyn's is geometrically exact at 32 elements a link
-(its own mesh and step changes: under 0.2 % of the peaks); and "constant ratio" damps every
-basis vector at 0.02 in flexlink, but in the time domain only each link's first mode, the
-others more (stiffness-proportional per link; see ``tolerances``).
-
-The comparisons that fail today are marked strict xfail (``KNOWN_FAILURES``). Those with
-Rayleigh damping failed while flexlink's damping acted on the motion of its basis (its curves
-moved with the damping of the stiff basis vectors, which a quasi-static strain does not feel:
-the crank at 600 rev/min 103 % of the peak away); with the damping on each pose's own
-deformation (``analysis.damping.deformation_damping``) they pass, and fail again if it acts on
-the basis's motion.
+(its own mesh and step changes: under 0.2 % of the peaks). Where that matters beyond the
+tolerances (the rocker at 1200 rev/min), the comparison is a strict xfail with the measured
+reason (``KNOWN_FAILURES``). The comparisons with Rayleigh damping failed while flexlink's
+damping acted on the motion of its basis (the crank at 600 rev/min 103 % of the peak away);
+with the damping on each pose's own deformation (``analysis.damping.deformation_damping``) they
+pass, and fail again if it acts on the basis's motion.
 
     PYTHONPATH=. python benchmarks/time_domain_comparison.py   # prints the comparison tables
 """
 
 from __future__ import annotations
 
+import dataclasses
+import enum
 import functools
 import json
 import math
@@ -39,7 +45,8 @@ import pytest
 
 from flexlink.analysis.modal import analyze
 from flexlink.scene import load_scene
-from flexlink.studies.running.steady_response import forced_model, steady_response
+from flexlink.studies.running.steady_response import (SAMPLES, ForcedModel, forced_model,
+                                                      periodic_solution)
 
 ROOT = Path(__file__).resolve().parents[2]
 RECORD = json.loads((ROOT / "tests" / "data" / "exudyn_case3.json").read_text())
@@ -49,44 +56,127 @@ N_MODES = 6  # flexlink response's default basis
 RATIO = 0.02
 RAYLEIGH_BETA = 1.1423e-4
 LINKS = ("crank", "coupler", "rocker")
+SLOW, FAST = 60.0, 600.0  # rev/min: the quasi-static pair (strain times 100 where quasi-static)
 # The agreement asked of flexlink's reduced linear model where the damping laws are the same:
 # its own mesh moves the midspan peaks by 0.2 % (16 to 32 elements a link), the record's mesh
 # and step by under 0.2 % (its convergence check), the transient left by 1e-4.
 PEAK_TOLERANCE = 0.01
 CURVE_TOLERANCE = 0.02
-UNEXPLAINED = ("at 1200 rev/min flexlink's peak departs from the record by 2.4 to 2.5 %, beyond "
-               "its tolerance: not yet explained (the damping acts on each pose's own "
-               "deformation, not on the basis's motion)")
-KNOWN_FAILURES = {  # (damping, rev/min, link): why
-    ("rayleigh", 1200.0, "rocker"): UNEXPLAINED,
-    ("constant ratio", 1200.0, "crank"): UNEXPLAINED,
+
+
+class Law(enum.StrEnum):
+    """flexlink's damping in a comparison, and which of the record's runs it meets."""
+
+    RAYLEIGH = "rayleigh"  # [damping] rayleigh_beta: C = beta K, the record's "rayleigh"
+    RECORD_LAW = "record's law"  # the record's "constant ratio" law itself (record_law_damping)
+    RATIO = "ratio 0.02"  # --damping-ratio 0.02, against the record's "constant ratio"
+
+    @property
+    def recorded_as(self) -> str:
+        return "rayleigh" if self is Law.RAYLEIGH else "constant ratio"
+
+
+ROCKER_AT_1200 = (
+    "the rocker at 1200 rev/min lies beyond flexlink's linear model in its default basis: its "
+    "peak is 2.4 % (Rayleigh), 3.1 % (the record's law), 2.9 % (0.02) below the record's, the "
+    "difference in harmonics 5 to 16 (100 to 320 Hz, which flexlink gives about 15 % smaller "
+    "and 20 deg late; with the record's own harmonics 5 to 16 it is -0.06 %). Two causes, "
+    "measured with Rayleigh against Exudyn at 16 elements (-2.57 % there): the record's "
+    "geometric nonlinearity (the coupler deflects 3.8 times its depth): the rigid motion's loads "
+    "scaled by S in both (a counter-load in Exudyn) give -3.3, -2.6, -1.5, -1.5 % at S = 1.5, 1, "
+    "0.5, 0.25, not through the cables' stretching (EA x 0.1 moves the record's peak by 0.2 %); "
+    "and the basis: the static answers to the inertia loads added to it take the difference "
+    "from -2.57 to -1.94 % at S = 1 and from -1.55 to -0.85 % at S = 0.25 (curve 0.77 %)")
+LAW_MISMATCH = (
+    "the crank at 1200 rev/min: a different damping law, not a model error. Strain-rate "
+    "damping cannot give every mode 0.02: the record fits each link's beta to its first mode "
+    "and so damps mode 3 at 0.077 and mode 5 at 0.18, where flexlink's ratio is 0.02; the crank "
+    "runs near its mode (7th harmonic 140 Hz, mode 144 Hz) and feels it. Given the record's own "
+    "law, flexlink's crank is +0.9 % (Law.RECORD_LAW, passing) where with 0.02 it is +2.5 %")
+KNOWN_FAILURES = {  # (law, rev/min, link): why
+    (Law.RAYLEIGH, 1200.0, "rocker"): ROCKER_AT_1200,
+    (Law.RECORD_LAW, 1200.0, "rocker"): ROCKER_AT_1200,
+    (Law.RATIO, 1200.0, "rocker"): ROCKER_AT_1200,
+    (Law.RATIO, 1200.0, "crank"): LAW_MISMATCH,
 }
 
 
-def scene_for(law: str):
-    overrides = {"damping.rayleigh_beta": RAYLEIGH_BETA} if law == "rayleigh" else None
+def scene_for(law: Law):
+    overrides = {"damping.rayleigh_beta": RAYLEIGH_BETA} if law is Law.RAYLEIGH else None
     return load_scene(SCENE, overrides)
 
 
-@functools.cache
-def _model(law: str):
-    return forced_model(scene_for(law), N_MODES,
-                        damping_ratio=RATIO if law == "constant ratio" else None)
+def in_link_frame(link, shapes: np.ndarray) -> np.ndarray:
+    """(3 nodes, n): the columns of ``shapes`` (n_dofs, n) at ``link``'s nodes in its own frame
+    (u along the link, v across, the rotation), as ``analysis.identity.energy_parts`` takes
+    them."""
+    nodes = link.nodes
+    c, s = math.cos(link.angle), math.sin(link.angle)
+    ux, uy = shapes[3 * nodes], shapes[3 * nodes + 1]
+    local = np.empty((3 * len(nodes), shapes.shape[1]))
+    local[0::3], local[1::3], local[2::3] = c * ux + s * uy, -s * ux + c * uy, shapes[3 * nodes + 2]
+    return local
+
+
+def record_law_damping(periodic, link_beta: dict, joint_beta: float) -> np.ndarray:
+    """C (poses, n, n) of the record's strain-rate damping in ``periodic``'s basis at each pose:
+    each link's own bending and axial stiffness (its element matrices in its frame) times its
+    beta [s] ``link_beta[name]``, and the rest of the elastic K (the joint springs) times
+    ``joint_beta`` [s]."""
+    out = joint_beta * np.asarray(periodic.elastic_stiffness, dtype=float)
+    for p, (frame, shapes) in enumerate(zip(periodic.pose_models, periodic.pose_shapes)):
+        for link in frame.links:
+            local = in_link_frame(link, shapes)
+            out[p] += (link_beta[link.name] - joint_beta) * (local.T @ link.local_matrices()[0]
+                                                             @ local)
+    return out
+
+
+def with_damping(model: ForcedModel, samples: np.ndarray) -> ForcedModel:
+    return dataclasses.replace(model, periodic=dataclasses.replace(model.periodic,
+                                                                   damping_samples=samples))
 
 
 @functools.cache
-def flexlink_curves(law: str, rpm: float):
+def _ratio_model() -> ForcedModel:
+    return forced_model(load_scene(SCENE), N_MODES, damping_ratio=RATIO)
+
+
+@functools.cache
+def _model(law: Law) -> ForcedModel:
+    if law is Law.RAYLEIGH:
+        return forced_model(scene_for(law), N_MODES)
+    if law is Law.RATIO:
+        return _ratio_model()
+    damping = RECORD["damping"]["constant ratio"]
+    return with_damping(_ratio_model(), record_law_damping(
+        _ratio_model().periodic, damping["link_beta_s"], damping["joint_damper_beta_s"]))
+
+
+def midspan_strain(model: ForcedModel, speed: float) -> tuple[np.ndarray, np.ndarray]:
+    """(crank angles [rad], strain (samples, points) [-]) at crank ``speed`` [rad/s], read as
+    ``steady_response`` reads it, from the periodic solution alone: its Floquet verdict at 60
+    rev/min takes minutes (Magnus steps over overdamped vectors), and the stability map's own
+    tests check it."""
+    turn = 2.0 * np.pi * np.arange(SAMPLES) / SAMPLES
+    angles = model.periodic.angles[0] + turn
+    q = periodic_solution(model, speed).at(turn)
+    return angles, -model.half_depth * np.einsum("spn,sn->sp", model.at(model.curvature, angles),
+                                                 q)
+
+
+@functools.cache
+def flexlink_curves(law: Law, rpm: float):
     """(crank angles [rad], {link: midspan strain [microstrain]}) of flexlink's response."""
     model = _model(law)
-    response = steady_response(model, rpm * RPM)
+    angles, strain = midspan_strain(model, rpm * RPM)
     labels = [p.link for p in model.points]
-    return response.angles, {name: response.strain[:, labels.index(name)] * 1e6
-                             for name in LINKS}
+    return angles, {name: strain[:, labels.index(name)] * 1e6 for name in LINKS}
 
 
-def recorded(law: str, rpm: float) -> dict:
+def recorded(damping: str, rpm: float) -> dict:
     return next(run for run in RECORD["runs"]
-                if run["damping"] == law and run["speed_rev_min"] == rpm)
+                if run["damping"] == damping and run["speed_rev_min"] == rpm)
 
 
 def differences(reference: np.ndarray, ours: np.ndarray) -> tuple[float, float, float]:
@@ -98,54 +188,86 @@ def differences(reference: np.ndarray, ours: np.ndarray) -> tuple[float, float, 
             float(np.abs(ours - reference).max() / peak))
 
 
-def tolerances(law: str, rpm: float, link: str) -> tuple[float, float]:
-    """(peak, curve) tolerances [-]. A constant ratio for every mode is not a law strain-rate
-    damping can hold: the record fits each link's first mode and damps the others more. So the
-    record's own spread between its two laws (how far its answer moves when the damping of
-    every mode but the first changes) is added there; Rayleigh is the same law in both."""
-    if law != "constant ratio":
-        return PEAK_TOLERANCE, CURVE_TOLERANCE
-    a = np.asarray(recorded("constant ratio", rpm)["strain_microstrain"][link])
-    b = np.asarray(recorded("rayleigh", rpm)["strain_microstrain"][link])
-    peak, curve, _ = differences(a, b)
-    return PEAK_TOLERANCE + abs(peak), CURVE_TOLERANCE + curve
+def comparisons():
+    """(law, rev/min) of every comparison: each recorded run against flexlink under the laws
+    that meet it."""
+    for run in RECORD["runs"]:
+        for law in Law:
+            if law.recorded_as == run["damping"]:
+                yield law, run["speed_rev_min"]
 
 
 def comparison_rows() -> list[dict]:
-    """One row per recorded speed, damping law and link: the peaks [microstrain], the
-    differences [%] and their tolerances [%]."""
+    """One row per comparison and link: the peaks [microstrain], the differences [%] and
+    the tolerances [%]."""
     rows = []
-    for run in RECORD["runs"]:
-        law, rpm = run["damping"], run["speed_rev_min"]
+    for law, rpm in comparisons():
         _, ours = flexlink_curves(law, rpm)
         for name in LINKS:
-            theirs = np.asarray(run["strain_microstrain"][name])
+            theirs = np.asarray(recorded(law.recorded_as, rpm)["strain_microstrain"][name])
             peak, curve, largest = differences(theirs, ours[name])
-            peak_tol, curve_tol = tolerances(law, rpm, name)
-            rows.append({"link": name, "speed_rev_min": rpm, "damping": law,
+            rows.append({"link": name, "speed_rev_min": rpm, "damping": str(law),
+                         "recorded_damping": law.recorded_as,
                          "peak_flexlink": float(np.abs(ours[name]).max()),
                          "peak_exudyn": float(np.abs(theirs).max()),
                          "peak_diff_pct": 100 * peak, "curve_diff_pct": 100 * curve,
-                         "max_diff_pct": 100 * largest, "peak_tolerance_pct": 100 * peak_tol,
-                         "curve_tolerance_pct": 100 * curve_tol,
+                         "max_diff_pct": 100 * largest,
+                         "peak_tolerance_pct": 100 * PEAK_TOLERANCE,
+                         "curve_tolerance_pct": 100 * CURVE_TOLERANCE,
                          "known_failure": (law, rpm, name) in KNOWN_FAILURES})
     return rows
 
 
+def quasi_static_departures() -> dict:
+    """Per link: how far the 600 rev/min curve is from 100 times the 60 rev/min one, flexlink's
+    and the record's (Rayleigh), and the difference of the two departures, each (peak, max over
+    the turn) relative to the 600 rev/min peak [-]."""
+    scale = (FAST / SLOW) ** 2
+    _, slow = flexlink_curves(Law.RAYLEIGH, SLOW)
+    _, fast = flexlink_curves(Law.RAYLEIGH, FAST)
+    out = {}
+    for name in LINKS:
+        theirs = {rpm: np.asarray(recorded("rayleigh", rpm)["strain_microstrain"][name])
+                  for rpm in (SLOW, FAST)}
+        ours = fast[name] - scale * slow[name]
+        record = theirs[FAST] - scale * theirs[SLOW]
+        peak = np.abs(theirs[FAST]).max()
+        out[name] = {
+            "flexlink": (np.abs(fast[name]).max() / np.abs(scale * slow[name]).max() - 1,
+                         np.abs(ours).max() / peak),
+            "exudyn": (np.abs(theirs[FAST]).max() / np.abs(scale * theirs[SLOW]).max() - 1,
+                       np.abs(record).max() / peak),
+            "difference": np.abs(ours - record).max() / peak}
+    return out
+
+
 def table(rows: list[dict]) -> str:
-    head = (f"{'link':8} {'rev/min':>7}  {'damping':15} {'peak flexlink':>13} "
-            f"{'peak exudyn':>11} {'peak diff %':>11} {'curve diff %':>12} {'max diff %':>10} "
-            f"{'tol peak/curve %':>16}")
+    head = (f"{'link':8} {'rev/min':>7}  {'flexlink damping':16} {'record':14} "
+            f"{'peak flexlink':>13} {'peak exudyn':>11} {'peak diff %':>11} "
+            f"{'curve diff %':>12} {'max diff %':>10}")
     lines = [head, "-" * len(head)]
-    lines += [f"{r['link']:8} {r['speed_rev_min']:7g}  {r['damping']:15} "
-              f"{r['peak_flexlink']:13.3f} {r['peak_exudyn']:11.3f} "
+    lines += [f"{r['link']:8} {r['speed_rev_min']:7g}  {r['damping']:16} "
+              f"{r['recorded_damping']:14} {r['peak_flexlink']:13.3f} {r['peak_exudyn']:11.3f} "
               f"{r['peak_diff_pct']:+11.2f} {r['curve_diff_pct']:12.2f} "
-              f"{r['max_diff_pct']:10.2f} "
-              f"{r['peak_tolerance_pct']:7.2f}/{r['curve_tolerance_pct']:<5.2f}"
+              f"{r['max_diff_pct']:10.2f}"
               + ("  known failure" if r["known_failure"] else "") for r in rows]
     return "\n".join(lines + [
-        "peaks in microstrain; curve diff: RMS of flexlink - Exudyn over the turn, max diff: "
-        "its largest value, both / Exudyn's peak"])
+        f"peaks in microstrain; tolerances {100 * PEAK_TOLERANCE:g} % (peak) and "
+        f"{100 * CURVE_TOLERANCE:g} % (curve); curve diff: RMS of flexlink - Exudyn over the "
+        "turn, max diff: its largest value, both / Exudyn's peak; \"ratio 0.02\" meets a "
+        "record whose law differs (see the test's LAW_MISMATCH)"])
+
+
+def departure_table(departures: dict) -> str:
+    lines = [f"{'link':8} {'flexlink peak / max %':>22} {'exudyn peak / max %':>20} "
+             f"{'max of the difference %':>24}"]
+    lines += [f"{name:8} {100 * d['flexlink'][0]:+11.2f} / {100 * d['flexlink'][1]:<8.2f} "
+              f"{100 * d['exudyn'][0]:+10.2f} / {100 * d['exudyn'][1]:<7.2f} "
+              f"{100 * d['difference']:24.2f}" for name, d in departures.items()]
+    return "\n".join(lines + [
+        f"the {FAST:g} rev/min curve against {(FAST / SLOW) ** 2:g} times the {SLOW:g} rev/min "
+        "one (Rayleigh): peak ratio - 1, and the largest difference over the turn / the "
+        f"{FAST:g} rev/min peak"])
 
 
 def test_record_checked_its_element_against_closed_forms():
@@ -172,7 +294,7 @@ def test_linkage_frequencies_match_flexlink_modes(pins, overrides):
 
 
 def test_record_samples_flexlinks_crank_angles():
-    angles, _ = flexlink_curves("constant ratio", RECORD["runs"][0]["speed_rev_min"])
+    angles, _ = flexlink_curves(Law.RATIO, RECORD["runs"][0]["speed_rev_min"])
     samples = RECORD["samples"]
     theirs = samples["first_crank_angle_rad"] + samples["step_rad"] * np.arange(samples["count"])
     np.testing.assert_allclose(angles, theirs, rtol=0, atol=1e-12)
@@ -189,9 +311,48 @@ def test_record_reached_its_steady_state():
         assert max(spread[finest_but_one].values()) < 1e-2, (series, spread)
 
 
+@pytest.mark.slow
+def test_the_record_law_with_one_beta_is_flexlinks_rayleigh():
+    """The record's law written in flexlink's basis, every beta the same, is flexlink's own
+    Rayleigh damping beta K at every pose (each pose's modes in the basis): the link parts
+    and the joint springs make up the whole elastic K. 1e-9 of the largest entry: the
+    round-off of the eigen decomposition of a K whose entries span 1e3 to 1e11."""
+    rayleigh = _model(Law.RAYLEIGH).periodic
+    assert np.abs(rayleigh.mass - _ratio_model().periodic.mass).max() == 0.0  # one basis
+    betas = dict.fromkeys(LINKS, RAYLEIGH_BETA)
+    ours = record_law_damping(_ratio_model().periodic, betas, RAYLEIGH_BETA)
+    assert np.abs(ours - rayleigh.damping).max() <= 1e-9 * np.abs(rayleigh.damping).max()
+
+
+@pytest.mark.slow
+def test_the_record_law_in_flexlink_damps_the_records_modes_as_exudyn_does():
+    """At rest at the scene's pose, the damped modes of flexlink's basis (M, the record's
+    law's C, the elastic K) have the frequencies and damping ratios Exudyn's linearised
+    model of the record has (its complex eigenvalues): the same law in both, mode by mode,
+    the higher modes' ratios far from 0.02 (mode 3 0.077, mode 5 0.18). The first five within
+    1e-4 in frequency and 1e-3 in ratio (measured 7e-5 and 3.3e-4: flexlink's 16 elements a
+    link against the record's 32, the basis's Ritz values); the sixth (870 Hz), which this
+    non-proportional damping couples to vectors outside the basis, within 2e-3 and 2e-2
+    (measured 9.7e-4 and 9.9e-3; under Rayleigh, proportional, all six within 8e-5)."""
+    law = RECORD["damping"]["constant ratio"]
+    model = _model(Law.RECORD_LAW).periodic
+    M, K, C = model.mass[0], model.elastic_stiffness[0], model.damping[0]
+    n = len(M)
+    first_order = np.block([[np.zeros((n, n)), np.eye(n)],
+                            [-np.linalg.solve(M, K), -np.linalg.solve(M, C)]])
+    lam = np.linalg.eigvals(first_order)
+    lam = lam[lam.imag > 0]
+    lam = lam[np.argsort(np.abs(lam))][:len(law["modes_Hz"])]
+    frequencies, ratios = np.abs(lam) / (2 * np.pi), -lam.real / np.abs(lam)
+    np.testing.assert_allclose(frequencies[:5], law["modes_Hz"][:5], rtol=1e-4)
+    np.testing.assert_allclose(ratios[:5], law["damping_ratios"][:5], rtol=1e-3)
+    np.testing.assert_allclose(frequencies[5], law["modes_Hz"][5], rtol=2e-3)
+    np.testing.assert_allclose(ratios[5], law["damping_ratios"][5], rtol=2e-2)
+    assert max(law["damping_ratios"]) > 4 * RATIO  # the law is not one ratio for all
+
+
 def _cases():
-    for run in RECORD["runs"]:
-        law, rpm = run["damping"], run["speed_rev_min"]
+    for law, rpm in comparisons():
         for name in LINKS:
             marks = [pytest.mark.slow]
             if (law, rpm, name) in KNOWN_FAILURES:
@@ -203,8 +364,23 @@ def _cases():
 
 @pytest.mark.parametrize("law, rpm, link", list(_cases()))
 def test_steady_strain_matches_the_time_domain_record(law, rpm, link):
-    theirs = np.asarray(recorded(law, rpm)["strain_microstrain"][link])
+    theirs = np.asarray(recorded(law.recorded_as, rpm)["strain_microstrain"][link])
     _, ours = flexlink_curves(law, rpm)
     peak, curve, _ = differences(theirs, ours[link])
-    peak_tol, curve_tol = tolerances(law, rpm, link)
-    assert abs(peak) < peak_tol and curve < curve_tol, (peak, curve, peak_tol, curve_tol)
+    assert abs(peak) < PEAK_TOLERANCE and curve < CURVE_TOLERANCE, (peak, curve)
+
+
+@pytest.mark.slow
+def test_the_cranks_departure_from_quasi_static_scaling_is_the_time_domains():
+    """The crank's strain at 600 rev/min is 100 times its strain at 60 rev/min only to 1.3 % at
+    the peak and 2.6 % of the peak over the turn (flexlink, Rayleigh). The record departs the
+    same way, independently (1.25 % and 2.57 %), so that is the crank's own dynamics (its load
+    harmonics reach about 60 Hz at 600 rev/min, its mode 144 Hz), not flexlink's damping or
+    basis. The two departures differ by 0.15 % of the peak at most over the turn; allowed 0.3 %:
+    flexlink's curves are 0.16 % (600 rev/min) and 0.05 % (60 rev/min, times 100) of the peak
+    from the record's at most. The peak's and the curve's departures agree within 0.2 %
+    (measured 0.08 % and 0.04 %)."""
+    crank = quasi_static_departures()["crank"]
+    ours, theirs = crank["flexlink"], crank["exudyn"]
+    assert abs(ours[0] - theirs[0]) <= 0.002 and abs(ours[1] - theirs[1]) <= 0.002, crank
+    assert crank["difference"] <= 0.003, crank
