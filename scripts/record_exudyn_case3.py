@@ -23,6 +23,11 @@ Only the inputs come from flexlink: the scene's geometry at its pose, the links'
   the angular acceleration and its rate start and end at zero), then held for HOLD_SECONDS; at
   SLOW_SPEED (Rayleigh damping only), the quasi-static limit of the faster runs, over
   SLOW_RAMP_SECONDS and SLOW_HOLD_SECONDS (each ramp a whole number of turns);
+- one more run at CONVERGENCE_RPM (Rayleigh) with the rigid motion's d'Alembert loads scaled by
+  LOAD_SCALE: nodal loads carry the rest of each node's rigid acceleration (lumped masses; the
+  joints' rigid paths from the scene's poses, differentiated by their Fourier series). A
+  linear model's answer scales with the loads (its inertia preload with them); what does not
+  is the time domain's geometric nonlinearity;
 - generalized-alpha (Exudyn's implicit index-3 solver), spectral radius SPECTRAL_RADIUS,
   STEPS_PER_SAMPLE steps per recorded sample, so the last turn's SAMPLES samples fall on steps
   at flexlink's own crank angles (the scene's pose angle + 2 pi k / SAMPLES);
@@ -87,6 +92,9 @@ RAMP_SECONDS = 0.6  # a whole number of turns at both SPEEDS (3 and 6)
 HOLD_SECONDS = 1.0  # mode 1 (zeta 0.02 at 350 rad/s) decays by e^-7 meanwhile
 SLOW_RAMP_SECONDS = 2.0  # one whole turn at SLOW_SPEED
 SLOW_HOLD_SECONDS = 3.0  # three turns: mode 1 decays by e^-21, the last two turns compared
+LOAD_SCALE = 0.25  # a run at CONVERGENCE_RPM (Rayleigh) with the rigid motion's loads scaled
+# by it: the linear answer scales with the loads, the geometric nonlinearity does not
+KINEMATIC_HARMONICS = 40  # of the joints' rigid paths over the turn (theirs fall below 1e-12)
 NEWTON_ABS_TOL = 1e-6  # N: a force residual that moves the coupler's midspan by ~1e-9 m
 CONVERGENCE_RPM = 1200.0
 CONVERGENCE_MESHES = (8, 16, 32)  # at STEPS_PER_SAMPLE
@@ -280,12 +288,78 @@ def crank_angle(theta0, speed, ramp=RAMP_SECONDS):
     return angle
 
 
+def crank_rates(theta0, speed, ramp=RAMP_SECONDS):
+    """t -> (theta, d theta/dt, d2 theta/dt2) [rad, rad/s, rad/s^2] of ``crank_angle``."""
+    angle = crank_angle(theta0, speed, ramp)
+
+    def rates(t):
+        if t >= ramp:
+            return angle(t), speed, 0.0
+        tau = t / ramp
+        return (angle(t), speed * (tau - math.sin(2 * math.pi * tau) / (2 * math.pi)),
+                speed / ramp * (1.0 - math.cos(2 * math.pi * tau)))
+    return rates
+
+
+def joint_paths(scene, theta0):
+    """theta -> (first, second) derivatives in theta of the joints' rigid positions [m/rad,
+    m/rad^2], as complex x + iy per joint (topology order), by the Fourier series of the
+    scene's rigid poses at the SAMPLES crank angles of a turn."""
+    names = [joint.name for joint in scene.topology().joints]
+    grid = theta0 + 2.0 * np.pi * np.arange(4 * SAMPLES) / (4 * SAMPLES)
+    positions = np.array([[complex(*scene.rigid_state(a).points[name]) for name in names]
+                          for a in grid])
+    k = np.fft.fftfreq(len(grid), 1.0 / len(grid))
+    keep = np.abs(k) <= KINEMATIC_HARMONICS
+    c, k = (np.fft.fft(positions, axis=0) / len(grid))[keep], k[keep]
+
+    def derivatives(theta):
+        e = c * np.exp(1j * k * (theta - theta0))[:, None]
+        return (e * (1j * k)[:, None]).sum(axis=0), (e * -(k**2)[:, None]).sum(axis=0)
+    return derivatives
+
+
+def add_counter_loads(linkage, scene, theta0, rates, scale):
+    """Nodal loads (1 - ``scale``) m a [N] that carry that share of each node's rigid-motion
+    acceleration a (lumped mass m of its element halves; the rigid acceleration is linear
+    along a link between its joints'), so the links' elastic response answers to ``scale``
+    times the rigid motion's d'Alembert loads. ``rates``: ``crank_rates``."""
+    derivatives = joint_paths(scene, theta0)
+    index = {joint.name: i for i, joint in enumerate(scene.topology().joints)}
+    latest = {}
+
+    def joint_accelerations(t):
+        if t not in latest:
+            latest.clear()
+            theta, rate, acceleration = rates(t)
+            first, second = derivatives(theta)
+            latest[t] = second * rate**2 + first * acceleration
+        return latest[t]
+
+    for link in scene.topology().links:
+        _, length, _, nodes = linkage.links[link.name]
+        elements = len(nodes) - 1
+        share = (1.0 - scale) * link.section.mass_per_length * length / elements
+        for i, node in enumerate(nodes):
+            mass = share * (0.5 if i in (0, elements) else 1.0)
+
+            def load(mbs, t, vector, x=i / elements, mass=mass, a=index[link.start],
+                     b=index[link.end]):
+                acc = joint_accelerations(t)
+                here = acc[a] + x * (acc[b] - acc[a])
+                return [mass * here.real, mass * here.imag, 0.0]
+            linkage.mbs.AddLoad(LoadForceVector(
+                markerNumber=linkage.mbs.AddMarker(MarkerNodePosition(nodeNumber=node)),
+                loadVector=[0.0, 0.0, 0.0], loadVectorUserFunction=load))
+
+
 def steady_turn(scene, theta0, rpm, elements, steps_per_sample, law, ramp=RAMP_SECONDS,
-                hold=HOLD_SECONDS):
+                hold=HOLD_SECONDS, load_scale=1.0):
     """The last turn's midspan strain [-] per link at SAMPLES crank angles theta0 + 2 pi k /
     SAMPLES, its change from the turn before (relative to its peak), and the CPU time [s];
     the speed ramped over ``ramp`` [s] (a whole number of turns), then held for about
-    ``hold`` [s] (whole turns)."""
+    ``hold`` [s] (whole turns); the rigid motion's loads scaled by ``load_scale``
+    (``add_counter_loads``)."""
     speed = rpm * RPM
     turn = 2.0 * math.pi / speed
     turns = round((ramp / 2.0 + hold) / turn)  # whole turns, ramp included
@@ -299,6 +373,8 @@ def steady_turn(scene, theta0, rpm, elements, steps_per_sample, law, ramp=RAMP_S
     betas, spring_beta = law
     linkage = Linkage(scene, theta0, elements, betas, spring_beta,
                       crank_angle(theta0, speed, ramp))
+    if load_scale != 1.0:
+        add_counter_loads(linkage, scene, theta0, crank_rates(theta0, speed, ramp), load_scale)
     sensors = linkage.midspan_sensors()
     mbs = linkage.mbs
     mbs.Assemble()
@@ -463,20 +539,22 @@ def record(checks_only=False):
         print(name, json.dumps(damping[name]))
     runs = []
     finest = None
-    schedule = [(rpm, name, RAMP_SECONDS, HOLD_SECONDS) for rpm in SPEEDS for name in laws]
-    schedule.append((SLOW_SPEED, "rayleigh", SLOW_RAMP_SECONDS, SLOW_HOLD_SECONDS))
-    for rpm, name, ramp, hold in schedule:
+    schedule = [(rpm, name, RAMP_SECONDS, HOLD_SECONDS, 1.0) for rpm in SPEEDS for name in laws]
+    schedule.append((SLOW_SPEED, "rayleigh", SLOW_RAMP_SECONDS, SLOW_HOLD_SECONDS, 1.0))
+    schedule.append((CONVERGENCE_RPM, "rayleigh", RAMP_SECONDS, HOLD_SECONDS, LOAD_SCALE))
+    for rpm, name, ramp, hold, scale in schedule:
         law = laws[name]
-        run = steady_turn(scene, theta0, rpm, ELEMENTS, STEPS_PER_SAMPLE, law, ramp, hold)
+        run = steady_turn(scene, theta0, rpm, ELEMENTS, STEPS_PER_SAMPLE, law, ramp, hold,
+                          scale)
         if rpm == CONVERGENCE_RPM and name == "constant ratio":
             finest = run
-        runs.append({"speed_rev_min": rpm, "damping": name,
+        runs.append({"speed_rev_min": rpm, "damping": name, "load_scale": scale,
                      "strain_microstrain": {k: [float(x * 1e6) for x in v]
                                             for k, v in run["strain"].items()},
                      **{k: run[k] for k in ("turn_to_turn_change", "cpu_s", "turns",
                                             "ramp_turns", "ramp_s", "hold_s",
                                             "time_step_s")}})
-        print(f"{rpm:g} rev/min, {name}: peaks "
+        print(f"{rpm:g} rev/min, {name}, loads x {scale:g}: peaks "
               + ", ".join(f"{k} {np.abs(v).max() * 1e6:.3f}" for k, v in
                           run["strain"].items())
               + f" microstrain; {run['cpu_s']:.1f} s CPU", flush=True)
