@@ -30,6 +30,7 @@ import dataclasses
 import enum
 import functools
 import logging
+from collections.abc import Callable
 
 import numpy as np
 
@@ -58,6 +59,10 @@ ADIABATIC_STEPS = 64  # equal adiabatic steps a turn at least, then halved where
 FLOOR_POINTS = 4  # crank angles per sampled pose where the stiffness floor is sought
 STEP_PHASE = 2.0  # h omega_max bound [rad]: ln|mu| within 1.3e-4 per turn of h omega_max 0.5
 MAGNUS_BUDGET = 1 << 21  # Magnus steps a turn at most (about a minute): more is refused
+FOURTH_ORDER_MOST = 4096  # fourth-order steps a fallback takes; more: midpoint steps
+MIDPOINT_STEPS = 256  # the midpoint steps' first count a turn, then doubled
+MIDPOINT_TOLERANCE = 1e-4  # ln |mu| per turn between a count and its double: the map's 1e-3
+# with a margin (second order: the doubled count's error is about a third of the change)
 # every frozen mode losing this many e-folds a turn (|mu| below 2e-9): at such a speed a
 # parametric resonance would need a harmonic of order 2 omega / Omega, far above the
 # coefficients' own (poses / 2), so the adiabatic limit holds and no steps are needed
@@ -71,11 +76,15 @@ class Integrator(enum.StrEnum):
     omega_max <= step_phase), as accurate and many times slower below a few thousand rev/min
     (docs/critical-speeds.md, "Speed"); QUASI_STATIC, no steps: a speed so slow that every
     frozen mode decays by more than QUASI_STATIC_DECAY e-folds a turn (``quasi_static_
-    multipliers``), taken where the adiabatic steps are refused."""
+    multipliers``), taken where the adiabatic steps are refused; MIDPOINT, the
+    exponential-midpoint (second-order Magnus) steps of ``midpoint_multipliers``, whose count
+    follows how fast the coefficients turn, not the stiffest frequency: where the adiabatic
+    steps are refused and the fourth-order ones would number more than FOURTH_ORDER_MOST."""
 
     ADIABATIC = "adiabatic"
     MAGNUS = "magnus"
     QUASI_STATIC = "quasi-static"
+    MIDPOINT = "midpoint"
 
 
 @dataclasses.dataclass(frozen=True)
@@ -366,24 +375,34 @@ def _singular_poses(scene: Scene) -> str:
 def speed_multipliers(model: PeriodicModel, speed: float, steps: int = 200,
                       step_phase: float = STEP_PHASE,
                       integrator: Integrator = Integrator.ADIABATIC,
-                      adiabatic_steps: int = ADIABATIC_STEPS) -> FloquetResult:
+                      adiabatic_steps: int = ADIABATIC_STEPS,
+                      on_steps: Callable[[int], None] | None = None) -> FloquetResult:
     """Floquet multipliers over one revolution at crank ``speed`` [rad/s] (> 0). With
     ``Integrator.ADIABATIC``, by ``adiabatic_steps`` equal adiabatic steps at least (more
     where the damping needs them), each halved where the couplings need it
-    (``adiabatic.step_bounds``), and by the Magnus steps where the adiabatic basis
-    refuses or its grid cannot give them (logged). With ``Integrator.MAGNUS``, by at least
-    ``steps`` Magnus steps, and more where needed to keep h max|eig A| <= ``step_phase``: at
-    low speed one revolution spans many periods of the highest basis frequency, and the
-    Magnus step's error grows with h omega_max (docs/critical-speeds.md, convergence)."""
-    return multipliers_by(model, speed, steps, step_phase, integrator, adiabatic_steps)[0]
+    (``adiabatic.step_bounds``); where the adiabatic basis refuses or its grid cannot give
+    them (logged), the quasi-static bound where it holds, else the fourth-order Magnus steps,
+    or the midpoint steps where those would number more than FOURTH_ORDER_MOST. With
+    ``Integrator.MAGNUS``, by at least ``steps`` Magnus steps, and more where needed to keep
+    h max|eig A| <= ``step_phase``: at low speed one revolution spans many periods of the
+    highest basis frequency, and the Magnus step's error grows with h omega_max
+    (docs/critical-speeds.md, convergence). With ``Integrator.MIDPOINT``: ``midpoint_
+    multipliers``. ``on_steps``: called with each batch of Magnus steps done (progress)."""
+    return multipliers_by(model, speed, steps, step_phase, integrator, adiabatic_steps,
+                          on_steps)[0]
 
 
 def multipliers_by(model: PeriodicModel, speed: float, steps: int = 200,
                    step_phase: float = STEP_PHASE,
                    integrator: Integrator = Integrator.ADIABATIC,
-                   adiabatic_steps: int = ADIABATIC_STEPS) -> tuple[FloquetResult, Integrator]:
+                   adiabatic_steps: int = ADIABATIC_STEPS,
+                   on_steps: Callable[[int], None] | None = None
+                   ) -> tuple[FloquetResult, Integrator]:
     """``speed_multipliers`` and the integrator that gave them."""
-    if integrator is Integrator.ADIABATIC:
+    if integrator is Integrator.MIDPOINT:
+        return midpoint_multipliers(model, speed, on_steps), Integrator.MIDPOINT
+    fallback = integrator is Integrator.ADIABATIC
+    if fallback:
         try:
             basis = model.adiabatic  # its refusal does not depend on the speed: logged once
             return (adiabatic.adiabatic_monodromy(basis, speed, adiabatic_steps),
@@ -399,13 +418,57 @@ def multipliers_by(model: PeriodicModel, speed: float, steps: int = 200,
     system = model.system(speed, energy_coordinates=True)
     size = np.abs(np.linalg.eigvals(system((model.angles - model.angles[0]) / speed))).max()
     count = max(steps, int(np.ceil(period * size / step_phase)))
+    if fallback and count > FOURTH_ORDER_MOST:
+        return midpoint_multipliers(model, speed, on_steps), Integrator.MIDPOINT
     if count > MAGNUS_BUDGET:
         raise NumericalError(_too_many_steps(model, speed, count, size))
-    scaled = monodromy(system, period, count)
+    scaled = monodromy(system, period, count, on_steps=on_steps)
+    return _unscaled(model, scaled), Integrator.MAGNUS
+
+
+def midpoint_multipliers(model: PeriodicModel, speed: float,
+                         on_steps: Callable[[int], None] | None = None) -> FloquetResult:
+    """Floquet multipliers at crank ``speed`` [rad/s] by exponential-midpoint steps
+    (``floquet.propagators``, order 2) on the state (R q, q'), MIDPOINT_STEPS a turn, the
+    count doubled until the largest ln |mu| per turn moves by at most MIDPOINT_TOLERANCE (or
+    both counts put |mu| below exp(-QUASI_STATIC_DECAY): stable beyond doubt), the finer
+    count's multipliers returned. Each step is the exact flow of the equations frozen at its
+    midpoint, however stiff, so the count follows how fast the coefficients turn with the
+    crank (the poses' harmonics), not the stiffest basis vector: where the fourth-order
+    steps need h omega_max <= STEP_PHASE (case 3, 14 modes, Rayleigh damping: 1.6e5 of
+    them at 1200 rev/min), these settle within 1e-4 from 256 to 1024 steps
+    (``benchmarks/floquet_speed.py``). NumericalError past MAGNUS_BUDGET steps."""
+    period = 2.0 * np.pi / speed
+    system = model.system(speed, energy_coordinates=True)
+    count, previous = MIDPOINT_STEPS, None
+    while True:
+        result = _unscaled(model, monodromy(system, period, count, order=2, on_steps=on_steps))
+        if previous is not None and _settled(previous.largest_modulus, result.largest_modulus):
+            return result
+        if 2 * count > MAGNUS_BUDGET:
+            raise NumericalError(
+                f"the midpoint steps' largest |mu| at {rev_per_min(speed):.6g} rev/min still "
+                f"moves from {previous.largest_modulus:.6g} to {result.largest_modulus:.6g} "
+                f"at {count} steps a turn, the most this run allows")
+        previous, count = result, 2 * count
+
+
+def _settled(coarse: float, fine: float) -> bool:
+    """Whether two counts' largest |mu| agree within MIDPOINT_TOLERANCE in ln |mu|, or both
+    lie below exp(-QUASI_STATIC_DECAY)."""
+    floor = np.exp(-QUASI_STATIC_DECAY)
+    if max(coarse, fine) < floor:
+        return True
+    return bool(abs(np.log(max(fine, floor**2)) - np.log(max(coarse, floor**2)))
+                <= MIDPOINT_TOLERANCE)
+
+
+def _unscaled(model: PeriodicModel, scaled: FloquetResult) -> FloquetResult:
+    """The multipliers of the state (q, q') from the monodromy of (R q, q')."""
     n = len(model.frequencies)
     scale = np.eye(2 * n)
     scale[:n, :n] = model.energy_scale
-    return floquet(np.linalg.solve(scale, scaled.monodromy @ scale), period), Integrator.MAGNUS
+    return floquet(np.linalg.solve(scale, scaled.monodromy @ scale), scaled.period)
 
 
 def quasi_static_multipliers(model: PeriodicModel, speed: float) -> FloquetResult | None:

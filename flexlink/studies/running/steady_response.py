@@ -208,14 +208,15 @@ def periodic_solution(model: ForcedModel, speed: float,
 
 
 def steady_response(model: ForcedModel, speed: float, samples: int = SAMPLES,
-                    tolerance: float = TOLERANCE) -> SteadyResponse:
+                    tolerance: float = TOLERANCE, on_steps=None) -> SteadyResponse:
     """The steady response at crank ``speed`` [rad/s] > 0 over one revolution at ``samples``
     crank angles. UnstableError where a Floquet multiplier has |mu| >= 1 (the stability
-    map's multipliers at this speed, by its own step rule)."""
+    map's multipliers at this speed, by its own step rule; ``on_steps``: their progress, as
+    ``speed_multipliers``)."""
     if not (math.isfinite(speed) and speed > 0.0):
         raise InputError(f"crank speed {rev_per_min(speed):.6g} rev/min", field="speed",
                          expected="a positive finite speed")
-    stability = speed_multipliers(model.periodic, speed)
+    stability = speed_multipliers(model.periodic, speed, on_steps=on_steps)
     if stability.largest_modulus >= 1.0:
         raise UnstableError(f"largest Floquet multiplier |mu| = {stability.largest_modulus:.6g}"
                             " >= 1: the free motion grows, no steady state exists")
