@@ -57,7 +57,8 @@ class StabilityMap:
     floor [(rad/s)^2] (``PeriodicModel.stiffness_floor``: negative where the frozen frame is
     quasi-statically divergent at some crank angle); integrator: how the monodromies were
     integrated, and ``magnus_fallback`` (bool per speed): where the adiabatic steps were
-    refused and the Magnus steps taken instead; ``quasi_static`` (bool per speed): where no
+    refused and the Magnus steps taken instead (fourth-order, or midpoint where those
+    would be many: ``periodic.multipliers_by``); ``quasi_static`` (bool per speed): where no
     steps were needed, every frozen mode decaying fast (``periodic.quasi_static_multipliers``:
     the modulus there is an upper bound)."""
 
