@@ -12,6 +12,8 @@ from conftest import CASES_DIR
 from flexlink.analysis.periodic import (FOURTH_ORDER_MOST, Integrator, midpoint_multipliers,
                                         multipliers_by, periodic_model)
 from flexlink.scene import load_scene
+from flexlink.studies.running.stability_map import stability_map
+from flexlink.studies.running.steady_response import forced_model, steady_response
 from flexlink.units import RPM
 
 
@@ -43,3 +45,15 @@ def test_slow_stiff_speed_takes_few_steps_and_reports_them(stiff):
     assert 0 < sum(done) <= 2 * FOURTH_ORDER_MOST
     # a decay per turn of about zeta_1 omega_1 T (Liouville's bound for the slowest mode)
     assert np.isfinite(result.growth_per_period) and result.largest_modulus < 1e-2
+
+
+def test_response_and_map_report_steps_within_a_speed():
+    """The progress within one speed reaches the studies' callers (the commands' step bars)."""
+    scene = load_scene(CASES_DIR / "case3.toml", {"damping.rayleigh_beta": 1.1423e-4})
+    model = forced_model(scene, n_modes=3, elements_per_link=4, basis_size=8)
+    done = []
+    steady_response(model, 60 * RPM, samples=36, on_steps=done.append)
+    assert sum(done) > 0
+    done.clear()
+    stability_map(model.periodic, np.array([60.0, 61.0]) * RPM, on_steps=done.append)
+    assert sum(done) > 0
