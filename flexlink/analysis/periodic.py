@@ -62,8 +62,8 @@ STEP_PHASE = 2.0  # h omega_max bound [rad]: ln|mu| within 1.3e-4 per turn of h 
 MAGNUS_BUDGET = 1 << 21  # Magnus steps a turn at most (about a minute): more is refused
 FOURTH_ORDER_MOST = 4096  # fourth-order steps a fallback takes; more: midpoint steps
 MIDPOINT_STEPS = 256  # the midpoint steps' first count a turn, then doubled
-MIDPOINT_TOLERANCE = 1e-4  # ln |mu| per turn between a count and its double: the map's 1e-3
-# with a margin (second order: the doubled count's error is about a third of the change)
+MIDPOINT_TOLERANCE = 1e-4  # ln |mu| per turn between a count and its double, twice running:
+# the map's 1e-3 with a margin (second order: the finer count's error is about a third of it)
 # every frozen mode losing this many e-folds a turn (|mu| below 2e-9): at such a speed a
 # parametric resonance would need a harmonic of order 2 omega / Omega, far above the
 # coefficients' own (poses / 2), so the adiabatic limit holds and no steps are needed
@@ -451,7 +451,10 @@ def multipliers_by(model: PeriodicModel, speed: float, steps: int = 200,
     size = np.abs(np.linalg.eigvals(system((model.angles - model.angles[0]) / speed))).max()
     count = max(steps, int(np.ceil(period * size / step_phase)))
     if fallback and count > FOURTH_ORDER_MOST:
-        return midpoint_multipliers(model, speed, on_steps), Integrator.MIDPOINT
+        # the midpoint steps while they cost fewer steps in all than the fourth-order ones
+        midpoint = midpoint_multipliers(model, speed, on_steps, most=min(count, MAGNUS_BUDGET))
+        if midpoint is not None:
+            return midpoint, Integrator.MIDPOINT
     if count > MAGNUS_BUDGET:
         raise NumericalError(_too_many_steps(model, speed, count, size))
     scaled = monodromy(system, period, count, on_steps=on_steps)
@@ -459,40 +462,51 @@ def multipliers_by(model: PeriodicModel, speed: float, steps: int = 200,
 
 
 def midpoint_multipliers(model: PeriodicModel, speed: float,
-                         on_steps: Callable[[int], None] | None = None) -> FloquetResult:
+                         on_steps: Callable[[int], None] | None = None,
+                         most: int | None = None) -> FloquetResult | None:
     """Floquet multipliers at crank ``speed`` [rad/s] by exponential-midpoint steps
     (``floquet.propagators``, order 2) on the state (R q, q'), MIDPOINT_STEPS a turn, the
-    count doubled until the largest ln |mu| per turn moves by at most MIDPOINT_TOLERANCE (or
-    both counts put |mu| below exp(-QUASI_STATIC_DECAY): stable beyond doubt), the finer
-    count's multipliers returned. Each step is the exact flow of the equations frozen at its
-    midpoint, however stiff, so the count follows how fast the coefficients turn with the
-    crank (the poses' harmonics), not the stiffest basis vector: where the fourth-order
-    steps need h omega_max <= STEP_PHASE (case 3, 14 modes, Rayleigh damping: 1.6e5 of
-    them at 1200 rev/min), these settle within 1e-4 from 256 to 1024 steps
-    (``benchmarks/floquet_speed.py``). NumericalError past MAGNUS_BUDGET steps."""
+    count doubled until the largest ln |mu| per turn has moved by at most MIDPOINT_TOLERANCE
+    over two doublings running (``_settled``), the finest count's multipliers returned. Each
+    step is the exact flow of the equations frozen at its midpoint, however stiff, so the
+    count follows how fast the coefficients turn with the crank, not the stiffest basis
+    vector: where the fourth-order steps need h omega_max <= STEP_PHASE (case 3, 14 modes,
+    Rayleigh damping: 2e5 of them at 1200 rev/min) these settle at 1024 steps a turn, 1792
+    in all (``benchmarks/floquet_speed.py``). Where the stiff vectors are neither overdamped nor
+    many periods a step the convergence is uneven (the aluminium four-bar at 100 rev/min:
+    6e-5 from 2048 to 4096 steps, then 6.8e-4 to 8192), hence two doublings. ``most``: the
+    steps in all past which None is returned (None: MAGNUS_BUDGET a count, then
+    NumericalError)."""
     period = 2.0 * np.pi / speed
     system = model.system(speed, energy_coordinates=True)
-    count, previous = MIDPOINT_STEPS, None
+    count, spent, moduli = MIDPOINT_STEPS, 0, []
     while True:
+        if most is not None and spent + count > most:
+            return None
         result = _unscaled(model, monodromy(system, period, count, order=2, on_steps=on_steps))
-        if previous is not None and _settled(previous.largest_modulus, result.largest_modulus):
+        spent += count
+        moduli.append(result.largest_modulus)
+        if _settled(moduli[-3:]):
             return result
-        if 2 * count > MAGNUS_BUDGET:
+        if most is None and 2 * count > MAGNUS_BUDGET:
             raise NumericalError(
                 f"the midpoint steps' largest |mu| at {rev_per_min(speed):.6g} rev/min still "
-                f"moves from {previous.largest_modulus:.6g} to {result.largest_modulus:.6g} "
-                f"at {count} steps a turn, the most this run allows")
-        previous, count = result, 2 * count
+                f"moves ({', '.join(f'{m:.6g}' for m in moduli[-3:])}) at {count} steps a "
+                "turn, the most this run allows")
+        count *= 2
 
 
-def _settled(coarse: float, fine: float) -> bool:
-    """Whether two counts' largest |mu| agree within MIDPOINT_TOLERANCE in ln |mu|, or both
-    lie below exp(-QUASI_STATIC_DECAY)."""
+def _settled(moduli: list[float]) -> bool:
+    """Whether three successive counts' largest |mu| agree, each with the next, within
+    MIDPOINT_TOLERANCE in ln |mu|, or all lie below exp(-QUASI_STATIC_DECAY) (stable beyond
+    doubt)."""
+    if len(moduli) < 3:
+        return False
     floor = np.exp(-QUASI_STATIC_DECAY)
-    if max(coarse, fine) < floor:
+    if max(moduli) < floor:
         return True
-    return bool(abs(np.log(max(fine, floor**2)) - np.log(max(coarse, floor**2)))
-                <= MIDPOINT_TOLERANCE)
+    logs = np.log(np.maximum(moduli, floor**2))
+    return bool(np.all(np.abs(np.diff(logs)) <= MIDPOINT_TOLERANCE))
 
 
 def _unscaled(model: PeriodicModel, scaled: FloquetResult) -> FloquetResult:
