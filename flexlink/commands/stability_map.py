@@ -27,8 +27,9 @@ from flexlink.analysis.periodic import Integrator
               help="Relative frequency excess the basis may have at any pose.")
 @click.option("--integrator", default=Integrator.ADIABATIC.value, show_default=True,
               type=EnumChoice(Integrator),
-              help="Monodromy steps: adiabatic, or magnus (as accurate, many times slower "
-                   "below a few thousand rev/min; docs/critical-speeds.md).")
+              help="Monodromy steps: adiabatic; magnus (as accurate, many times slower "
+                   "below a few thousand rev/min); midpoint (the fallback's steps where the "
+                   "basis is stiff; docs/critical-speeds.md).")
 @scheduler_option("the speeds in chunks")
 @json_option
 @out_option
