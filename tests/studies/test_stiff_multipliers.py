@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 
 from conftest import CASES_DIR, SCENES_DIR
-from flexlink.analysis.periodic import (FOURTH_ORDER_MOST, Integrator, midpoint_multipliers,
-                                        multipliers_by, periodic_model)
+from flexlink.analysis.periodic import (Integrator, midpoint_multipliers, multipliers_by,
+                                        periodic_model)
 from flexlink.scene import load_scene
 from flexlink.studies.running.stability_map import stability_map
 from flexlink.studies.running.steady_response import forced_model, steady_response
@@ -38,11 +38,11 @@ def test_midpoint_steps_agree_with_the_fourth_order_steps(stiff, rpm):
 def test_slow_stiff_speed_takes_few_steps_and_reports_them(stiff):
     """At 60 rev/min the fourth-order steps need some 50 000 a turn (5 s here, and growing
     with the stiffest vector); the fallback takes the midpoint steps, reports each batch, and
-    settles within 2 FOURTH_ORDER_MOST steps in all."""
+    settles within 4096 steps in all (1792 measured)."""
     done = []
     result, used = multipliers_by(stiff, 60 * RPM, on_steps=done.append)
     assert used is Integrator.MIDPOINT
-    assert 0 < sum(done) <= 2 * FOURTH_ORDER_MOST
+    assert 0 < sum(done) <= 4096
     # a decay per turn of about zeta_1 omega_1 T (Liouville's bound for the slowest mode)
     assert np.isfinite(result.growth_per_period) and result.largest_modulus < 1e-2
 
