@@ -52,11 +52,12 @@ def command(scene_path, speed, speeds, count, n_modes, damping_ratio, elements, 
     elements_per_link, mesh = periodic_mesh(scene, n_modes, elements, tol)
     model = study.forced_model(scene, n_modes, damping_ratio=damping_ratio, points=at,
                                elements_per_link=elements_per_link)
-    if sweep is None:
-        with step_progress("Floquet steps", as_json) as on_steps:
+    with step_progress("Floquet steps within a speed", as_json) as on_steps:
+        if sweep is None:
             result = study.steady_response(model, one, on_steps=on_steps)
-    else:
-        result = study.response_sweep(model, sweep, progress=progress_bar("speeds", as_json))
+        else:
+            result = study.response_sweep(model, sweep, progress=progress_bar("speeds", as_json),
+                                          on_steps=on_steps)
     document, files = write_response(result, model, folder, scene.name, mesh)
     publish(folder / "response.json", document, files, "\n".join(response_lines(document)),
             as_json)

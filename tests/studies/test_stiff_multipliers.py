@@ -13,7 +13,8 @@ from flexlink.analysis.periodic import (Integrator, midpoint_multipliers, multip
                                         periodic_model)
 from flexlink.scene import load_scene
 from flexlink.studies.running.stability_map import stability_map
-from flexlink.studies.running.steady_response import forced_model, steady_response
+from flexlink.studies.running.steady_response import (forced_model, response_sweep,
+                                                       steady_response)
 from flexlink.units import RPM
 
 
@@ -53,6 +54,9 @@ def test_response_and_map_report_steps_within_a_speed():
     model = forced_model(scene, n_modes=3, elements_per_link=4, basis_size=8)
     done = []
     steady_response(model, 60 * RPM, samples=36, on_steps=done.append)
+    assert sum(done) > 0
+    done.clear()
+    response_sweep(model, np.array([60.0]) * RPM, samples=36, on_steps=done.append)
     assert sum(done) > 0
     done.clear()
     stability_map(model.periodic, np.array([60.0, 61.0]) * RPM, on_steps=done.append)

@@ -253,9 +253,12 @@ class ResponseSweep:
 
 
 def response_sweep(model: ForcedModel, speeds, samples: int = SAMPLES,
-                   tolerance: float = TOLERANCE, progress=None) -> ResponseSweep:
+                   tolerance: float = TOLERANCE, progress=None,
+                   on_steps=None) -> ResponseSweep:
     """Peak strain and deflection over ``speeds`` [rad/s] (speed 0: no inertia loads, the
-    static answer to the scene's [[loads]]); unstable speeds are NaN, not refused."""
+    static answer to the scene's [[loads]]); unstable speeds are NaN, not refused.
+    ``progress`` wraps the speeds (a bar), ``on_steps`` counts the Floquet steps within each
+    (``steady_response``)."""
     speeds = np.asarray(speeds, dtype=float)
     k = len(model.points)
     strain, deflection = np.full((len(speeds), k), np.nan), np.full((len(speeds), k), np.nan)
@@ -265,7 +268,7 @@ def response_sweep(model: ForcedModel, speeds, samples: int = SAMPLES,
             strain[i], deflection[i] = _static_peaks(model, samples)
             continue
         try:
-            r = steady_response(model, speeds[i], samples, tolerance)
+            r = steady_response(model, speeds[i], samples, tolerance, on_steps)
         except UnstableError:
             continue
         strain[i], deflection[i], modulus[i] = r.peak_strain, r.peak_deflection, \
