@@ -15,6 +15,7 @@ COMMANDS = {
     "export": ["-e", "4", "--no-pictures", "--phases", "2"],
     "report": ["-e", "4", "--cycle-poses", "4"],
     "outputs": ["--poses", "12"],
+    "response": ["--speed", "300 rev/min", "-e", "4"],
 }
 
 
@@ -32,3 +33,16 @@ def test_command_answers_or_refuses_in_one_line(tmp_path, scene, command):
     elif command != "report":
         json.loads(done.output[done.output.index("{"):])
 
+
+
+def test_an_unstable_speed_is_refused_with_where_to_look(tmp_path):
+    """The aluminium four-bar diverges at 1000 rev/min (|mu| ~ 40): response refuses in one
+    line that names the multiplier and the stability-map run that shows the unstable range."""
+    scene = ROOT / "scenes" / "kineto_aluminium.toml"
+    done = CliRunner().invoke(main, ["response", str(scene), "--speed", "1000 rev/min", "-e",
+                                     "4", "--out", str(tmp_path)])
+    assert done.exit_code == 2, done.output
+    [line] = [line for line in done.output.splitlines() if line.startswith("flexlink: error")]
+    assert "no steady state at 1000 rev/min" in line and "|mu| =" in line
+    assert "stability-map --speeds '500:2000 rev/min'" in line
+    assert not (tmp_path / "kineto_aluminium" / "response.json").exists()

@@ -218,8 +218,11 @@ def steady_response(model: ForcedModel, speed: float, samples: int = SAMPLES,
                          expected="a positive finite speed")
     stability = speed_multipliers(model.periodic, speed, on_steps=on_steps)
     if stability.largest_modulus >= 1.0:
-        raise UnstableError(f"largest Floquet multiplier |mu| = {stability.largest_modulus:.6g}"
-                            " >= 1: the free motion grows, no steady state exists")
+        rpm = rev_per_min(speed)
+        raise UnstableError(f"no steady state at {rpm:.6g} rev/min: largest Floquet multiplier "
+                            f"|mu| = {stability.largest_modulus:.6g} >= 1, the free motion "
+                            "grows; the unstable speeds around it: flexlink stability-map "
+                            f"--speeds '{rpm / 2:.4g}:{2 * rpm:.4g} rev/min'")
     turn = 2.0 * np.pi * np.arange(samples) / samples
     q = periodic_solution(model, speed, tolerance).at(turn)
     angles = model.periodic.angles[0] + turn
