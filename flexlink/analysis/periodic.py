@@ -287,8 +287,8 @@ class PeriodicModel:
         try:
             return adiabatic.adiabatic_basis(self.angles[0] + theta, a0, a0_prime, a1, a2)
         except NumericalError as refusal:  # the same at every speed: said once, without one
-            log.warning("adiabatic steps refused at every speed (%s): Magnus steps instead",
-                        refusal)
+            log.info("adiabatic steps refused at every speed (%s): Magnus steps instead",
+                     refusal)
             return refusal
 
     def system(self, speed: float, *, energy_coordinates: bool = False):
@@ -451,8 +451,8 @@ def multipliers_by(model: PeriodicModel, speed: float, steps: int = 200,
             if quasi is not None:
                 return quasi, Integrator.QUASI_STATIC
             if not isinstance(model._adiabatic_or_refusal, NumericalError):
-                log.warning("adiabatic steps refused at %.6g rev/min (%s): Magnus steps there",
-                            rev_per_min(speed), error)
+                log.info("adiabatic steps refused at %.6g rev/min (%s): Magnus steps there",
+                         rev_per_min(speed), error)
     period = 2.0 * np.pi / speed
     system = model.system(speed, energy_coordinates=True)
     size = np.abs(np.linalg.eigvals(system((model.angles - model.angles[0]) / speed))).max()
