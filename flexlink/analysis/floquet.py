@@ -110,24 +110,37 @@ CHUNK = 1024  # Magnus steps formed at once: bounded memory, few numpy calls
 
 
 def monodromy(system: Callable[[np.ndarray], np.ndarray], period: float,
-              steps: int) -> FloquetResult:
-    """Phi(T) of x' = A(t) x over one period by `steps` fourth-order Magnus steps.
+              steps: int, order: int = 4,
+              on_steps: Callable[[int], None] | None = None) -> FloquetResult:
+    """Phi(T) of x' = A(t) x over one period by `steps` Magnus steps of ``order`` 4 or 2.
 
     system: times (m,) [s] -> (m, n, n) A at those times, periodic with `period` [s];
     steps: fixed steps per period. The steps are formed CHUNK at a time and each chunk's
     exponentials multiplied pairwise (a product tree: log2(CHUNK) stacked products instead of
-    CHUNK single ones, the same product in the same order)."""
-    return floquet(propagators(system, period, 1, steps)[0], period)
+    CHUNK single ones, the same product in the same order). ``on_steps``: called with the
+    count of steps done after each chunk (a progress bar's update)."""
+    return floquet(propagators(system, period, 1, steps, order, on_steps)[0], period)
 
 
 def propagators(system: Callable[[np.ndarray], np.ndarray], period: float, intervals: int,
-                steps: int) -> np.ndarray:
+                steps: int, order: int = 4,
+                on_steps: Callable[[int], None] | None = None) -> np.ndarray:
     """(intervals, n, n): the fundamental matrix of each of ``intervals`` equal consecutive
     intervals of [0, period] [s] (the k-th maps x(t_k) to x(t_{k+1})), each by ``steps``
     Magnus steps; their product, later on the left, is Phi(period). Short intervals are
-    formed several at a time, so a fine output grid costs no more calls than one period."""
+    formed several at a time, so a fine output grid costs no more calls than one period.
+
+    ``order`` 4: the two-node fourth-order step (module docstring). ``order`` 2: the
+    exponential midpoint step expm(h A(t_k + h/2)), the Magnus series' first term. Its
+    exponent holds no commutator, so a step many periods of the stiffest mode long is still
+    the exact flow of the equations frozen at its midpoint (decaying where they decay): its
+    error follows how much A changes over the step, not how large A is. The fourth-order
+    step's commutator grows as h^3 ||A|| ||A'||, and past h max|eig A| of a few tens it
+    injects growth that is not in the equations (overflow within one turn)."""
     if not (np.isfinite(period) and period > 0.0):
         raise NumericalError(f"period must be a positive finite time in s, got {period}")
+    if order not in (2, 4):
+        raise NumericalError(f"Magnus order must be 2 or 4, got {order}")
     if steps < 1 or intervals < 1:
         raise NumericalError(f"steps and intervals must be at least 1, got {steps}, "
                              f"{intervals}")
@@ -143,29 +156,43 @@ def propagators(system: Callable[[np.ndarray], np.ndarray], period: float, inter
         for k in range(intervals):
             phi = None
             for first in range(k * steps, (k + 1) * steps, CHUNK):
-                chunk = ordered_product(_steps(system, h, first, min((k + 1) * steps,
-                                                                     first + CHUNK), ratio))
+                last = min((k + 1) * steps, first + CHUNK)
+                chunk = ordered_product(_steps(system, h, first, last, ratio, order))
                 phi = chunk if phi is None else chunk @ phi
+                if on_steps is not None:
+                    on_steps(last - first)
             out[k] = phi
     else:
         group = CHUNK // steps
         for k in range(0, intervals, group):
             count = min(group, intervals - k)
-            factors = _steps(system, h, k * steps, (k + count) * steps, ratio)
+            factors = _steps(system, h, k * steps, (k + count) * steps, ratio, order)
             out[k:k + count] = ordered_product(factors.reshape(count, steps, len(d), len(d)))
+            if on_steps is not None:
+                on_steps(count * steps)
     return out / ratio
 
 
-def _steps(system, h: float, first: int, last: int, ratio: np.ndarray) -> np.ndarray:
-    """The balanced exponentials of Magnus steps first..last-1 (of length h [s] from t = 0)."""
+def _steps(system, h: float, first: int, last: int, ratio: np.ndarray,
+           order: int = 4) -> np.ndarray:
+    """The balanced exponentials of Magnus steps first..last-1 (of length h [s] from t = 0),
+    of ``order`` 4 or 2 (``propagators``)."""
     starts = h * np.arange(first, last)
-    a1 = np.asarray(system(starts + (0.5 - _GAUSS_OFFSET) * h), dtype=float)
-    a2 = np.asarray(system(starts + (0.5 + _GAUSS_OFFSET) * h), dtype=float)
-    if a1.ndim != 3 or a1.shape[0] != len(starts) or a1.shape[1] != a1.shape[2]:
-        raise NumericalError(f"system must return ({len(starts)}, n, n) matrices, got "
-                             f"{a1.shape}")
+    if order == 2:
+        return exponentials(h * _sampled(system, starts + 0.5 * h) * ratio)
+    a1 = _sampled(system, starts + (0.5 - _GAUSS_OFFSET) * h)
+    a2 = _sampled(system, starts + (0.5 + _GAUSS_OFFSET) * h)
     omega = 0.5 * h * (a1 + a2) + (np.sqrt(3.0) / 12.0) * h * h * (a2 @ a1 - a1 @ a2)
     return exponentials(omega * ratio)
+
+
+def _sampled(system, times: np.ndarray) -> np.ndarray:
+    """A at ``times`` (m,), checked to be (m, n, n)."""
+    a = np.asarray(system(times), dtype=float)
+    if a.ndim != 3 or a.shape[0] != len(times) or a.shape[1] != a.shape[2]:
+        raise NumericalError(f"system must return ({len(times)}, n, n) matrices, got "
+                             f"{a.shape}")
+    return a
 
 
 def ordered_product(factors: np.ndarray) -> np.ndarray:

@@ -30,6 +30,7 @@ import dataclasses
 import enum
 import functools
 import logging
+from collections.abc import Callable
 
 import numpy as np
 
@@ -56,8 +57,13 @@ ADIABATIC_GRID = 2048  # crank angles of the adiabatic basis per turn: 1024 step
 ADIABATIC_STEPS = 64  # equal adiabatic steps a turn at least, then halved where Q needs:
 # ln |mu| per turn within the map's 1e-3 (docs/critical-speeds.md, "Convergence")
 FLOOR_POINTS = 4  # crank angles per sampled pose where the stiffness floor is sought
+REST_GROWTH = 1e-8  # growth rate at rest over max |lambda| beyond round-off (``rest_rates``)
 STEP_PHASE = 2.0  # h omega_max bound [rad]: ln|mu| within 1.3e-4 per turn of h omega_max 0.5
 MAGNUS_BUDGET = 1 << 21  # Magnus steps a turn at most (about a minute): more is refused
+FOURTH_ORDER_MOST = 16384  # fourth-order steps a fallback takes as they are; more: midpoint first
+MIDPOINT_STEPS = 256  # the midpoint steps' first count a turn, then doubled
+MIDPOINT_TOLERANCE = 1e-4  # ln |mu| per turn between a count and its double, twice running:
+# the map's 1e-3 with a margin (second order: the finer count's error is about a third of it)
 # every frozen mode losing this many e-folds a turn (|mu| below 2e-9): at such a speed a
 # parametric resonance would need a harmonic of order 2 omega / Omega, far above the
 # coefficients' own (poses / 2), so the adiabatic limit holds and no steps are needed
@@ -71,11 +77,15 @@ class Integrator(enum.StrEnum):
     omega_max <= step_phase), as accurate and many times slower below a few thousand rev/min
     (docs/critical-speeds.md, "Speed"); QUASI_STATIC, no steps: a speed so slow that every
     frozen mode decays by more than QUASI_STATIC_DECAY e-folds a turn (``quasi_static_
-    multipliers``), taken where the adiabatic steps are refused."""
+    multipliers``), taken where the adiabatic steps are refused; MIDPOINT, the
+    exponential-midpoint (second-order Magnus) steps of ``midpoint_multipliers``, whose count
+    follows how fast the coefficients turn, not the stiffest frequency: where the adiabatic
+    steps are refused and the fourth-order ones would number more than FOURTH_ORDER_MOST."""
 
     ADIABATIC = "adiabatic"
     MAGNUS = "magnus"
     QUASI_STATIC = "quasi-static"
+    MIDPOINT = "midpoint"
 
 
 @dataclasses.dataclass(frozen=True)
@@ -174,6 +184,29 @@ class PeriodicModel:
         at_rest, per_speed = self._floor_pencil
         return float(np.linalg.eigvalsh(speed_quadratic(speed, at_rest, per_speed))[:, 0].min())
 
+    def rest_rates(self) -> tuple[np.ndarray, np.ndarray, float]:
+        """(theta (m,) [rad], rates (m,) [1/s], scale [1/s]): at FLOOR_POINTS crank angles
+        per sampled pose, the fastest growth max Re lambda of the equations frozen at rest,
+        x' = [[0, I], [-M^-1 K, -M^-1 C]] x, with M^-1 K and M^-1 C interpolated as the
+        integrators take them (``per_mass``), and max |lambda| over the turn. At rest
+        nothing turns: with the stiffness positive (``stiffness_floor``) and the damping
+        dissipative every frozen pose decays or keeps its energy, so a growth well above
+        round-off comes from an interpolation between poses that does not resolve how the
+        matrices change (rigid pins at 13 poses: M^-1 K has an eigenvalue of -1.2e8 (rad/s)^2
+        between poses, a multiplier of 5e130 at 600 rev/min). Its mean over the turn is the
+        exponent of the slow-speed limit of the largest multiplier (``quasi_static_
+        multipliers``): positive, the interpolated equations are unstable at slow speeds."""
+        theta = self.angles[0] + np.linspace(0.0, 2.0 * np.pi, FLOOR_POINTS * len(self.angles),
+                                             endpoint=False)
+        samples = self.per_mass
+        n = samples.shape[-1]
+        at_rest = np.zeros((len(theta), 2 * n, 2 * n))
+        at_rest[:, :n, n:] = np.eye(n)
+        at_rest[:, n:, :n] = -self.at(samples[:, 2], theta)
+        at_rest[:, n:, n:] = -self.at(samples[:, 0], theta)
+        values = np.linalg.eigvals(at_rest)
+        return theta, values.real.max(axis=1), float(np.abs(values).max())
+
     @functools.cached_property
     def _floor_pencil(self) -> tuple[np.ndarray, np.ndarray]:
         """L sym(K) L^T and L sym(K2) L^T at FLOOR_POINTS points per sampled pose, L L^T =
@@ -254,8 +287,8 @@ class PeriodicModel:
         try:
             return adiabatic.adiabatic_basis(self.angles[0] + theta, a0, a0_prime, a1, a2)
         except NumericalError as refusal:  # the same at every speed: said once, without one
-            log.warning("adiabatic steps refused at every speed (%s): Magnus steps instead",
-                        refusal)
+            log.info("adiabatic steps refused at every speed (%s): Magnus steps instead",
+                     refusal)
             return refusal
 
     def system(self, speed: float, *, energy_coordinates: bool = False):
@@ -351,6 +384,21 @@ def periodic_model(scene: Scene, n_modes: int = 6, poses: int = 37,
         raise NumericalError(
             f"{scene.path}: between the {poses} sampled poses the interpolated stiffness is "
             f"indefinite (lowest eigenvalue {floor:.3g} (rad/s)^2 at rest): {advice}")
+    theta, rates, scale = model.rest_rates()
+    k = int(np.argmax(rates))
+    where = (f"rate {rates[k]:.3g} 1/s near crank {np.degrees(theta[k]) % 360.0:.4g} deg, "
+             f"{rates.mean():.3g} 1/s on average over the turn")
+    if rates.mean() > REST_GROWTH * scale:
+        raise NumericalError(
+            f"{scene.path}: between the {poses} sampled poses the interpolated equations grow "
+            f"at rest ({where}), where every pose is stable: the poses do not resolve how the "
+            "frame's matrices change over the turn, and its multipliers would show a false "
+            f"instability; use more poses ({2 * poses - 1} or more)")
+    if rates[k] > REST_GROWTH * scale:
+        log.warning("%s: between the %d sampled poses the interpolated equations grow at rest "
+                    "in places (%s), though they decay over the turn: more poses (%d) would "
+                    "resolve the frame's matrices better", scene.path, poses, where,
+                    2 * poses - 1)
     return model
 
 
@@ -366,24 +414,34 @@ def _singular_poses(scene: Scene) -> str:
 def speed_multipliers(model: PeriodicModel, speed: float, steps: int = 200,
                       step_phase: float = STEP_PHASE,
                       integrator: Integrator = Integrator.ADIABATIC,
-                      adiabatic_steps: int = ADIABATIC_STEPS) -> FloquetResult:
+                      adiabatic_steps: int = ADIABATIC_STEPS,
+                      on_steps: Callable[[int], None] | None = None) -> FloquetResult:
     """Floquet multipliers over one revolution at crank ``speed`` [rad/s] (> 0). With
     ``Integrator.ADIABATIC``, by ``adiabatic_steps`` equal adiabatic steps at least (more
     where the damping needs them), each halved where the couplings need it
-    (``adiabatic.step_bounds``), and by the Magnus steps where the adiabatic basis
-    refuses or its grid cannot give them (logged). With ``Integrator.MAGNUS``, by at least
-    ``steps`` Magnus steps, and more where needed to keep h max|eig A| <= ``step_phase``: at
-    low speed one revolution spans many periods of the highest basis frequency, and the
-    Magnus step's error grows with h omega_max (docs/critical-speeds.md, convergence)."""
-    return multipliers_by(model, speed, steps, step_phase, integrator, adiabatic_steps)[0]
+    (``adiabatic.step_bounds``); where the adiabatic basis refuses or its grid cannot give
+    them (logged), the quasi-static bound where it holds, else the fourth-order Magnus steps,
+    or the midpoint steps where those would number more than FOURTH_ORDER_MOST. With
+    ``Integrator.MAGNUS``, by at least ``steps`` Magnus steps, and more where needed to keep
+    h max|eig A| <= ``step_phase``: at low speed one revolution spans many periods of the
+    highest basis frequency, and the Magnus step's error grows with h omega_max
+    (docs/critical-speeds.md, convergence). With ``Integrator.MIDPOINT``: ``midpoint_
+    multipliers``. ``on_steps``: called with each batch of Magnus steps done (progress)."""
+    return multipliers_by(model, speed, steps, step_phase, integrator, adiabatic_steps,
+                          on_steps)[0]
 
 
 def multipliers_by(model: PeriodicModel, speed: float, steps: int = 200,
                    step_phase: float = STEP_PHASE,
                    integrator: Integrator = Integrator.ADIABATIC,
-                   adiabatic_steps: int = ADIABATIC_STEPS) -> tuple[FloquetResult, Integrator]:
+                   adiabatic_steps: int = ADIABATIC_STEPS,
+                   on_steps: Callable[[int], None] | None = None
+                   ) -> tuple[FloquetResult, Integrator]:
     """``speed_multipliers`` and the integrator that gave them."""
-    if integrator is Integrator.ADIABATIC:
+    if integrator is Integrator.MIDPOINT:
+        return midpoint_multipliers(model, speed, on_steps), Integrator.MIDPOINT
+    fallback = integrator is Integrator.ADIABATIC
+    if fallback:
         try:
             basis = model.adiabatic  # its refusal does not depend on the speed: logged once
             return (adiabatic.adiabatic_monodromy(basis, speed, adiabatic_steps),
@@ -393,19 +451,80 @@ def multipliers_by(model: PeriodicModel, speed: float, steps: int = 200,
             if quasi is not None:
                 return quasi, Integrator.QUASI_STATIC
             if not isinstance(model._adiabatic_or_refusal, NumericalError):
-                log.warning("adiabatic steps refused at %.6g rev/min (%s): Magnus steps there",
-                            rev_per_min(speed), error)
+                log.info("adiabatic steps refused at %.6g rev/min (%s): Magnus steps there",
+                         rev_per_min(speed), error)
     period = 2.0 * np.pi / speed
     system = model.system(speed, energy_coordinates=True)
     size = np.abs(np.linalg.eigvals(system((model.angles - model.angles[0]) / speed))).max()
     count = max(steps, int(np.ceil(period * size / step_phase)))
+    if fallback and count > FOURTH_ORDER_MOST:
+        # the midpoint steps while they number at most half the fourth-order count in all
+        # (a midpoint step costs about 0.75 of a fourth-order one): where they do not settle
+        # by then, the fourth-order steps cost at most 1.4 times what they cost alone
+        midpoint = midpoint_multipliers(model, speed, on_steps,
+                                        most=min(count, MAGNUS_BUDGET) // 2)
+        if midpoint is not None:
+            return midpoint, Integrator.MIDPOINT
     if count > MAGNUS_BUDGET:
         raise NumericalError(_too_many_steps(model, speed, count, size))
-    scaled = monodromy(system, period, count)
+    scaled = monodromy(system, period, count, on_steps=on_steps)
+    return _unscaled(model, scaled), Integrator.MAGNUS
+
+
+def midpoint_multipliers(model: PeriodicModel, speed: float,
+                         on_steps: Callable[[int], None] | None = None,
+                         most: int | None = None) -> FloquetResult | None:
+    """Floquet multipliers at crank ``speed`` [rad/s] by exponential-midpoint steps
+    (``floquet.propagators``, order 2) on the state (R q, q'), MIDPOINT_STEPS a turn, the
+    count doubled until the largest ln |mu| per turn has moved by at most MIDPOINT_TOLERANCE
+    over two doublings running (``_settled``), the finest count's multipliers returned. Each
+    step is the exact flow of the equations frozen at its midpoint, however stiff, so the
+    count follows how fast the coefficients turn with the crank, not the stiffest basis
+    vector: where the fourth-order steps need h omega_max <= STEP_PHASE (case 3, 14 modes,
+    Rayleigh damping: 2e5 of them at 1200 rev/min) these settle at 1024 steps a turn, 1792
+    in all (``benchmarks/floquet_speed.py``). Where the stiff vectors are neither overdamped nor
+    many periods a step the convergence is uneven (the aluminium four-bar at 100 rev/min:
+    6e-5 from 2048 to 4096 steps, then 6.8e-4 to 8192), hence two doublings. ``most``: the
+    steps in all past which None is returned (None: MAGNUS_BUDGET a count, then
+    NumericalError)."""
+    period = 2.0 * np.pi / speed
+    system = model.system(speed, energy_coordinates=True)
+    count, spent, moduli = MIDPOINT_STEPS, 0, []
+    while True:
+        if most is not None and spent + count > most:
+            return None
+        result = _unscaled(model, monodromy(system, period, count, order=2, on_steps=on_steps))
+        spent += count
+        moduli.append(result.largest_modulus)
+        if _settled(moduli[-3:]):
+            return result
+        if most is None and 2 * count > MAGNUS_BUDGET:
+            raise NumericalError(
+                f"the midpoint steps' largest |mu| at {rev_per_min(speed):.6g} rev/min still "
+                f"moves ({', '.join(f'{m:.6g}' for m in moduli[-3:])}) at {count} steps a "
+                "turn, the most this run allows")
+        count *= 2
+
+
+def _settled(moduli: list[float]) -> bool:
+    """Whether three successive counts' largest |mu| agree, each with the next, within
+    MIDPOINT_TOLERANCE in ln |mu|, or all lie below exp(-QUASI_STATIC_DECAY) (stable beyond
+    doubt)."""
+    if len(moduli) < 3:
+        return False
+    floor = np.exp(-QUASI_STATIC_DECAY)
+    if max(moduli) < floor:
+        return True
+    logs = np.log(np.maximum(moduli, floor**2))
+    return bool(np.all(np.abs(np.diff(logs)) <= MIDPOINT_TOLERANCE))
+
+
+def _unscaled(model: PeriodicModel, scaled: FloquetResult) -> FloquetResult:
+    """The multipliers of the state (q, q') from the monodromy of (R q, q')."""
     n = len(model.frequencies)
     scale = np.eye(2 * n)
     scale[:n, :n] = model.energy_scale
-    return floquet(np.linalg.solve(scale, scaled.monodromy @ scale), period), Integrator.MAGNUS
+    return floquet(np.linalg.solve(scale, scaled.monodromy @ scale), scaled.period)
 
 
 def quasi_static_multipliers(model: PeriodicModel, speed: float) -> FloquetResult | None:

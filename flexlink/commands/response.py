@@ -33,7 +33,7 @@ def command(scene_path, speed, speeds, count, n_modes, damping_ratio, elements, 
     from flexlink.output.running.steady_response import response_lines, write_response
     from flexlink.studies.running import steady_response as study
     from ._options import periodic_mesh
-    from ._progress import progress_bar
+    from ._progress import progress_bar, step_progress
     from ._speeds import operating_speed, parse_speed, parse_speeds
     from ._written import folder_and_scene, publish
 
@@ -52,10 +52,12 @@ def command(scene_path, speed, speeds, count, n_modes, damping_ratio, elements, 
     elements_per_link, mesh = periodic_mesh(scene, n_modes, elements, tol)
     model = study.forced_model(scene, n_modes, damping_ratio=damping_ratio, points=at,
                                elements_per_link=elements_per_link)
-    if sweep is None:
-        result = study.steady_response(model, one)
-    else:
-        result = study.response_sweep(model, sweep, progress=progress_bar("speeds", as_json))
+    with step_progress("Floquet steps within a speed", as_json) as on_steps:
+        if sweep is None:
+            result = study.steady_response(model, one, on_steps=on_steps)
+        else:
+            result = study.response_sweep(model, sweep, progress=progress_bar("speeds", as_json),
+                                          on_steps=on_steps)
     document, files = write_response(result, model, folder, scene.name, mesh)
     publish(folder / "response.json", document, files, "\n".join(response_lines(document)),
             as_json)

@@ -27,8 +27,9 @@ from flexlink.analysis.periodic import Integrator
               help="Relative frequency excess the basis may have at any pose.")
 @click.option("--integrator", default=Integrator.ADIABATIC.value, show_default=True,
               type=EnumChoice(Integrator),
-              help="Monodromy steps: adiabatic, or magnus (as accurate, many times slower "
-                   "below a few thousand rev/min; docs/critical-speeds.md).")
+              help="Monodromy steps: adiabatic; magnus (as accurate, many times slower "
+                   "below a few thousand rev/min); midpoint (the fallback's steps where the "
+                   "basis is stiff; docs/critical-speeds.md).")
 @scheduler_option("the speeds in chunks")
 @json_option
 @out_option
@@ -45,7 +46,7 @@ def command(scene_path, speeds, count, n_modes, damping_ratio, elements, tol, po
     from flexlink.parallel import use_scheduler
     from flexlink.studies.running.stability_map import stability_map
     from ._options import periodic_mesh
-    from ._progress import progress_bar
+    from ._progress import progress_bar, step_progress
     from ._speeds import parse_speeds
     from ._written import folder_and_scene, publish
 
@@ -54,10 +55,10 @@ def command(scene_path, speeds, count, n_modes, damping_ratio, elements, tol, po
     elements_per_link, mesh = periodic_mesh(scene, n_modes, elements, tol)
     model = periodic_model(scene, n_modes, poses, damping_ratio, elements_per_link,
                            basis_size=basis_size, tolerance=basis_tolerance)
-    with use_scheduler(scheduler):
+    with use_scheduler(scheduler), step_progress("steps within a speed", as_json) as on_steps:
         result = stability_map(model, np.linspace(low, high, count),
                                show_progress=progress_bar("speeds", as_json) is not None,
-                               integrator=integrator)
+                               integrator=integrator, on_steps=on_steps)
     document = stability_document(scene.name, result, model, mesh)
     publish(folder / "stability-map.json", document, write_stability(result, model, folder,
                                                                      scene.name),

@@ -89,5 +89,5 @@ def test_an_untracked_basis_takes_the_magnus_steps_and_says_where():
     assert not magnus.magnus_fallback.any()
     document = stability_document("case 2", result, model)
     assert document["magnus_fallback_rev_per_min"] == pytest.approx([3000.0])
-    assert ("adiabatic steps refused at 1 speed (3000 to 3000 rev/min; the log says why): "
+    assert ("adiabatic steps refused at 1 speed (3000 to 3000 rev/min; flexlink -v says why): "
             "Magnus steps there") in stability_lines(document)

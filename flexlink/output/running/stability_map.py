@@ -81,7 +81,7 @@ def stability_lines(document: dict) -> list[str]:
     if fallback:
         count = f"{len(fallback)} speed" + ("s" if len(fallback) > 1 else "")
         out.append(f"adiabatic steps refused at {count} ({fallback[0]:g} to {fallback[-1]:g} "
-                   "rev/min; the log says why): Magnus steps there")
+                   "rev/min; flexlink -v says why): Magnus steps there")
     quasi = document["quasi_static_rev_per_min"]
     if quasi:
         count = f"{len(quasi)} speed" + ("s" if len(quasi) > 1 else "")

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import dataclasses
 import enum
+from collections.abc import Callable
 
 import numpy as np
 
@@ -56,7 +57,8 @@ class StabilityMap:
     floor [(rad/s)^2] (``PeriodicModel.stiffness_floor``: negative where the frozen frame is
     quasi-statically divergent at some crank angle); integrator: how the monodromies were
     integrated, and ``magnus_fallback`` (bool per speed): where the adiabatic steps were
-    refused and the Magnus steps taken instead; ``quasi_static`` (bool per speed): where no
+    refused and the Magnus steps taken instead (fourth-order, or midpoint where those
+    would be many: ``periodic.multipliers_by``); ``quasi_static`` (bool per speed): where no
     steps were needed, every frozen mode decaying fast (``periodic.quasi_static_multipliers``:
     the modulus there is an upper bound)."""
 
@@ -83,19 +85,23 @@ def stability_map(model: PeriodicModel, speeds: np.ndarray, steps: int = 200,
                   harmonics: int = 6, show_progress: bool = False,
                   step_phase: float = STEP_PHASE,
                   integrator: Integrator = Integrator.ADIABATIC,
-                  adiabatic_steps: int = ADIABATIC_STEPS) -> StabilityMap:
+                  adiabatic_steps: int = ADIABATIC_STEPS,
+                  on_steps: Callable[[int], None] | None = None) -> StabilityMap:
     """The largest Floquet multiplier over ``speeds`` [rad/s]. At zero speed the equations do
     not vary: nothing is parametrically excited, the modulus is 1 and the rate 0 by definition
     (the damped modes decay). The speeds go out in chunks through ``parallel.run_tasks``: in
     this process, or on the dask cluster of ``parallel.use_scheduler`` (each speed is
     computed alone, so the result is the same wherever it runs); ``show_progress``: a bar;
-    ``integrator``, ``adiabatic_steps``: as ``speed_multipliers``."""
+    ``integrator``, ``adiabatic_steps``, ``on_steps`` (progress within a speed, here only,
+    not on a cluster): as ``speed_multipliers``."""
     speeds = np.asarray(speeds, dtype=float)
     # on a cluster a few chunks per worker; here one speed a chunk, for the bar
     count = 4 * workers(n_jobs=1) if on_cluster() else len(speeds)
     chunks = np.array_split(np.arange(len(speeds)), max(1, min(len(speeds), count)))
+    if on_cluster():
+        on_steps = None  # a callback of this process: not sent to the workers
     parts = run_tasks(_speed_chunk, [(model, speeds[c], steps, step_phase, integrator,
-                                      adiabatic_steps) for c in chunks],
+                                      adiabatic_steps, on_steps) for c in chunks],
                       n_jobs=1, show_progress=show_progress, label="speed chunks")
     modulus = np.concatenate([p[0] for p in parts])
     rate = np.concatenate([p[1] for p in parts])
@@ -108,7 +114,7 @@ def stability_map(model: PeriodicModel, speeds: np.ndarray, steps: int = 200,
 
 
 def _speed_chunk(model: PeriodicModel, speeds: np.ndarray, steps: int, step_phase: float,
-                 integrator: Integrator, adiabatic_steps: int):
+                 integrator: Integrator, adiabatic_steps: int, on_steps=None):
     """(largest modulus, growth rate, Magnus steps taken for refused adiabatic ones, no steps
     needed: quasi-static) at each of ``speeds`` [rad/s]."""
     modulus, rate = np.ones(len(speeds)), np.zeros(len(speeds))
@@ -116,7 +122,7 @@ def _speed_chunk(model: PeriodicModel, speeds: np.ndarray, steps: int, step_phas
     for i, speed in enumerate(speeds):
         if speed > 0.0:
             result, used = multipliers_by(model, speed, steps, step_phase, integrator,
-                                          adiabatic_steps)
+                                          adiabatic_steps, on_steps)
             modulus[i], rate[i] = result.largest_modulus, result.growth_rate
             quasi[i] = used is Integrator.QUASI_STATIC
             fallback[i] = used is not integrator and not quasi[i]

@@ -208,17 +208,21 @@ def periodic_solution(model: ForcedModel, speed: float,
 
 
 def steady_response(model: ForcedModel, speed: float, samples: int = SAMPLES,
-                    tolerance: float = TOLERANCE) -> SteadyResponse:
+                    tolerance: float = TOLERANCE, on_steps=None) -> SteadyResponse:
     """The steady response at crank ``speed`` [rad/s] > 0 over one revolution at ``samples``
     crank angles. UnstableError where a Floquet multiplier has |mu| >= 1 (the stability
-    map's multipliers at this speed, by its own step rule)."""
+    map's multipliers at this speed, by its own step rule; ``on_steps``: their progress, as
+    ``speed_multipliers``)."""
     if not (math.isfinite(speed) and speed > 0.0):
         raise InputError(f"crank speed {rev_per_min(speed):.6g} rev/min", field="speed",
                          expected="a positive finite speed")
-    stability = speed_multipliers(model.periodic, speed)
+    stability = speed_multipliers(model.periodic, speed, on_steps=on_steps)
     if stability.largest_modulus >= 1.0:
-        raise UnstableError(f"largest Floquet multiplier |mu| = {stability.largest_modulus:.6g}"
-                            " >= 1: the free motion grows, no steady state exists")
+        rpm = rev_per_min(speed)
+        raise UnstableError(f"no steady state at {rpm:.6g} rev/min: largest Floquet multiplier "
+                            f"|mu| = {stability.largest_modulus:.6g} >= 1, the free motion "
+                            "grows; the unstable speeds around it: flexlink stability-map "
+                            f"--speeds '{rpm / 2:.4g}:{2 * rpm:.4g} rev/min'")
     turn = 2.0 * np.pi * np.arange(samples) / samples
     q = periodic_solution(model, speed, tolerance).at(turn)
     angles = model.periodic.angles[0] + turn
@@ -252,9 +256,12 @@ class ResponseSweep:
 
 
 def response_sweep(model: ForcedModel, speeds, samples: int = SAMPLES,
-                   tolerance: float = TOLERANCE, progress=None) -> ResponseSweep:
+                   tolerance: float = TOLERANCE, progress=None,
+                   on_steps=None) -> ResponseSweep:
     """Peak strain and deflection over ``speeds`` [rad/s] (speed 0: no inertia loads, the
-    static answer to the scene's [[loads]]); unstable speeds are NaN, not refused."""
+    static answer to the scene's [[loads]]); unstable speeds are NaN, not refused.
+    ``progress`` wraps the speeds (a bar), ``on_steps`` counts the Floquet steps within each
+    (``steady_response``)."""
     speeds = np.asarray(speeds, dtype=float)
     k = len(model.points)
     strain, deflection = np.full((len(speeds), k), np.nan), np.full((len(speeds), k), np.nan)
@@ -264,7 +271,7 @@ def response_sweep(model: ForcedModel, speeds, samples: int = SAMPLES,
             strain[i], deflection[i] = _static_peaks(model, samples)
             continue
         try:
-            r = steady_response(model, speeds[i], samples, tolerance)
+            r = steady_response(model, speeds[i], samples, tolerance, on_steps)
         except UnstableError:
             continue
         strain[i], deflection[i], modulus[i] = r.peak_strain, r.peak_deflection, \
