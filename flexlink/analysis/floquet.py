@@ -33,12 +33,15 @@ class FloquetResult:
     """The monodromy matrix of one period and its multipliers.
 
     monodromy: (n, n) Phi(T); multipliers: (n,) complex eigenvalues, largest modulus first;
-    period: T [s].
+    period: T [s]; log_largest: ln |mu|_max [-] where it is known apart from the multipliers
+    (a bound exp(T r) that underflows to 0 at a slow enough speed keeps its exponent T r here),
+    else None.
     """
 
     monodromy: np.ndarray
     multipliers: np.ndarray
     period: float
+    log_largest: float | None = None
 
     @property
     def largest_modulus(self) -> float:
@@ -48,6 +51,8 @@ class FloquetResult:
     @property
     def growth_per_period(self) -> float:
         """ln |mu|_max [-]: the logarithmic growth of the fastest solution over one period."""
+        if self.log_largest is not None:
+            return float(self.log_largest)
         return float(np.log(self.largest_modulus))
 
     @property

@@ -331,6 +331,7 @@ def periodic_model(scene: Scene, n_modes: int = 6, poses: int = 37,
                          field="poses", expected="an odd count >= 3")
     if damping_ratio is not None:  # refused before any work
         checked_ratio(damping_ratio)
+    scene.require_full_turn()
     topology = scene.topology(elements_per_link)
     state0 = scene.rigid_state(None)
     model0, static, _ = pose_modes(topology, state0.points, n_modes)
@@ -540,8 +541,10 @@ def quasi_static_multipliers(model: PeriodicModel, speed: float) -> FloquetResul
     slowest = np.linalg.eigvals(frozen).real.max(axis=1)  # per pose [1/s]
     if slowest.max() >= 0.0 or -period * slowest.mean() < QUASI_STATIC_DECAY:
         return None
-    bound = np.exp(period * slowest.mean())  # the largest |mu|, an upper bound
-    return floquet(np.diag(np.full(frozen.shape[-1], bound)), period)
+    exponent = period * slowest.mean()  # ln of the largest |mu|'s upper bound
+    bound = np.exp(exponent)  # 0 where it underflows: the exponent stays in the result
+    return dataclasses.replace(floquet(np.diag(np.full(frozen.shape[-1], bound)), period),
+                               log_largest=float(exponent))
 
 
 def _too_many_steps(model: PeriodicModel, speed: float, count: int, size: float) -> str:

@@ -64,6 +64,30 @@ def announce(paths, quiet: bool) -> list[str]:
     return paths
 
 
+def finite_document(document: dict) -> dict:
+    """``document`` itself where JSON can hold it, checked before any file of the run is
+    written; else NumericalError naming the first value that is not finite."""
+    import math
+
+    from flexlink.commands._options import dumps
+    from flexlink.errors import NumericalError
+
+    def first(value, where):
+        if isinstance(value, float) and not math.isfinite(value):
+            return where
+        items = (value.items() if isinstance(value, dict) else
+                 enumerate(value) if isinstance(value, list | tuple) else ())
+        return next((w for k, v in items if (w := first(v, f"{where}[{k!r}]"))), None)
+
+    try:
+        dumps(document)
+    except ValueError as error:
+        where = first(document, "") or str(error)
+        raise NumericalError(f"the result {where} is not a finite number: nothing "
+                             "written") from error
+    return document
+
+
 def publish(path: Path, document: dict, files, text: str, as_json: bool) -> None:
     """A command's last step: its JSON ``document`` with the list of ``files`` written before
     it and then ``path`` itself (its ``files``), written to ``path`` atomically; then printed

@@ -48,7 +48,7 @@ def command(scene_path, speeds, count, n_modes, damping_ratio, elements, tol, po
     from ._options import periodic_mesh
     from ._progress import progress_bar, step_progress
     from ._speeds import parse_speeds
-    from ._written import folder_and_scene, publish
+    from ._written import finite_document, folder_and_scene, publish
 
     low, high = parse_speeds(speeds)
     folder, scene = folder_and_scene(out_dir, scene_path)
@@ -59,7 +59,7 @@ def command(scene_path, speeds, count, n_modes, damping_ratio, elements, tol, po
         result = stability_map(model, np.linspace(low, high, count),
                                show_progress=progress_bar("speeds", as_json) is not None,
                                integrator=integrator, on_steps=on_steps)
-    document = stability_document(scene.name, result, model, mesh)
+    document = finite_document(stability_document(scene.name, result, model, mesh))
     publish(folder / "stability-map.json", document, write_stability(result, model, folder,
                                                                      scene.name),
             "\n".join(stability_lines(document)), as_json)

@@ -14,7 +14,7 @@ import math
 
 import numpy as np
 
-from flexlink.errors import InputError
+from flexlink.errors import InputError, KinematicsError
 from flexlink.fe.model import DriveSpec, JointSpec, LinkSpec, Section, Topology
 from flexlink.fe.motions import ModelFamily
 from flexlink.kinematics import Branch, FourBar, Linkage, State
@@ -272,6 +272,18 @@ class Scene:
         n = elements_per_link or self.elements_per_link
         links = tuple(dataclasses.replace(s, elements=n) if n else s for s in self.links)
         return Topology(links=links, joints=self.joints, drive=self.drive)
+
+    def require_full_turn(self) -> None:
+        """KinematicsError where the scene is a four-bar whose crank cannot make a whole turn
+        (a non-Grashof linkage, or a Grashof one driven by a link that only rocks): the studies
+        over the crank turn need one."""
+        if self.four_bar is not None and not self.four_bar.crank_turns_fully():
+            raise KinematicsError(f"the crank cannot turn fully: the linkage is "
+                                  f"{self.four_bar.grashof_class()} (lengths "
+                                  f"{', '.join(f'{1e3 * v:g}' for v in self.four_bar.lengths)} "
+                                  "mm: ground, crank, coupler, rocker); a whole turn needs a "
+                                  "crank that is the shortest link, or the ground, of a Grashof "
+                                  "linkage")
 
     def cycle_origin(self) -> tuple[float, dict[str, tuple[float, float]]]:
         """Where a whole-cycle sweep starts: (input angle [rad], moving joints near that pose).

@@ -199,11 +199,13 @@ NON_GRASHOF = ('name = "non-Grashof"\n[linkage]\nground = "300 mm"\ncrank = "180
                '[drive]\nlink = "crank"\njoint = "O2"\nstiffness = "rigid"\n')
 
 
-@pytest.mark.parametrize("command", ["kinematics", "cycle"])
-def test_a_crank_that_cannot_turn_fully_is_named(tmp_path, command):
+@pytest.mark.parametrize("command, args", [
+    ("kinematics", []), ("cycle", []), ("response", ["--speed", "600 rev/min"]),
+    ("stability-map", ["--speeds", "300:600 rev/min", "--count", "2"])])
+def test_a_crank_that_cannot_turn_fully_is_named(tmp_path, command, args):
     path = tmp_path / "nongrashof.toml"
     path.write_text(NON_GRASHOF)
-    code, _, err = run(command, path, "--out", tmp_path / "out")
+    code, _, err = run(command, path, *args, "--out", tmp_path / "out")
     one_line_refusal(code, err, "cannot turn fully")
     assert "Newton-Raphson" not in err
 
@@ -339,3 +341,27 @@ def test_the_diagram_at_speed_samples_every_frozen_range(tmp_path):
     for s in both:  # paired by overlap, as the study pairs them
         a, b = s["frozen_rev_per_min"], s["at_speed_rev_per_min"]
         assert a[0] <= b[1] and b[0] <= a[1]
+
+
+def test_a_map_down_to_rest_has_finite_growth_rates(tmp_path):
+    """Speeds so slow (0.01 rev/min: T = 6000 s) that the adiabatic bound exp(T r) underflows
+    to 0 keep its exponent:
+    the growth rate is the turn's mean slowest decay rate, finite, and the JSON holds it."""
+    code, out, err = run("stability-map", CASE3, "--speeds", "0:0.03 rev/min", "--count", "4",
+                         "-n", "2", "-e", "4", "--json", "--out", tmp_path)
+    assert code == 0, err
+    assert "Traceback" not in err and "RuntimeWarning" not in err
+    document = json.loads(out)
+    rates = np.array(document["growth_rate_per_s"][1:])  # the first speed is 0: at rest
+    assert np.isfinite(rates).all() and (rates < 0).all()
+    # the bound's exponent over the period: the same mean decay rate at every slow speed
+    np.testing.assert_allclose(rates, rates[0], rtol=1e-9)
+
+
+def test_a_document_that_json_cannot_hold_is_refused_before_any_file(tmp_path):
+    from flexlink.commands._written import finite_document
+    from flexlink.errors import NumericalError
+
+    with pytest.raises(NumericalError, match=r"\['rates'\]\[1\] is not a finite number"):
+        finite_document({"name": "x", "rates": [0.5, -math.inf]})
+    assert finite_document({"rates": [0.5]}) == {"rates": [0.5]}

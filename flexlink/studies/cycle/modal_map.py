@@ -12,7 +12,7 @@ import math
 
 import numpy as np
 
-from flexlink.errors import InputError, KinematicsError, NumericalError
+from flexlink.errors import InputError, NumericalError
 from flexlink.kinematics.linkage import Cycle, crank_angles, crossings
 from flexlink.scene import Scene
 from flexlink.scene.contract import pose_transmission_angles
@@ -25,12 +25,7 @@ from flexlink.units import rev_per_min
 def kinematic_cycle(scene: Scene, n_poses: int = 360, progress=None) -> Cycle:
     """Rigid poses at ``n_poses`` input angles over one revolution from the scene's cycle
     origin (``Scene.cycle_origin``)."""
-    if scene.four_bar is not None and not scene.four_bar.crank_turns_fully():
-        raise KinematicsError(f"the crank cannot turn fully: the linkage is "
-                              f"{scene.four_bar.grashof_class()} (lengths "
-                              f"{', '.join(f'{1e3 * v:g}' for v in scene.four_bar.lengths)} mm: "
-                              "ground, crank, coupler, rocker); a whole turn needs a crank "
-                              "that is the shortest link, or the ground, of a Grashof linkage")
+    scene.require_full_turn()
     start, guess = scene.cycle_origin()
     return scene.linkage.cycle(crank_angles(n_poses, start), guess, progress)
 
