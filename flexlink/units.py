@@ -105,7 +105,20 @@ def rev_per_min(omega):
     ROUND_TRIP_ULPS of a decimal of 12 significant digits is that decimal: a speed given in
     rev/min comes back as written (2900, not the 2900.0000000000005 of the round trip through
     rad/s), any other keeps every digit."""
-    values = np.asarray(omega, dtype=float) / RPM
+    return as_written(np.asarray(omega, dtype=float) / RPM)
+
+
+def degrees_in_turn(angle):
+    """An angle [rad] (a number or an array) in degrees in [0, 360), as written where it is
+    within ROUND_TRIP_ULPS of a 12-digit decimal (a grid angle of 19 deg, not
+    18.999999999999996)."""
+    return as_written(np.degrees(np.asarray(angle, dtype=float)) % 360.0)
+
+
+def as_written(values):
+    """``values`` (a number or an array), each within ROUND_TRIP_ULPS of a decimal of 12
+    significant digits replaced by that decimal, any other unchanged."""
+    values = np.asarray(values, dtype=float)
     short = np.array([float(f"{v:.12g}") for v in values.ravel()]).reshape(values.shape)
     near = np.abs(short - values) <= ROUND_TRIP_ULPS * np.spacing(np.abs(values))
     out = np.where(near, short, values)

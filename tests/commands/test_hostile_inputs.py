@@ -278,6 +278,19 @@ def test_a_range_edge_in_rev_per_min_comes_back_as_written(tmp_path):
     assert json.loads(out)["speeds_rev_per_min"] == [0.0, 2900.0]
 
 
+def test_a_grid_angle_in_degrees_comes_back_as_written(tmp_path):
+    """The 1-degree grid's 19 deg came back as 18.999999999999996 in torque.json."""
+    from flexlink.units import degrees_in_turn
+    assert repr(degrees_in_turn(math.radians(19.0))) == "19.0"  # rounded: exact by design
+    assert degrees_in_turn(-math.pi / 2) == 270.0
+    code, out, err = run("torque", CASE3, "--speed", "2700 rev/min", "--json", "--out", tmp_path)
+    assert code == 0, err
+    document = json.loads(out)
+    angles = [v["at_deg"] for v in document["joint_forces"].values()]
+    angles += [v for k, v in document.items() if k.endswith("_at_deg")]
+    assert angles and all(a == round(a, 9) for a in angles), angles
+
+
 def test_overdamped_modes_are_named(tmp_path):
     """[damping] rayleigh_beta = 1 s (inside its declared range) gives case 3's first mode
     zeta = beta omega / 2 = 175 times critical; modes printed 17506 % without a word."""

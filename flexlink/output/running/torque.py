@@ -8,7 +8,7 @@ import math
 
 import numpy as np
 
-from flexlink.units import rev_per_min
+from flexlink.units import degrees_in_turn, rev_per_min
 
 
 def torque_csv(curve) -> str:
@@ -35,7 +35,7 @@ def torque_document(curve, assumptions) -> dict:
         magnitude = np.where(curve.singular, -1.0, np.hypot(f[:, 0], f[:, 1]))
         i = int(np.argmax(magnitude))
         peaks[key] = {"peak_N": float(magnitude[i]),
-                      "at_deg": float(math.degrees(curve.q[i]) % 360.0)}
+                      "at_deg": degrees_in_turn(curve.q[i])}
     return {"command": "torque", "scene": curve.scene, "crank_speed_rad_s": curve.speed,
             "crank_speed_rev_per_min": rev_per_min(curve.speed),
             "crank_acceleration_rad_s2": curve.crank_acceleration, "poses": len(curve.q),

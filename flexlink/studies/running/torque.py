@@ -24,6 +24,7 @@ from flexlink.scene.contract import LoadSpec
 from flexlink.scene.loads import wrench
 from flexlink.studies.array_shapes import check_shape
 from flexlink.studies.cycle.modal_map import kinematic_cycle
+from flexlink.units import degrees_in_turn
 
 MODEL = (
     ("rigid-body motion prescribed by the crank: the crank speed (and angular acceleration, if "
@@ -70,7 +71,7 @@ class TorqueCurve:
         """Peak (largest magnitude), largest, smallest and mean torque [N m] and power [W]
         over the poses whose motion is determined (means over the crank angle, which at
         constant speed are the means over time)."""
-        deg = np.degrees(self.q) % 360.0
+        deg = degrees_in_turn(self.q)
         ok = np.flatnonzero(~self.singular)
         torque, power = self.torque[ok], self.power[ok]
         i, hi, lo = (ok[np.argmax(np.abs(torque))], ok[np.argmax(torque)], ok[np.argmin(torque)])
