@@ -394,11 +394,12 @@ def periodic_model(scene: Scene, n_modes: int = 6, poses: int = 37,
             f"{scene.path}: between the {poses} sampled poses the interpolated equations grow "
             f"at rest ({where}), where every pose is stable: the poses do not resolve how the "
             "frame's matrices change over the turn, and its multipliers would show a false "
-            f"instability; use more poses ({2 * poses - 1} or more)")
+            f"instability; use more poses ({2 * poses - 1} or more: --poses of response "
+            "and stability-map)")
     if rates[k] > REST_GROWTH * scale:
         log.warning("%s: between the %d sampled poses the interpolated equations grow at rest "
-                    "in places (%s), though they decay over the turn: more poses (%d) would "
-                    "resolve the frame's matrices better", scene.path, poses, where,
+                    "in places (%s), though they decay over the turn: more poses (--poses "
+                    "%d) would resolve the frame's matrices better", scene.path, poses, where,
                     2 * poses - 1)
     return model
 

@@ -168,11 +168,17 @@ def _damping_ratio(ctx, param, value):
     return value
 
 
+def _periodic_poses_option():
+    return click.option("--poses", default=37, show_default=True,
+                        type=click.IntRange(3, 1001), callback=odd_count,
+                        help="Crank angles the periodic matrices are sampled at (odd).")
+
+
 def periodic_basis_options(command):
-    """-n/--modes, --damping-ratio and the mesh options of the commands on the periodic
-    equations at speed (``stability-map``, ``response``): the static modes the basis must
-    reproduce, the modal damping in it (None when not given: ``analysis.damping`` picks), and
-    -e/--tol (``periodic_mesh``)."""
+    """-n/--modes, --damping-ratio, the mesh options and --poses of the commands on the
+    periodic equations at speed (``stability-map``, ``response``): the static modes the basis
+    must reproduce, the modal damping in it (None when not given: ``analysis.damping`` picks),
+    -e/--tol (``periodic_mesh``) and the crank angles sampled."""
     options = (
         click.option("-n", "--modes", "n_modes", default=6, show_default=True,
                      type=click.IntRange(1, 50), help="Static modes of the basis."),
@@ -186,7 +192,8 @@ def periodic_basis_options(command):
                           "mesh, with its error estimate in the output)."),
         click.option("--tol", default=None, type=TOLERANCE,
                      help="Relative frequency tolerance: the coarsest of 8, 16, 32, ... "
-                          "elements/link whose Richardson error estimate meets it."))
+                          "elements/link whose Richardson error estimate meets it."),
+        _periodic_poses_option())
     return stacked(options)(command)
 
 

@@ -23,8 +23,8 @@ from flexlink.commands._speeds import speed_option, speeds_option
 @json_option
 @out_option
 @names_scene("scene_path")
-def command(scene_path, speed, speeds, count, n_modes, damping_ratio, elements, tol, points,
-            as_json, out_dir):
+def command(scene_path, speed, speeds, count, n_modes, damping_ratio, elements, tol, poses,
+            points, as_json, out_dir):
     """Steady bending strain and deflection of SCENE's links over one crank turn at a speed,
     or their peaks against speed. Writes response.png, .csv and .json to OUT/<scene>/."""
     import numpy as np
@@ -50,7 +50,7 @@ def command(scene_path, speed, speeds, count, n_modes, damping_ratio, elements, 
     if sweep is None:
         one = operating_speed(scene, one)[0]
     elements_per_link, mesh = periodic_mesh(scene, n_modes, elements, tol)
-    model = study.forced_model(scene, n_modes, damping_ratio=damping_ratio, points=at,
+    model = study.forced_model(scene, n_modes, poses, damping_ratio=damping_ratio, points=at,
                                elements_per_link=elements_per_link)
     with step_progress("Floquet steps within a speed", as_json) as on_steps:
         if sweep is None:

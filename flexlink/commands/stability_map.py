@@ -5,7 +5,7 @@ from __future__ import annotations
 import click
 
 from flexlink.commands._failures import names_scene
-from flexlink.commands._options import (EnumChoice, json_option, odd_count, out_option,
+from flexlink.commands._options import (EnumChoice, json_option, out_option,
                                        periodic_basis_options, scheduler_option)
 from flexlink.commands._speeds import speeds_option
 from flexlink.analysis.periodic import Integrator
@@ -17,8 +17,6 @@ from flexlink.analysis.periodic import Integrator
 @click.option("--count", default=300, show_default=True, type=click.IntRange(2, 100000),
               help="Speeds over the range.")
 @periodic_basis_options
-@click.option("--poses", default=37, show_default=True, type=click.IntRange(3, 1001),
-              callback=odd_count, help="Crank angles the periodic matrices are sampled at (odd).")
 @click.option("--basis", "basis_size", default=None, type=click.IntRange(1, 10000),
               help="Reduced basis size; default: the smallest whose lowest MODES frequencies "
                    "match the full model's at every pose to --basis-tolerance.")

@@ -52,7 +52,7 @@ def test_too_few_poses_for_rigid_pins_is_numerical_trouble_not_instability(tmp_p
     decay): the model is refused, naming the cure."""
     path = tmp_path / "kt_rigid.toml"
     scene(tmp_path, "rigid")
-    with pytest.raises(NumericalError, match=r"use more poses \(25 or more\)"):
+    with pytest.raises(NumericalError, match=r"use more poses \(25 or more: --poses"):
         periodic_model(load_scene(path), n_modes=4, poses=13, elements_per_link=4)
     result = CliRunner().invoke(main, ["stability-map", str(path), "--speeds", "600:700 rev/min",
                                        "--count", "2", "--poses", "13", "-n", "4", "-e", "4",
@@ -60,6 +60,12 @@ def test_too_few_poses_for_rigid_pins_is_numerical_trouble_not_instability(tmp_p
     assert result.exit_code == 2 and result.stderr.count("\n") == 1, result.stderr
     assert "more poses" in result.stderr
     assert not [p for p in (tmp_path / "out").rglob("*") if p.is_file()]
+    # response takes the same --poses: refused at 13, an answer at 25
+    for poses, code in (("13", 2), ("25", 0)):
+        result = CliRunner().invoke(main, ["response", str(path), "--speed", "600 rev/min",
+                                           "--poses", poses, "-n", "4", "-e", "4", "--out",
+                                           str(tmp_path / "out")])
+        assert result.exit_code == code, result.output
 
 
 def test_local_growth_that_decays_over_the_turn_is_logged_not_refused(caplog):
@@ -72,4 +78,4 @@ def test_local_growth_that_decays_over_the_turn_is_logged_not_refused(caplog):
                                n_modes=6)
     theta, rates, scale = model.rest_rates()
     assert rates.max() > 1e-8 * scale and rates.mean() < 0.0
-    assert any("more poses (73)" in r.getMessage() for r in caplog.records)
+    assert any("more poses (--poses 73)" in r.getMessage() for r in caplog.records)
