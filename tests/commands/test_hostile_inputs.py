@@ -126,6 +126,21 @@ def test_the_flat_pose_of_a_change_point_linkage_is_reported_not_averaged(tmp_pa
     assert flat.split(",")[1] == ""  # no torque where none is determined
 
 
+def test_a_turn_that_ends_on_another_assembly_is_said(tmp_path):
+    """Past its flat pose the change-point linkage continues on its crossed assembly: at 359
+    deg the coupler is at -36 deg where it began at +37, so the torque curve jumps at the
+    turn's start and its mean power (-0.6 W with no loads) is no cycle's. Case 3 closes."""
+    code, out, err = run("torque", CHANGE_POINT, "--speed", "1000 rev/min", "--json",
+                         "--out", tmp_path)
+    assert code == 0, err
+    assert json.loads(out)["turn_closes"] is False
+    code, text, _ = run("torque", CHANGE_POINT, "--speed", "1000 rev/min", "--out", tmp_path)
+    assert "warning: after one turn the linkage is on another assembly" in text
+    code, out, err = run("torque", CASE3, "--speed", "1000 rev/min", "--json", "--out",
+                         tmp_path)
+    assert code == 0 and json.loads(out)["turn_closes"] is True, err
+
+
 def test_torque_reports_the_scene_pose_whatever_the_grid(tmp_path):
     """The pose of case 3 (mu = 90 deg) lies between 1-degree steps. Its torque at constant
     speed without loads is dE/dq (power balance: tau Omega = dE/dt), checked by central

@@ -40,8 +40,8 @@ def torque_document(curve, assumptions) -> dict:
             "crank_speed_rev_per_min": rev_per_min(curve.speed),
             "crank_acceleration_rad_s2": curve.crank_acceleration, "poses": len(curve.q),
             **curve.summary(), "joint_forces": peaks,
-            "singular_poses_deg": [float(math.degrees(q) % 360.0)
-                                   for q in curve.q[curve.singular]],
+            "singular_poses_deg": [degrees_in_turn(q) for q in curve.q[curve.singular]],
+            "turn_closes": curve.turn_closes,
             "at_pose": at_pose_json(curve),
             "loads": [load_json(load) for load in curve.loads],
             "bodies": [{"body": m.body, "mass_kg": m.mass, "centroid_m": list(m.centroid),
@@ -112,6 +112,11 @@ def torque_text(doc: dict) -> str:
                      "the motion and the pin forces are not determined there); left out of "
                      "the peaks and means, blank in torque.csv; choose --poses so that no pose "
                      "lands on it")
+    if not doc["turn_closes"]:
+        lines.append("warning: after one turn the linkage is on another assembly (it changed "
+                     "branch at a singular pose): the curves do not join at the turn's start, "
+                     "and the means and the mean power are over this turn, not a repeating "
+                     "cycle")
     return "\n".join(lines)
 
 

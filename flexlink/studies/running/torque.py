@@ -57,6 +57,7 @@ class TorqueCurve:
     at_pose: InverseDynamics | None = None  # at the scene's own pose; None where singular
     loads: tuple[LoadSpec, ...] = ()
     model: tuple[str, ...] = MODEL
+    turn_closes: bool = True  # False: after one turn the linkage is on another assembly
 
     def __post_init__(self):
         n = len(self.q)
@@ -119,6 +120,7 @@ def torque_study(scene: Scene, speed: float, crank_acceleration: float = 0.0,
     if singular.all():
         raise KinematicsError("every sampled pose is singular: the motion is not determined "
                               "at any of them")
+    closes = _turn_closes(linkage, cycle)
     pose_state = scene.rigid_state(None)
     states = [None if flat else s for s, flat in zip(cycle.states, singular)]
     if linkage.conditioning(pose_state) >= NEAR_SINGULAR:
@@ -145,12 +147,25 @@ def torque_study(scene: Scene, speed: float, crank_acceleration: float = 0.0,
                             kinetic_energy=column(lambda r: r.kinetic_energy)[:n],
                             load_power=column(lambda r: r.load_power)[:n],
                             forces={k: f[:n] for k, f in forces.items()}, masses=masses,
-                            singular=singular, at_pose=at_pose, loads=scene.loads)
+                            singular=singular, at_pose=at_pose, loads=scene.loads,
+                            turn_closes=closes)
         _check_finite(curve, scene, fields)
     return curve
 
 
 ROUND_OFF = 1e-12  # a torque below this share of the pin forces' moment is round-off
+SEAM = 1e-9  # a joint this share of the linkage's size from where the turn began: the same pose
+
+
+def _turn_closes(linkage: Linkage, cycle) -> bool:
+    """Whether the motion, continued one step past the last sampled pose to the first crank
+    angle a turn on, is back at the first pose: not where it passed a change point's flat pose
+    onto the other assembly (then the turn's curves do not join and its means are no cycle's)."""
+    last = cycle.states[-1]
+    after = linkage.solve(cycle.q[0] + 2.0 * np.pi, dict(last.points))
+    first = cycle.states[0].points
+    gap = max(float(np.hypot(*np.subtract(after.points[k], first[k]))) for k in first)
+    return gap <= SEAM * linkage.size
 
 
 def _without_round_off(torque: np.ndarray, forces: dict[str, np.ndarray],
