@@ -123,14 +123,14 @@ def main() -> None:
     _against_record()
     t0 = time.process_time()
     model = forced_model(load_scene(ROOT / "cases/case3.toml"), n_modes=6)
-    _ = model.periodic.adiabatic  # the verdict's adiabatic basis: built once per model, like it
+    _ = model.periodic.stability.adiabatic  # the verdict's adiabatic basis: built once per model, like it
     print(f"case 3, 6 modes: model and adiabatic basis {time.process_time() - t0:.2f} s CPU "
           "(once per scene)")
     worst = 0.0
     for rpm in SPEEDS:
         speed = rpm * RPM
         solve, solution = _best(repeats, lambda w=speed: periodic_solution(model, w))
-        verdict, _ = _best(repeats, lambda w=speed: speed_multipliers(model.periodic, w))
+        verdict, _ = _best(repeats, lambda w=speed: speed_multipliers(model.periodic.stability, w))
         whole, result = _best(repeats, lambda w=speed: steady_response(model, w))
         worst = max(worst, whole)
         print(f"{rpm:g} rev/min: {whole * 1e3:.1f} ms (best of {repeats}): solution "

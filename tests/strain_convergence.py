@@ -6,7 +6,10 @@ the response model (``steady_response.forced_model``) for each basis setting: th
 snapshotted at every other pose (``n_modes``, which sets the checked basis) and vectors added
 above the checked size from the same snapshots; it keeps the peak strain of each point at each
 speed, so a reader sees how much a larger basis still moves it. With ``n_modes`` equal to the
-reduced DOF count the basis is the whole finite-element model: the reference.
+reduced DOF count the basis is the whole finite-element model: the reference. The bases are
+the modal ones alone (``forced_model(..., load_vectors=False)``): the loads' static answers
+the response adds to them take case 1's 2-mode basis from 8.8 % to 4e-4 of the whole
+model's peak strain at 1500 rev/min, and would hide how the modes converge.
 """
 
 from __future__ import annotations
@@ -72,11 +75,12 @@ def strain_convergence(scene: Scene, speeds: np.ndarray,
     for n_modes, extra in settings:
         if n_modes not in checked:
             checked[n_modes] = forced_model(scene, n_modes, poses, damping_ratio, points,
-                                            elements_per_link)
+                                            elements_per_link, load_vectors=False)
         model = checked[n_modes]
         if extra:
             model = forced_model(scene, n_modes, poses, damping_ratio, points,
-                                 elements_per_link, basis_size=model.periodic.basis.size + extra)
+                                 elements_per_link, basis_size=model.periodic.basis.size + extra,
+                                 load_vectors=False)
         modes.append(n_modes)
         sizes.append(model.periodic.basis.size)
         errors.append(model.periodic.basis.error)

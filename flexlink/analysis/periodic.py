@@ -33,6 +33,7 @@ import logging
 from collections.abc import Callable
 
 import numpy as np
+import scipy.linalg as sla
 
 from flexlink.analysis import adiabatic
 from flexlink.analysis.damping import basis_damping, checked_ratio, deformation_damping
@@ -40,6 +41,7 @@ from flexlink.analysis.eigensolver import AUTO_DENSE_MAX
 from flexlink.analysis.floquet import FloquetResult, floquet, monodromy
 from flexlink.analysis.fourier import fourier_coefficients, fourier_series
 from flexlink.analysis.frame_motion import pose_speed_terms
+from flexlink.analysis.load_vectors import static_load_directions
 from flexlink.analysis.modal import pose_modes
 from flexlink.analysis.pose_basis import DEFAULT_TOLERANCE, PoseBasis, pose_basis
 from flexlink.analysis.solve import MECHANISM
@@ -105,7 +107,10 @@ class PeriodicModel:
     equations: inertia_forcing (poses, n) [per (rad/s)^2] the projected d'Alembert loads and
     external_forcing (poses, n) the scene's [[loads]]; ``pose_models`` (the frame model at
     each pose) and ``pose_shapes`` (poses, n_dofs, n): the basis vectors in each pose's global
-    DOFs, for what a study reads off the response."""
+    DOFs, for what a study reads off the response. load_vectors: how many of the basis
+    vectors are static answers to the loads added to the modes (``analysis.load_vectors``);
+    verdict: the equations in the modal basis alone, whose multipliers say whether the
+    steady state exists (None: these, ``stability``)."""
 
     angles: np.ndarray
     mass: np.ndarray
@@ -122,6 +127,8 @@ class PeriodicModel:
     pose_shapes: np.ndarray | None = None
     damping_samples: np.ndarray | None = None
     elastic_stiffness: np.ndarray | None = None
+    load_vectors: int = 0
+    verdict: PeriodicModel | None = None
 
     def __post_init__(self):
         poses, n = len(self.angles), len(self.frequencies)
@@ -150,6 +157,14 @@ class PeriodicModel:
             raise ValueError(f"PeriodicModel.pose_shapes has shape {np.shape(self.pose_shapes)}"
                              f" and {len(self.pose_models)} pose models, expected "
                              f"({poses}, n_dofs, {n}) and {poses}")
+
+    @property
+    def stability(self) -> PeriodicModel:
+        """The equations whose Floquet multipliers give the stability verdict: the stability
+        map's, in the modal basis, so that the response and the map agree on which speeds
+        have a steady state (the loads' static answers added to the basis are stiff vectors
+        that move no multiplier of the lowest modes' and only make the steps dearer)."""
+        return self if self.verdict is None else self.verdict
 
     @property
     def checked(self) -> np.ndarray:
@@ -318,14 +333,19 @@ class PeriodicModel:
 def periodic_model(scene: Scene, n_modes: int = 6, poses: int = 37,
                    damping_ratio: float | None = None,
                    elements_per_link: int | None = None, basis_size: int | None = None,
-                   tolerance: float = DEFAULT_TOLERANCE) -> PeriodicModel:
+                   tolerance: float = DEFAULT_TOLERANCE,
+                   load_vectors: bool = False) -> PeriodicModel:
     """The periodic equations of ``scene`` over one crank turn with their forcing, sampled at
     ``poses`` (odd) crank angles from the scene's pose, in the basis of
     ``analysis.pose_basis``: the lowest ``n_modes`` static modes of every other pose in
     co-rotating coordinates, compressed by SVD to ``basis_size`` vectors (None: the fewest
     whose lowest ``n_modes`` frequencies match the full model's at every pose to
     ``tolerance``), given as the scene pose's Ritz vectors. ``damping_ratio`` [-]: every
-    vector's, else (None) the scene's declared damping (``analysis.damping.basis_damping``)."""
+    vector's, else (None) the scene's declared damping (``analysis.damping.basis_damping``).
+    ``load_vectors``: the basis with the static answers of every pose's stiffness at rest
+    (K + K_ext) to its loads (the d'Alembert loads per unit speed^2 and the [[loads]]) added
+    (``analysis.load_vectors``), again as the scene pose's Ritz vectors, and the modal
+    basis's equations kept as its ``verdict`` (``PeriodicModel.stability``)."""
     if poses < 3 or poses % 2 == 0:
         raise InputError(f"poses must be an odd count of at least 3, got {poses}",
                          field="poses", expected="an odd count >= 3")
@@ -360,6 +380,40 @@ def periodic_model(scene: Scene, n_modes: int = 6, poses: int = 37,
         models.append(model)
         turns.append(R)
     basis = pose_basis(full[2], full[0], n_modes, basis_size, tolerance)
+    modal = _projected(scene, damping_ratio, basis, full, loads, angles, models, turns, T)
+    if not load_vectors:
+        return modal
+    W = static_load_directions(full[2] + full[3], full[0, 0], loads, basis.vectors)
+    if not W.shape[1]:
+        return modal
+    vectors, frequencies = _reference_ritz(np.concatenate([basis.vectors, W], axis=1),
+                                           full[2, 0], full[0, 0])
+    enriched = dataclasses.replace(basis, vectors=vectors, frequencies=frequencies)
+    try:
+        model = _projected(scene, damping_ratio, enriched, full, loads, angles, models, turns, T)
+    except NumericalError as refusal:  # the modal basis passed the same checks: keep it
+        log.warning("%s: the loads' static answers are left out of the basis (%s)",
+                    scene.path, refusal)
+        return modal
+    return dataclasses.replace(model, load_vectors=W.shape[1], verdict=modal)
+
+
+def _reference_ritz(B: np.ndarray, K0: np.ndarray, M0: np.ndarray
+                    ) -> tuple[np.ndarray, np.ndarray]:
+    """The span of B (n, r) as the reference pose's Ritz vectors (M_0-orthonormal, K_0
+    diagonal, ascending) and their frequencies [Hz]."""
+    values, Q = sla.eigh(B.T @ K0 @ B, B.T @ M0 @ B)
+    return B @ Q, np.sqrt(values) / (2.0 * np.pi)
+
+
+def _projected(scene: Scene, damping_ratio: float | None, basis: PoseBasis, full: np.ndarray,
+               loads: np.ndarray, angles: np.ndarray, models: list, turns: list,
+               T) -> PeriodicModel:
+    """The periodic equations on ``basis`` from the co-rotating matrices ``full`` (M, G1, K,
+    K_ext, K2: (5, poses, n, n)) and ``loads`` (f2, f_ext: (2, poses, n)) at ``angles``,
+    checked: NumericalError where the interpolation between the poses fails."""
+    poses = len(angles)
+    model0 = models[0]
     V = basis.vectors  # co-rotating eliminated DOFs per coordinate
     M, G1, K, K_ext, K2 = (V.T @ A @ V for A in full)
     shapes = np.stack([R @ V if T is None else np.asarray(T @ (R @ V)) for R in turns])

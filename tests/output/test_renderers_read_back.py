@@ -126,7 +126,7 @@ def _stability() -> Rendered:
 
 def _forced_model(points):
     periodic = SimpleNamespace(damping_ratio=np.array([0.01, 0.03]), damping_source="given",
-                               frequencies=np.array([21.0, 57.0]))
+                               frequencies=np.array([21.0, 57.0]), load_vectors=0)
     # half depths [m] of the links: the made-up deflections stay small against them
     return SimpleNamespace(points=points, periodic=periodic,
                            half_depth=np.full(len(points), 0.5))

@@ -23,7 +23,7 @@ POINTS = (StrainPoint("coupler", 0.06), StrainPoint("rocker", 0.1))
 # the small-deflection range
 MODEL = SimpleNamespace(points=POINTS, half_depth=np.array([0.01, 0.02]), periodic=SimpleNamespace(
     damping_ratio=np.array([0.01, 0.02]), damping_source="declared",
-    frequencies=np.array([20.0, 55.0])))
+    frequencies=np.array([20.0, 55.0]), load_vectors=0))
 # one turn sampled from 30 deg, the angles as the integration leaves them (past 360 deg)
 ANGLES = np.radians([390.0, 480.0, 570.0, 660.0])
 STRAIN = np.array([[1e-4, -2e-5], [-3e-4, 4e-5], [2e-4, -6e-5], [0.0, 1e-5]])

@@ -72,8 +72,11 @@ def _assert_steady(model, speed):
 
 
 def test_linkage_response_equals_a_long_integration_from_rest():
+    # the modal basis alone: the loads' static answers would add vectors of tens of kHz,
+    # whose periods set DOP853's step; the check is of the harmonic balance, any basis
     model = forced_model(load_scene(CASES_DIR / "case1.toml"), n_modes=1, poses=13,
-                         damping_ratio=0.01, elements_per_link=2, basis_size=2)
+                         damping_ratio=0.01, elements_per_link=2, basis_size=2,
+                         load_vectors=False)
     _assert_steady(model, 1200 * RPM)
 
 
@@ -81,5 +84,6 @@ def test_linkage_response_equals_a_long_integration_from_rest():
                     reason="12 s: run with HYPOTHESIS_PROFILE=thorough")
 def test_checked_basis_response_equals_a_long_integration_from_rest():
     model = forced_model(load_scene(CASES_DIR / "case1.toml"), n_modes=1, poses=19,
-                         damping_ratio=0.5, elements_per_link=2)
+                         damping_ratio=0.5, elements_per_link=2,
+                         load_vectors=False)
     _assert_steady(model, 1200 * RPM)

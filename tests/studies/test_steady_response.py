@@ -22,7 +22,7 @@ from flexlink.fe.preload import inertia_loads, static_displacement
 from flexlink.kinematics.dynamics import rigid_motion
 from flexlink.scene import load_scene
 from flexlink.analysis.frame_motion import link_motion
-from flexlink.analysis.periodic import PeriodicModel
+from flexlink.analysis.periodic import PeriodicModel, periodic_model, speed_multipliers
 from flexlink.commands.response import parse_point
 from flexlink.studies.running.steady_response import (
     ForcedModel,
@@ -71,7 +71,9 @@ def test_periodic_solution_is_the_time_integration_over_a_turn(case1):
     # against a run from rest to steady state on a 2-vector basis
     # (test_linkage_steady_state.py); this checked 7-vector basis runs with the thorough
     # profile, beside the run from rest on the same model.
-    model = forced_model(case1, n_modes=1, poses=19, damping_ratio=0.5, elements_per_link=2)
+    # (the modal basis alone: the loads' static answers would add vectors of tens of kHz)
+    model = forced_model(case1, n_modes=1, poses=19, damping_ratio=0.5, elements_per_link=2,
+                         load_vectors=False)
     p, speed = model.periodic, 1200 * RPM
     response = steady_response(model, speed, samples=24)
     solution = periodic_solution(model, speed)
@@ -204,6 +206,71 @@ def test_forcing_and_strain_rows_match_the_full_static_solution(case1, full):
         q = la.solve(full.periodic.stiffness[p], full.periodic.inertia_forcing[p])
         # the modal solve and the full one differ by round-off of a well-conditioned K
         assert full.curvature[p] @ q == pytest.approx(expected, rel=1e-7)
+
+
+def _static_curvatures(scene, model: ForcedModel, elements: int) -> np.ndarray:
+    """(poses, points) [1/m per (rad/s)^2]: the full finite-element static answer to the
+    d'Alembert loads at each sampled pose, read at the model's points."""
+    topology = scene.topology(elements)
+    out = []
+    for angle in model.periodic.angles:
+        state = scene.rigid_state(angle)
+        frame = pose_model(topology, state.points)
+        K, _ = assemble_reduced_dense(frame, rigid_elimination(frame))
+        _, alpha, acc = link_motion(scene, frame, topology,
+                                    rigid_motion(scene.linkage, state, 1.0, 0.0))
+        u = static_displacement(np.asarray(K), rigid_elimination(frame),
+                                inertia_loads(frame, acc, alpha))
+        out.append([_hermite_curvature(u, next(link for link in frame.links
+                                              if link.name == pt.link), pt.position)
+                    for pt in model.points])
+    return np.array(out)
+
+
+@pytest.mark.parametrize("load_vectors", [True, False])
+def test_the_static_answers_in_the_basis_make_the_slow_response_the_full_static_one(
+        case1, load_vectors):
+    # Two modes checked at 4 elements a link take a 9-vector modal basis, which holds the
+    # midspan curvature of the d'Alembert loads' static answer at the sampled poses only to
+    # 3.5e-2 of its largest value (the modes left out carry the rest). With the loads' static
+    # answers of every pose added (analysis.load_vectors: 10 directions) the basis holds them,
+    # so at a crank speed so slow that nothing is dynamic (0.01 rev/min: the damping's lag
+    # 2 zeta Omega / omega_1 ~ 6e-8, the forcing's harmonics ~ (Omega / omega_1)^2 ~ 1e-11 of
+    # the first mode) the periodic solution at each sampled pose is Omega^2 times the full
+    # model's static answer there: measured 1.5e-6 of the largest, the directions dropped
+    # under THRESHOLD. Allowed 1e-5.
+    model = forced_model(case1, n_modes=2, poses=19, elements_per_link=MESH,
+                         load_vectors=load_vectors)
+    expected = _static_curvatures(case1, model, MESH)
+    speed = 0.01 * RPM
+    q = periodic_solution(model, speed).at(model.periodic.angles - model.periodic.angles[0])
+    ours = np.einsum("pkn,pn->pk", model.curvature, q) / speed**2
+    error = np.abs(ours - expected).max() / np.abs(expected).max()
+    assert (model.periodic.load_vectors > 0) == load_vectors
+    if load_vectors:
+        assert error < 1e-5, error
+    else:  # the modal basis alone misses it: what the added vectors are for
+        assert error > 1e-2, error
+
+
+def test_the_steady_states_verdict_is_the_stability_maps(case1):
+    # the loads' static answers enlarge the response's basis, not the verdict's: the response
+    # and the stability map must call the same speeds stable, so the multipliers come from
+    # the map's own equations (the same arithmetic: 1e-12 is round-off of the projection)
+    model = forced_model(case1, n_modes=2, poses=19, elements_per_link=MESH)
+    stability_map = periodic_model(case1, 2, 19, elements_per_link=MESH)
+    assert model.periodic.load_vectors > 0
+    verdict = model.periodic.stability
+    assert len(verdict.frequencies) == len(stability_map.frequencies) \
+        < len(model.periodic.frequencies)
+    for name in ("mass", "stiffness", "speed_stiffness", "coriolis", "damping"):
+        np.testing.assert_allclose(getattr(verdict, name), getattr(stability_map, name),
+                                   rtol=1e-12, atol=1e-12 * np.abs(getattr(stability_map,
+                                                                           name)).max())
+    speed = 1200 * RPM
+    ours = steady_response(model, speed, samples=12).largest_modulus
+    theirs = speed_multipliers(stability_map, speed).largest_modulus
+    assert ours == pytest.approx(theirs, rel=1e-9)
 
 
 def _reduced_size(scene, elements):

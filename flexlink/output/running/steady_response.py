@@ -16,7 +16,9 @@ STRAIN_NOTE = ("strain: bending strain at the fibre y = +depth/2 of the link's l
                "(left of start -> end); deflection: transverse, less the chord through the "
                "link's ends")
 CAVEAT = ("the reduced basis is the stability map's, checked on the lowest frequencies of "
-          "every pose (docs/critical-speeds.md); strain converges more slowly than frequency")
+          "every pose (docs/critical-speeds.md), with the loads' static answers at every pose "
+          "added (the stability verdict is the map's own basis's); strain converges more "
+          "slowly than frequency")
 
 
 def _crank_deg(response) -> np.ndarray:
@@ -36,6 +38,7 @@ def response_document(scene_name: str, response, model, mesh=None) -> dict:
         "damping_ratio": model.periodic.damping_ratio.tolist(),
         "damping_source": model.periodic.damping_source,
         "basis_frequencies_Hz": model.periodic.frequencies.tolist(),
+        "load_vectors": model.periodic.load_vectors,
         "largest_modulus": response.largest_modulus,
         "crank_deg": deg.tolist(),
         "points": [
@@ -85,6 +88,7 @@ def sweep_document(scene_name: str, sweep, model, mesh=None) -> dict:
         "damping_ratio": model.periodic.damping_ratio.tolist(),
         "damping_source": model.periodic.damping_source,
         "basis_frequencies_Hz": model.periodic.frequencies.tolist(),
+        "load_vectors": model.periodic.load_vectors,
         "speeds_rev_per_min": (rev_per_min(sweep.speeds)).tolist(),
         "largest_modulus": listed(sweep.largest_modulus),
         "unstable_speeds_rev_per_min": (rev_per_min(sweep.speeds[sweep.unstable])).tolist(),
@@ -126,7 +130,8 @@ def sweep_csv(sweep) -> str:
 
 def response_lines(document: dict) -> list[str]:
     """The text summary of either document."""
-    out = [f"{document['scene']}: {len(document['basis_frequencies_Hz'])} basis vectors",
+    out = [f"{document['scene']}: {len(document['basis_frequencies_Hz'])} basis vectors "
+           f"({document['load_vectors']} of them the loads' static answers)",
            damping_line(document["damping_ratio"], document["damping_source"]),
            f"caveat: {document['caveat']}"]
     if document.get("mesh"):

@@ -128,7 +128,7 @@ def stress_model(scene: Scene, n_modes: int = MODES, poses: int = 37,
     forced = forced_model(scene, n_modes, poses, damping_ratio,
                           elements_per_link=elements_per_link, basis_size=basis_size)
     own = not verdict or (n_modes == VERDICT_MODES and basis_size is None)
-    verdict = forced.periodic if own else periodic_model(scene, VERDICT_MODES, poses,
+    verdict = forced.periodic.stability if own else periodic_model(scene, VERDICT_MODES, poses,
                                                          damping_ratio, elements_per_link)
     topology = scene.topology(elements_per_link)
     periodic = forced.periodic

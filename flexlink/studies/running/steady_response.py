@@ -91,7 +91,7 @@ class ForcedModel:
 # by its own stretching, by about (w / h)^2 of its bending stiffness). Conservative: against
 # the geometrically exact time-domain record of Table II case 3, the coupler at 0.95 x depth
 # (600 rev/min) leaves every midspan peak within 0.7 %, at 3.8 x depth (1200 rev/min) the
-# rocker's departs by 2.4 %, growing with the load (docs/steady-response.md)
+# rocker's departs by 1.7 %, growing with the load (docs/steady-response.md)
 SMALL_DEFLECTION = 0.5
 
 
@@ -133,14 +133,16 @@ def forced_model(scene: Scene, n_modes: int = 6, poses: int = 37,
                  damping_ratio: float | None = None,
                  points: tuple[StrainPoint, ...] | None = None,
                  elements_per_link: int | None = None,
-                 basis_size: int | None = None) -> ForcedModel:
+                 basis_size: int | None = None, load_vectors: bool = True) -> ForcedModel:
     """``analysis.periodic.periodic_model`` (its forcing included) with the output rows at
     ``points`` (default: each link's midspan), read off the basis at each of its poses; the
     damping ratio and the basis size as there (None: the scene's declared damping; the checked
-    basis)."""
+    basis). ``load_vectors``: the loads' static answers added to the modal basis (the
+    default), so that the basis holds the quasi-static answer at every pose, and the modes
+    left out of it add their static share to the dynamic answer."""
     points = check_points(scene, midspans(scene) if points is None else points)
     periodic = periodic_model(scene, n_modes, poses, damping_ratio, elements_per_link,
-                              basis_size=basis_size)
+                              basis_size=basis_size, load_vectors=load_vectors)
     rows = np.stack([_point_rows(model, shapes, points) for model, shapes in
                      zip(periodic.pose_models, periodic.pose_shapes)], axis=1)
     model0 = periodic.pose_models[0]
@@ -219,7 +221,7 @@ def steady_response(model: ForcedModel, speed: float, samples: int = SAMPLES,
     if not (math.isfinite(speed) and speed > 0.0):
         raise InputError(f"crank speed {rev_per_min(speed):.6g} rev/min", field="speed",
                          expected="a positive finite speed")
-    stability = speed_multipliers(model.periodic, speed, on_steps=on_steps)
+    stability = speed_multipliers(model.periodic.stability, speed, on_steps=on_steps)
     if stability.largest_modulus >= 1.0:
         rpm = rev_per_min(speed)
         raise UnstableError(f"no steady state at {rpm:.6g} rev/min: largest Floquet multiplier "
