@@ -369,6 +369,13 @@ def test_the_diagram_at_speed_samples_every_frozen_range(tmp_path):
     for s in both:  # paired by overlap, as the study pairs them
         a, b = s["frozen_rev_per_min"], s["at_speed_rev_per_min"]
         assert a[0] <= b[1] and b[0] <= a[1]
+    # mode 1 diverges near 3300 rev/min: the comparison stops at the grid's last speed before
+    # it, and the text says so (the table's 'range end' is that speed, not the user's 1e6)
+    low, high = doc["at_speed"]["critical_speeds_compared_rev_per_min"]
+    assert low == 0.0 and high < 1e4 and doc["at_speed"]["divergence"] is not None
+    assert f"critical ranges compared from 0 to {high:.6g} rev/min" in text
+    assert all(s["at_speed_rev_per_min"] is None or s["at_speed_rev_per_min"][1] <= high
+               for s in shifts)
 
 
 def test_a_map_down_to_rest_has_finite_growth_rates(tmp_path):

@@ -51,6 +51,7 @@ def dynamic_json(result: DynamicCampbell, shifts: list[CriticalShift]) -> dict:
         "divergence": divergence_json(result.divergence),
         "ambiguous_speed_steps": result.ambiguous,
         "critical_speeds": [shift_json(s, _ends(result)) for s in shifts],
+        "critical_speeds_compared_rev_per_min": [rev_per_min(e) for e in _ends(result)],
     }
 
 
@@ -100,6 +101,12 @@ def dynamic_lines(result: DynamicCampbell, shifts: list[CriticalShift]) -> list[
     if not shifts:
         out.append("no critical speed in the range, frozen or at speed")
         return out
+    low, high = _ends(result)
+    if high < result.speeds[-1]:
+        out.append(f"critical ranges compared from {rev_per_min(low):.6g} to "
+                   f"{rev_per_min(high):.6g} rev/min, the last speed of the grid before the "
+                   "divergence: a range there is cut ('range end'), and the frozen ranges "
+                   "above it are only in the frozen table")
     out.append(f"{'mode':>4} {'harm.':>5} {'frozen [rev/min]':>17} {'at speed [rev/min]':>19} "
                f"{'moved from / to':>20}")
     for s in shifts:
