@@ -134,3 +134,17 @@ def test_report_page_shows_the_documents_curves_and_peaks_in_its_units():
     # microstrain, 1 and 3 mm, 1 mm / 20 mm and 3 mm / 40 mm
     assert [(r[0], *(float(x.replace(",", "")) for x in r[1:])) for r in rows] == [
         ("coupler@60mm", 3000.0, 1.0, 0.05), ("rocker@100mm", 600.0, 3.0, 0.075)]
+
+
+def test_a_sweep_names_where_the_deflection_is_largest_and_where_it_first_passes():
+    """The sweep's warning paired its largest deflection with the first speed past the limit
+    ("41.3 times ... from 600 rev/min on"): it names both speeds now."""
+    from flexlink.output.running.steady_response import deflection_warnings
+    from flexlink.studies.running.steady_response import StrainPoint
+
+    ratio = np.array([[0.2], [0.8], [41.3], [3.0]])  # (speeds, points)
+    [line] = deflection_warnings((StrainPoint("coupler", 0.135),), ratio,
+                                 speeds=[300.0, 600.0, 2800.0, 3000.0])
+    assert "41.3 times the link's depth at 2800 rev/min" in line
+    assert "from 600 rev/min on the sweep" in line
+    assert deflection_warnings((StrainPoint("coupler", 0.135),), ratio[:1], speeds=[300.0]) == []

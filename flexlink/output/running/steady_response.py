@@ -68,7 +68,9 @@ def deflection_warnings(points, ratio, speeds=None) -> list[str]:
         where = ""
         if speeds is not None:
             first = speeds[int(np.flatnonzero(values > SMALL_DEFLECTION)[0])]
-            where = f" from {first:g} rev/min on the sweep"
+            worst = speeds[int(np.nanargmax(values))]
+            where = (f" at {worst:g} rev/min (past {SMALL_DEFLECTION:g} times from {first:g} "
+                     "rev/min on the sweep)")
         out.append(f"{p.label}: peak deflection {np.nanmax(values):.3g} times the link's depth"
                    f"{where}, beyond the small-deflection range (at most {SMALL_DEFLECTION:g} "
                    "times the depth): the linear model does not hold there")
