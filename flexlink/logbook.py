@@ -17,7 +17,8 @@ import sys
 from collections.abc import Iterator
 
 ROOT = "flexlink"
-FORMAT = "%(levelname)s %(name)s: %(message)s"
+FORMAT = "%(level)s: %(message)s"  # "warning: ...", as the commands' own result lines
+VERBOSE_FORMAT = "%(levelname)s %(name)s: %(message)s"  # -v: which module said it
 _NUMBER = re.compile(r"(?<![\w.])[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?(?![\w])")
 
 log = logging.getLogger(__name__)
@@ -70,6 +71,14 @@ class _Stderr(logging.StreamHandler):
         pass
 
 
+class _Plain(logging.Formatter):
+    """The level in lower case ahead of the message, no logger name."""
+
+    def format(self, record: logging.LogRecord) -> str:
+        record.level = record.levelname.lower()
+        return super().format(record)
+
+
 _installed: _Stderr | None = None
 
 
@@ -83,7 +92,7 @@ def configure(verbose: bool = False) -> OncePerKind:
     if _installed is not None:
         root.removeHandler(_installed)
     _installed = _Stderr()
-    _installed.setFormatter(logging.Formatter(FORMAT))
+    _installed.setFormatter(logging.Formatter(VERBOSE_FORMAT) if verbose else _Plain(FORMAT))
     once = OncePerKind()
     _installed.addFilter(once)
     root.addHandler(_installed)

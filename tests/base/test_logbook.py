@@ -22,7 +22,7 @@ def configured():
 
 
 def warning_lines(text: str) -> list[str]:
-    return [line for line in text.splitlines() if line.startswith("WARNING")]
+    return [line for line in text.splitlines() if line.startswith("warning: ")]
 
 
 def test_each_kind_is_shown_once_and_its_repeats_counted(configured, capsys):
@@ -30,8 +30,8 @@ def test_each_kind_is_shown_once_and_its_repeats_counted(configured, capsys):
         log.warning("case1.toml: link crank: slenderness L/h = %g", ratio)
     log.warning("case2.toml: link crank: slenderness L/h = %g", 4.0)  # another case: a new kind
     shown = warning_lines(capsys.readouterr().err)
-    assert shown == ["WARNING flexlink.test_logbook: case1.toml: link crank: slenderness L/h = 4",
-                     "WARNING flexlink.test_logbook: case2.toml: link crank: slenderness L/h = 4"]
+    assert shown == ["warning: case1.toml: link crank: slenderness L/h = 4",
+                     "warning: case2.toml: link crank: slenderness L/h = 4"]
     logbook.report_repeats(configured)
     [repeat] = warning_lines(capsys.readouterr().err)
     assert "slenderness L/h = 4' came 3 times in all" in repeat

@@ -28,7 +28,7 @@ def one_line_refusal(code, err, *words):
     """Exit 2 and one line of error; a scene with [checks] plausibility = "warn" may log
     its implausible values before it, one line each."""
     assert code == 2, err
-    lines = [line for line in err.splitlines() if not line.startswith("WARNING flexlink.scene")]
+    lines = [line for line in err.splitlines() if not line.startswith("warning: ")]
     assert len(lines) == 1 and "Traceback" not in err and "Warning:" not in err, err
     for w in words:
         assert w in lines[0], err

@@ -108,7 +108,7 @@ def test_every_writing_command_is_covered():
 
 def _one_error_line(result) -> str:
     lines = [line for line in result.stderr.splitlines() if line.strip()
-             and not line.startswith("WARNING")]
+             and not line.startswith("warning: ")]
     assert result.exit_code == 2, (result.output, result.exception)
     assert len(lines) == 1 and lines[0].startswith("flexlink: error: "), result.stderr
     return lines[0]

@@ -64,7 +64,7 @@ def test_calibrate_command_reports_the_failed_case(case2_fails, tmp_path):
     assert "### Failed evaluations" in report and FORCED in report
     # the model's warnings over the study's evaluations: one summary line at most, nothing
     # else (in a test process whose logging an earlier test set up, the line may go elsewhere)
-    warned = [line for line in result.stderr.splitlines() if line.startswith("WARNING")]
+    warned = [line for line in result.stderr.splitlines() if line.startswith("warning: ")]
     assert len(warned) <= 1, warned
     assert all(re.search(r"\d+ warnings? of \d+ kinds? during the planar calibration study",
                          line) for line in warned), warned
