@@ -222,3 +222,18 @@ def periodic_mesh(scene, n_modes: int, elements: int | None, tol: float | None):
 harmonics_option = click.option(
     "--harmonics", default=10, show_default=True, type=click.IntRange(1, 10000),
     help="Crank harmonics n = 1 ... this number.")
+
+
+def parse_point(text: str, field: str = "--at"):
+    """"LINK:DISTANCE" (e.g. "coupler:60 mm", the distance from the link's start joint) as a
+    ``studies.running.steady_response.StrainPoint``."""
+    from flexlink.errors import InputError
+    from flexlink.studies.running.steady_response import StrainPoint
+    from flexlink.units import parse_quantity
+
+    link, sep, distance = str(text).partition(":")
+    if not sep or not link.strip():
+        raise InputError(f"{text!r} is not LINK:DISTANCE", source="command line", field=field,
+                         expected="e.g. 'coupler:60 mm'")
+    return StrainPoint(link.strip(), parse_quantity(distance.strip(), "length",
+                                                    source="command line", field=field))

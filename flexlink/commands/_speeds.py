@@ -70,6 +70,17 @@ def parse_speeds(text: str, field: str = "--speeds") -> tuple[float, float]:
     return low, high
 
 
+def speed_or_sweep(speed: str | None, speeds: str | None, count: int):
+    """(one crank speed [rad/s] or None, a sweep of ``count`` speeds [rad/s] or None) from
+    --speed and --speeds LOW:HIGH, which exclude each other."""
+    import numpy as np
+
+    if speed is not None and speeds is not None:
+        raise InputError("give --speed or --speeds, not both", source=WHERE, field="--speeds")
+    sweep = None if speeds is None else np.linspace(*parse_speeds(speeds), count)
+    return parse_speed(speed), sweep
+
+
 def operating_speed(scene, speed: float | None = None,
                     crank_acceleration: float | None = None) -> tuple[float, float]:
     """(speed [rad/s], crank acceleration [rad/s^2]) from the command line's values (None: not

@@ -51,9 +51,7 @@ def command(scene_path, speed, speeds, count, hours, reliability, surface, tempe
     life.json, life.csv (the full field), life.pvd (a ParaView series over the crank angle),
     life_haigh.png (where a link is metal) and life_stress.png to OUT/<scene>/; with --speeds, life_speeds.json and
     .png."""
-    import numpy as np
 
-    from flexlink.errors import InputError
     from flexlink.fileio import write_atomic
     from flexlink.output.life import life as render
     from flexlink.studies.life.convergence import peak_error
@@ -61,16 +59,12 @@ def command(scene_path, speed, speeds, count, hours, reliability, surface, tempe
                                            safety_sweep)
     from flexlink.studies.life.stress_field import stress_field, stress_model
     from ._progress import progress_bar
-    from ._speeds import operating_speed, parse_speed, parse_speeds
+    from ._speeds import operating_speed, speed_or_sweep
     from ._written import folder_and_scene, publish
 
-    if speed is not None and speeds is not None:
-        raise InputError("give --speed or --speeds, not both", source="command line",
-                         field="--speeds")
     conditions = Conditions(surface=surface, temperature=temperature, reliability=reliability,
                             mean_stress=mean_stress, hours=hours)
-    sweep = None if speeds is None else np.linspace(*parse_speeds(speeds), count)
-    one = parse_speed(speed)
+    one, sweep = speed_or_sweep(speed, speeds, count)
     folder, scene = folder_and_scene(out_dir, scene_path)
     check_strengths(scene)
     model = stress_model(scene, n_modes, damping_ratio=damping_ratio,

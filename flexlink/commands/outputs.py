@@ -42,49 +42,24 @@ WHERE = "command line"
 @json_option
 @out_option
 @names_scene("scene_path")
-def command(scene_path, input_torque, torque_csv, unit, outputs, sharing, share, friction, efficiency, speed,
-            poses, study, as_json, out_dir):
+def command(scene_path, input_torque, torque_csv, unit, outputs, sharing, share, friction,
+            efficiency, speed, poses, study, as_json, out_dir):
     """Output torque at each output body of SCENE for a given input torque at the driver,
     with the transmission ratios, pin and ground forces, dead points and the losses of
     friction m and bearing efficiency eta. Writes outputs.csv, outputs.png and outputs.json
     (with --study also parametric.csv and parametric.png) to OUT/<scene>/."""
-    from flexlink.errors import InputError
     from flexlink.fileio import prepare_out_dir, write_atomic
     from flexlink.output.kinetostatics.outputs import (outputs_csv, outputs_document,
                                                        outputs_plot, outputs_text)
     from flexlink.scene import load_scene
     from flexlink.studies.kinetostatics.outputs import output_study
     from flexlink.units import parse_quantity
+    from ._kinetostatics import kinetostatics_overrides
     from ._progress import progress_bar
     from ._written import publish, scene_folders
 
-    if friction is not None and not 0.0 <= friction < 1.0:
-        raise InputError(f"got {friction!r}", source=WHERE, field="--friction",
-                         expected="m in [0, 1)")
-    if efficiency is not None and not 0.0 < efficiency <= 1.0:
-        raise InputError(f"got {efficiency!r}", source=WHERE, field="--efficiency",
-                         expected="eta in (0, 1]")
-    if share is not None and not 0.0 <= share <= 1.0:
-        raise InputError(f"got {share!r}", source=WHERE, field="--share", expected="[0, 1]")
-    overrides = {}
-    if input_torque is not None and torque_csv is not None:
-        raise InputError("give --input-torque or --input-torque-csv, not both", source=WHERE,
-                         field="--input-torque-csv")
-    if torque_csv is not None:
-        from pathlib import Path
-
-        parse_quantity(f"1 {unit}", "torque", source=WHERE, field="--unit")
-        overrides.update({"kinetostatics.input_torque": None, "kinetostatics.unit": unit,
-                          "kinetostatics.csv": str(Path(torque_csv).resolve())})
-    if input_torque is not None:
-        parse_quantity(input_torque, "torque", source=WHERE, field="--input-torque")
-        overrides.update({"kinetostatics.input_torque": input_torque, "kinetostatics.csv": None,
-                          "kinetostatics.unit": None})
-    for key, value in (("outputs", list(outputs) or None), ("friction", friction),
-                       ("efficiency", efficiency), ("share", share),
-                       ("sharing", sharing.value if sharing else None)):
-        if value is not None:
-            overrides[f"kinetostatics.{key}"] = value
+    overrides = kinetostatics_overrides(input_torque, torque_csv, unit, outputs, sharing, share,
+                                        friction, efficiency)
     omega = None if speed is None else parse_quantity(speed, "angular speed", source=WHERE,
                                                       field="--speed")
     [folder] = scene_folders(prepare_out_dir(out_dir), [scene_path])

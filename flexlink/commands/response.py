@@ -27,22 +27,15 @@ def command(scene_path, speed, speeds, count, n_modes, damping_ratio, elements, 
             points, as_json, out_dir):
     """Steady bending strain and deflection of SCENE's links over one crank turn at a speed,
     or their peaks against speed. Writes response.png, .csv and .json to OUT/<scene>/."""
-    import numpy as np
-
-    from flexlink.errors import InputError
     from flexlink.output.running.steady_response import response_lines, write_response
     from flexlink.studies.running import steady_response as study
-    from ._options import periodic_mesh
+    from ._options import parse_point, periodic_mesh
     from ._progress import progress_bar, step_progress
-    from ._speeds import operating_speed, parse_speed, parse_speeds
+    from ._speeds import operating_speed, speed_or_sweep
     from ._written import folder_and_scene, publish
 
-    if speed is not None and speeds is not None:
-        raise InputError("give --speed or --speeds, not both", source="command line",
-                         field="--speeds")
+    one, sweep = speed_or_sweep(speed, speeds, count)
     refuse_unless("count", "--speeds", speeds is not None)
-    sweep = None if speeds is None else np.linspace(*parse_speeds(speeds), count)
-    one = parse_speed(speed)
     at = tuple(parse_point(p) for p in points) or None
     folder, scene = folder_and_scene(out_dir, scene_path)
     if at is not None:
@@ -61,18 +54,3 @@ def command(scene_path, speed, speeds, count, n_modes, damping_ratio, elements, 
     document, files = write_response(result, model, folder, scene.name, mesh)
     publish(folder / "response.json", document, files, "\n".join(response_lines(document)),
             as_json)
-
-
-def parse_point(text: str, field: str = "--at"):
-    """"LINK:DISTANCE" (e.g. "coupler:60 mm", the distance from the link's start joint) as a
-    ``studies.running.steady_response.StrainPoint``."""
-    from flexlink.errors import InputError
-    from flexlink.studies.running.steady_response import StrainPoint
-    from flexlink.units import parse_quantity
-
-    link, sep, distance = str(text).partition(":")
-    if not sep or not link.strip():
-        raise InputError(f"{text!r} is not LINK:DISTANCE", source="command line", field=field,
-                         expected="e.g. 'coupler:60 mm'")
-    return StrainPoint(link.strip(), parse_quantity(distance.strip(), "length",
-                                                    source="command line", field=field))

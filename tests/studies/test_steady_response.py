@@ -23,7 +23,7 @@ from flexlink.kinematics.dynamics import rigid_motion
 from flexlink.scene import load_scene
 from flexlink.analysis.frame_motion import link_motion
 from flexlink.analysis.periodic import PeriodicModel, periodic_model, speed_multipliers
-from flexlink.commands.response import parse_point
+from flexlink.commands._options import parse_point
 from flexlink.studies.running.steady_response import (
     ForcedModel,
     StrainPoint,
