@@ -52,7 +52,6 @@ def command(scene_path, speed, speeds, count, hours, reliability, surface, tempe
     life_haigh.png (where a link is metal) and life_stress.png to OUT/<scene>/; with --speeds, life_speeds.json and
     .png."""
 
-    from flexlink.fileio import write_atomic
     from flexlink.output.life import life as render
     from flexlink.studies.life.convergence import peak_error
     from flexlink.studies.life.life import (Conditions, check_strengths, life_study,
@@ -83,10 +82,5 @@ def command(scene_path, speed, speeds, count, hours, reliability, surface, tempe
     error = (peak_error(scene, field, model.elements[0], n_modes, damping_ratio=damping_ratio)
              if estimate else None)
     document = render.life_document(scene, study, model, error)
-    files = [write_atomic(folder / "life.csv", render.field_csv(study))]
-    files += render.plot_haigh(study, folder / "life_haigh.png", scene.name)
-    render.plot_stress_maps(study, model, folder / "life_stress.png", scene.name)
-    files.append(folder / "life_stress.png")
-    files += render.write_series(folder, "life", scene, study, model)
-    publish(folder / "life.json", document, files, "\n".join(render.life_lines(document)),
-            as_json)
+    publish(folder / "life.json", document, render.write_life(folder, scene, study, model),
+            "\n".join(render.life_lines(document)), as_json)

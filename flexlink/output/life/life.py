@@ -167,6 +167,19 @@ def node_stresses(field, model, name: str) -> np.ndarray:
     return nodes / count[None, :, None]
 
 
+def write_life(folder, scene, study, model) -> list:
+    """Every file of one speed's life study in ``folder``: life.csv (the full field), the
+    ParaView series, life_haigh.png (where a link is metal) and life_stress.png; returns their
+    paths."""
+    from flexlink.fileio import write_atomic
+
+    files = [write_atomic(folder / "life.csv", field_csv(study))]
+    files += plot_haigh(study, folder / "life_haigh.png", scene.name)
+    plot_stress_maps(study, model, folder / "life_stress.png", scene.name)
+    files.append(folder / "life_stress.png")
+    return files + write_series(folder, "life", scene, study, model)
+
+
 def write_series(folder, stem: str, scene, study, model) -> list:
     """``<stem>.pvd`` over the crank angle (time = crank angle [deg]) and one .vtu per angle
     in ``<stem>/``: each link a line of its nodes at the rigid pose of that angle, with the
